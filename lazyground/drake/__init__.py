@@ -1,0 +1,1 @@
+"""The Drake side: scene → plant + SceneGraph, collision checking, IK goal sampling."""

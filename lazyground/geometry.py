@@ -1,0 +1,87 @@
+"""Rigid-transform helpers in plain numpy (no pydrake), Drake monogram style.
+
+A pose is stored as ``(xyz, rpy)``: translation in metres and extrinsic
+roll-pitch-yaw in radians, ``R = Rz(yaw) @ Ry(pitch) @ Rx(roll)`` — the same
+convention as Drake's ``RollPitchYaw`` and URDF.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+
+def rpy_to_matrix(rpy) -> np.ndarray:
+    """Rotation matrix of extrinsic roll-pitch-yaw angles."""
+    r, p, y = (float(a) for a in rpy)
+    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
+    return np.array(
+        [
+            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+            [-sp, cp * sr, cp * cr],
+        ]
+    )
+
+
+def matrix_to_rpy(R: np.ndarray) -> np.ndarray:
+    """Roll-pitch-yaw of a rotation matrix (pitch in [-pi/2, pi/2])."""
+    pitch = math.atan2(-R[2, 0], math.hypot(R[0, 0], R[1, 0]))
+    if abs(math.cos(pitch)) < 1e-9:  # gimbal lock: fold yaw into roll
+        return np.array([math.atan2(-R[1, 2], R[1, 1]), pitch, 0.0])
+    return np.array([math.atan2(R[2, 1], R[2, 2]), pitch, math.atan2(R[1, 0], R[0, 0])])
+
+
+def quaternion_xyzw_to_matrix(q) -> np.ndarray:
+    """Rotation matrix of a unit quaternion given as (x, y, z, w)."""
+    x, y, z, w = (float(a) for a in q)
+    return np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+        ]
+    )
+
+
+def wrap_angle(a):
+    """Wrap angles to [-pi, pi)."""
+    return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
+
+
+@dataclass(frozen=True)
+class Pose:
+    """A rigid transform X_AB: frame B measured and expressed in frame A."""
+
+    xyz: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    @staticmethod
+    def from_matrix(X: np.ndarray) -> "Pose":
+        return Pose(tuple(float(v) for v in X[:3, 3]), tuple(float(v) for v in matrix_to_rpy(X[:3, :3])))
+
+    def matrix(self) -> np.ndarray:
+        X = np.eye(4)
+        X[:3, :3] = rpy_to_matrix(self.rpy)
+        X[:3, 3] = self.xyz
+        return X
+
+    def rotation(self) -> np.ndarray:
+        return rpy_to_matrix(self.rpy)
+
+    def compose(self, other: "Pose") -> "Pose":
+        """X_AC = X_AB · X_BC."""
+        return Pose.from_matrix(self.matrix() @ other.matrix())
+
+    def inverse(self) -> "Pose":
+        return Pose.from_matrix(np.linalg.inv(self.matrix()))
+
+    def transform_points(self, p_B: np.ndarray) -> np.ndarray:
+        """Points measured in B, returned in A (rows are points)."""
+        p_B = np.atleast_2d(p_B)
+        return p_B @ self.rotation().T + np.asarray(self.xyz)
+
+    def to_json(self) -> dict:
+        return {"xyz": [round(v, 9) for v in self.xyz], "rpy": [round(v, 9) for v in self.rpy]}

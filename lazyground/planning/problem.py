@@ -1,0 +1,134 @@
+"""The planner's seam: settings, the problem's protocols, and the result.
+
+The planner sees only these: a :class:`ConfigSpace`, a :class:`ValidityChecker`
+and a :class:`GoalSource` — never Drake.
+"""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass, field
+from typing import Protocol
+
+import numpy as np
+
+from lazyground.planning.space import ConfigSpace
+from lazyground.regions import GoalRegion
+
+
+class PlanStatus(str, enum.Enum):
+    SOLVED = "solved"
+    TIMEOUT = "timeout"
+    INVALID_START = "invalid_start"
+    NO_VALID_GOAL = "no_valid_goal"
+    INTERRUPTED = "interrupted"
+
+    def __str__(self) -> str:
+        return self.value
+
+
+@dataclass(frozen=True)
+class PlannerSettings:
+    """Plain settings of the reward-penalty RRT (defaults as in the authors' code)."""
+
+    strategy: str = "reward-penalty"
+    goal_bias: float = 0.05
+    step_size: float = 0.5  # epsilon: the longest extension, in the space's metric
+    edge_resolution: float | None = None  # collision-check spacing; default step_size / 10
+    time_limit: float = 10.0
+    max_iterations: int = 10_000_000
+    initial_goal_samples: int = 10
+    resample_threshold: float = 0.2
+    resample_count: int = 10
+    validation_factor: float = 10.0  # returned paths are re-checked at edge_resolution / this
+
+    @property
+    def resolution(self) -> float:
+        return self.edge_resolution if self.edge_resolution is not None else self.step_size / 10.0
+
+
+class ValidityChecker(Protocol):
+    """Collision checks over configurations; times itself."""
+
+    def config_free(self, q: np.ndarray) -> bool: ...
+    def configs_free(self, qs: np.ndarray) -> np.ndarray: ...
+    def explain(self, q: np.ndarray) -> str:
+        """Why q is invalid, one line (e.g. the colliding pair)."""
+        ...
+    @property
+    def check_time(self) -> float: ...
+
+
+@dataclass
+class GoalSample:
+    """A valid configuration in one goal region, with its reward-penalty record."""
+
+    q: np.ndarray
+    region: int  # index into GoalSource.regions
+    attempts: int = 0
+    rewards: int = 0
+    penalties: int = 0
+    weight: float = 1.0
+    extra: dict = field(default_factory=dict)  # e.g. the end-effector pose it was solved for
+
+
+@dataclass
+class RegionStats:
+    attempts: int = 0
+    valid: int = 0
+    time: float = 0.0
+    failures: dict[str, int] = field(default_factory=dict)  # reason -> count
+
+    def fail(self, reason: str) -> None:
+        self.failures[reason] = self.failures.get(reason, 0) + 1
+
+    def to_json(self) -> dict:
+        return {"attempts": self.attempts, "valid": self.valid, "time_s": round(self.time, 6), "failures": dict(self.failures)}
+
+
+class GoalSource(Protocol):
+    """Draws valid goal configurations from goal regions, lazily (goalRegionsSampler)."""
+
+    regions: tuple[GoalRegion, ...]
+    stats: list[RegionStats]
+
+    def draw(self, n: int, rng: np.random.Generator, deadline: float) -> list[GoalSample]:
+        """Up to n new valid samples spread over the regions; fewer if attempts or time run out."""
+        ...
+    def exhausted(self) -> bool:
+        """True when no region can yield a valid sample any more."""
+        ...
+    @property
+    def sample_time(self) -> float: ...
+
+
+@dataclass(frozen=True)
+class PlanResult:
+    """What one planning query returns; records its seed and a time split."""
+
+    status: PlanStatus
+    seed: int | None
+    path: np.ndarray | None  # (n, dim) configurations, start first
+    goal: GoalSample | None
+    goal_region: GoalRegion | None
+    iterations: int
+    tree_size: int
+    goal_samples: list[GoalSample]
+    resamplings: int
+    time_s: float
+    goal_sampling_s: float
+    collision_s: float
+    message: str = ""
+    region_stats: list[RegionStats] = field(default_factory=list)
+    tree: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None  # (nodes, parents, goal-biased flag)
+    failed_from: np.ndarray | None = None  # nodes from which a goal-biased extension failed
+    path_length: float = 0.0
+    invalid_paths_rejected: int = 0
+
+    @property
+    def solved(self) -> bool:
+        return self.status is PlanStatus.SOLVED
+
+    @property
+    def other_s(self) -> float:
+        return max(0.0, self.time_s - self.goal_sampling_s - self.collision_s)

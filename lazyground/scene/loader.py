@@ -1,0 +1,100 @@
+"""``load_scene(path) -> Scene``: read a scene YAML file strictly."""
+
+from __future__ import annotations
+
+import os
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+from lazyground.scene.schema import Scene, SceneObject
+from lazyground.scene.typed_yaml import SceneError, load_dataclass
+
+MAX_SCENE_BYTES = 5 * 1024 * 1024
+REPO_ROOT = Path(__file__).resolve().parents[2]
+
+
+def models_dirs() -> list[Path]:
+    """Where bundled model names are looked up: $LAZYGROUND_MODELS, then the repo's models/."""
+    dirs = [Path(p) for p in os.environ.get("LAZYGROUND_MODELS", "").split(os.pathsep) if p]
+    return dirs + [REPO_ROOT / "models"]
+
+
+def resolve_model(model: str, scene_dir: Path | None) -> Path | None:
+    """A model file from a bundled name (``fetch`` → models/fetch/fetch.urdf) or a path."""
+    candidates = []
+    if scene_dir is not None:
+        candidates.append(scene_dir / model)
+    for d in models_dirs():
+        candidates += [d / model, d / model / f"{model}.urdf", d / model / f"{model}.sdf"]
+    candidates.append(REPO_ROOT / model)
+    for c in candidates:
+        if c.is_file():
+            return c.resolve()
+    return None
+
+
+def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = None) -> Scene:
+    """Parse scene YAML text; errors are SceneError with one line naming ``source``."""
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
+        problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
+        raise SceneError(f"{source}: YAML syntax error{where}: {problem}") from None
+    if data is None:
+        raise SceneError(f"{source}: the scene is empty")
+    try:
+        scene = load_dataclass(data, Scene, "")
+    except SceneError as exc:
+        raise SceneError(f"{source}: {exc}") from None
+    model = resolve_model(scene.robot.model, scene_dir)
+    if model is None:
+        raise SceneError(f"{source}: robot.model: model file {scene.robot.model!r} not found (bundled: {_bundled()})")
+    problem = _overlap_problem(scene.objects)
+    if problem:
+        raise SceneError(f"{source}: {problem}")
+    return replace(scene, robot=replace(scene.robot, model=str(model)), source=source)
+
+
+def load_scene(path: str | os.PathLike) -> Scene:
+    """Load and validate a scene file.
+
+    Raises:
+        SceneError: with one line naming the file, the key path and the problem.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise SceneError(f"{path}: no such scene file")
+    size = path.stat().st_size
+    if size > MAX_SCENE_BYTES:
+        raise SceneError(f"{path}: file is {size / 1e6:.0f} MB; scenes are limited to {MAX_SCENE_BYTES // 2**20} MiB")
+    try:
+        text = path.read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        raise SceneError(f"{path}: not a UTF-8 text file") from None
+    return parse_scene(text, str(path), path.parent)
+
+
+def _bundled() -> str:
+    names = sorted({p.name for d in models_dirs() if d.is_dir() for p in d.iterdir() if p.is_dir()})
+    return ", ".join(names) or "none"
+
+
+def _overlap_problem(objects: tuple[SceneObject, ...]) -> str | None:
+    """An object whose centre lies inside another solid object is a modelling error."""
+    solid = [o for o in objects if o.collides]
+    for i, a in enumerate(solid):
+        centre = np.asarray(a.pose.xyz)
+        for b in solid:
+            if b is a:
+                continue
+            X = b.pose.pose()
+            p_B = (centre - np.asarray(X.xyz)) @ X.rotation()
+            if np.all(np.abs(p_B) < np.asarray(b.geometry.half_extents()) - 1e-9) and b.geometry.volume() > a.geometry.volume():
+                idx = objects.index(a)
+                return f"objects[{idx}].pose: {a.id!r} is inside {b.id!r}"
+    return None

@@ -1,0 +1,193 @@
+"""The scene schema: frozen dataclasses that a scene YAML file loads into.
+
+See ``docs/scene_format.md`` for the documented format. No pydrake here: the
+grounding module and the CLI's input checks use this without Drake.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from lazyground.geometry import Pose
+from lazyground.scene.typed_yaml import checked, in_range, non_negative, positive
+
+OBJECT_TYPES_HINT = "can, box, cup, bottle, table, shelf, parking_spot, ..."
+STRATEGIES = ("reward-penalty", "consecutive", "random")
+
+
+@dataclass(frozen=True)
+class PoseSpec:
+    """``{xyz: [x, y, z], rpy: [roll, pitch, yaw]}``, metres and radians."""
+
+    xyz: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    def pose(self) -> Pose:
+        return Pose(self.xyz, self.rpy)
+
+
+@dataclass(frozen=True)
+class Cylinder:
+    radius: float = checked(positive)
+    length: float = checked(positive)
+
+
+@dataclass(frozen=True)
+class Sphere:
+    radius: float = checked(positive)
+
+
+@dataclass(frozen=True)
+class Geometry:
+    """Exactly one of ``box: [x, y, z]``, ``cylinder: {radius, length}``, ``sphere: {radius}``."""
+
+    box: tuple[float, float, float] | None = checked(positive, default=None)
+    cylinder: Cylinder | None = None
+    sphere: Sphere | None = None
+
+    def validate(self) -> str | None:
+        given = [k for k in ("box", "cylinder", "sphere") if getattr(self, k) is not None]
+        if len(given) != 1:
+            return f"shape: give exactly one of box, cylinder, sphere (got {', '.join(given) or 'none'})"
+        return None
+
+    @property
+    def kind(self) -> str:
+        return "box" if self.box else "cylinder" if self.cylinder else "sphere"
+
+    def half_extents(self) -> tuple[float, float, float]:
+        """Half sizes of the shape's axis-aligned box in its own frame."""
+        if self.box:
+            return (self.box[0] / 2, self.box[1] / 2, self.box[2] / 2)
+        if self.cylinder:
+            return (self.cylinder.radius, self.cylinder.radius, self.cylinder.length / 2)
+        r = self.sphere.radius
+        return (r, r, r)
+
+    def volume(self) -> float:
+        if self.box:
+            return self.box[0] * self.box[1] * self.box[2]
+        if self.cylinder:
+            return math.pi * self.cylinder.radius**2 * self.cylinder.length
+        return 4 / 3 * math.pi * self.sphere.radius**3
+
+
+@dataclass(frozen=True)
+class Obstacle:
+    id: str
+    geometry: Geometry
+    pose: PoseSpec = PoseSpec()
+    color: str | None = None
+
+
+@dataclass(frozen=True)
+class SceneObject:
+    """A semantically typed object: what requests talk about."""
+
+    id: str
+    type: str
+    geometry: Geometry
+    pose: PoseSpec = PoseSpec()
+    color: str | None = None
+    size: str | None = None
+    occupied: bool = False
+    collision: bool | None = None  # default: every type but parking_spot collides
+    attributes: dict[str, str] = field(default_factory=dict)
+
+    @property
+    def collides(self) -> bool:
+        if self.collision is not None:
+            return self.collision
+        return self.type != "parking_spot"
+
+
+@dataclass(frozen=True)
+class RobotSpec:
+    """The robot: a model file, its planned joints and its start configuration."""
+
+    model: str
+    start: dict[str, float]
+    base: PoseSpec | None = None  # weld pose of the model's base link; None = free/planar models
+    base_link: str = "base_link"
+    planned_joints: tuple[str, ...] | None = None  # None = every movable joint
+    limits: dict[str, tuple[float, float]] = field(default_factory=dict)  # per position name
+    weights: dict[str, float] = field(default_factory=dict)  # per position name, for the metric
+    end_effector: str | None = None
+
+    def validate(self) -> str | None:
+        for name, (lo, hi) in self.limits.items():
+            if not lo < hi:
+                return f"limits: {name}: lower {lo:g} must be below upper {hi:g}"
+        for name, w in self.weights.items():
+            if w <= 0:
+                return f"weights: {name}: must be > 0, got {w:g}"
+        return None
+
+
+@dataclass(frozen=True)
+class PlannerSpec:
+    """Planner defaults for this scene; the CLI and API may override each."""
+
+    strategy: str = "reward-penalty"
+    goal_bias: float = checked(in_range(0.0, 1.0), default=0.05)
+    step_size: float = checked(positive, default=0.5)
+    time_limit: float = checked(positive, default=10.0)
+    max_iterations: int = checked(positive, default=10_000_000)
+    seed: int = checked(non_negative, default=0)
+    initial_goal_samples: int = checked(positive, default=10)
+    resample_threshold: float = checked(in_range(0.0, 1.0), default=0.2)
+    resample_count: int = checked(positive, default=10)
+    collision_padding: float = checked(non_negative, default=0.0)
+
+    def validate(self) -> str | None:
+        if self.strategy not in STRATEGIES:
+            return f"strategy: unknown strategy {self.strategy!r} (known: {', '.join(STRATEGIES)})"
+        return None
+
+
+@dataclass(frozen=True)
+class Expectation:
+    """What a regression test asserts for one request on this scene."""
+
+    request: str
+    interpretations: tuple[str, ...] | None = None  # exact set of interpretation ids
+    success_rate: float = checked(in_range(0.0, 1.0), default=0.9)
+    seeds: int = checked(positive, default=10)
+    time_limit: float | None = checked(positive, default=None)
+    strategy: str | None = None
+    goal_bias: float | None = None
+    reachable: tuple[str, ...] | None = None  # objects a solution may reach; None = any
+
+
+@dataclass(frozen=True)
+class Scene:
+    name: str
+    robot: RobotSpec
+    description: str = ""
+    obstacles: tuple[Obstacle, ...] = ()
+    objects: tuple[SceneObject, ...] = ()
+    planner: PlannerSpec = PlannerSpec()
+    expect: tuple[Expectation, ...] = ()
+    grasp_types: dict[str, dict] | None = None  # per-type overrides of grounding/types.yaml
+    source: str = ""  # file the scene came from (set by the loader)
+
+    def validate(self) -> str | None:
+        seen: dict[str, str] = {}
+        for kind, items in (("obstacles", self.obstacles), ("objects", self.objects)):
+            for i, item in enumerate(items):
+                if not item.id.strip():
+                    return f"{kind}[{i}].id: must not be empty"
+                if item.id in seen:
+                    return f"{kind}[{i}].id: duplicate id {item.id!r} (also in {seen[item.id]})"
+                seen[item.id] = kind
+        return None
+
+    def object(self, object_id: str) -> SceneObject:
+        for obj in self.objects:
+            if obj.id == object_id:
+                return obj
+        raise KeyError(object_id)
+
+    def objects_of_type(self, type_name: str) -> list[SceneObject]:
+        return [o for o in self.objects if o.type == type_name]

@@ -1,0 +1,168 @@
+"""Strict, typed YAML → frozen dataclasses, in the spirit of Drake's ``yaml_load_typed``.
+
+Unknown keys, missing required keys and wrong types are rejected with a
+:class:`SceneError` whose one-line message names the file, the key path and the
+problem, e.g. ``scene.yaml: objects[2].geometry.radius: must be > 0, got -1``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import types
+import typing
+from typing import Any, Union, get_args, get_origin, get_type_hints
+
+
+class SceneError(ValueError):
+    """A scene file that cannot be used; the message is one line."""
+
+
+def _fail(path: str, problem: str) -> typing.NoReturn:
+    raise SceneError(f"{path}: {problem}")
+
+
+def _type_name(tp) -> str:
+    origin = get_origin(tp)
+    if origin in (Union, types.UnionType):
+        return " or ".join(_type_name(a) for a in get_args(tp) if a is not type(None))
+    if origin in (list, tuple):
+        return "list"
+    if origin is dict:
+        return "mapping"
+    if dataclasses.is_dataclass(tp):
+        return "mapping"
+    return getattr(tp, "__name__", str(tp))
+
+
+def convert(value: Any, tp, path: str):
+    """Convert a parsed YAML value to ``tp``; raise SceneError naming ``path``."""
+    origin = get_origin(tp)
+    if tp is Any:
+        return value
+    if origin in (Union, types.UnionType):
+        args = get_args(tp)
+        if value is None and type(None) in args:
+            return None
+        errors = []
+        for arg in args:
+            if arg is type(None):
+                continue
+            try:
+                return convert(value, arg, path)
+            except SceneError as exc:
+                errors.append(str(exc))
+        _fail(path, f"expected {_type_name(tp)}, got {_describe(value)}")
+    if dataclasses.is_dataclass(tp):
+        return load_dataclass(value, tp, path)
+    if origin is tuple:
+        args = get_args(tp)
+        if not isinstance(value, list):
+            _fail(path, f"expected a list, got {_describe(value)}")
+        if len(args) == 2 and args[1] is Ellipsis:
+            return tuple(convert(v, args[0], f"{path}[{i}]") for i, v in enumerate(value))
+        if len(value) != len(args):
+            _fail(path, f"expected a list of {len(args)} values, got {len(value)}")
+        return tuple(convert(v, a, f"{path}[{i}]") for i, (v, a) in enumerate(zip(value, args)))
+    if origin is dict:
+        key_tp, val_tp = get_args(tp)
+        if not isinstance(value, dict):
+            _fail(path, f"expected a mapping, got {_describe(value)}")
+        return {convert(k, key_tp, path): convert(v, val_tp, f"{path}.{k}") for k, v in value.items()}
+    if tp is float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            _fail(path, f"expected a number, got {_describe(value)}")
+        if value != value or value in (float("inf"), float("-inf")):
+            _fail(path, "expected a finite number")
+        return float(value)
+    if tp is int:
+        if isinstance(value, bool) or not isinstance(value, int):
+            _fail(path, f"expected an integer, got {_describe(value)}")
+        return value
+    if tp is bool:
+        if not isinstance(value, bool):
+            _fail(path, f"expected true or false, got {_describe(value)}")
+        return value
+    if tp is str:
+        if not isinstance(value, str):
+            _fail(path, f"expected a string, got {_describe(value)}")
+        return value
+    raise TypeError(f"unsupported schema type {tp!r}")  # a schema bug, not a user error
+
+
+def _describe(value) -> str:
+    if value is None:
+        return "nothing"
+    if isinstance(value, bool):
+        return f"boolean {value}"
+    if isinstance(value, (int, float)):
+        return f"number {value}"
+    if isinstance(value, str):
+        short = value if len(value) <= 30 else value[:27] + "..."
+        return f"string {short!r}"
+    if isinstance(value, list):
+        return "a list"
+    if isinstance(value, dict):
+        return "a mapping"
+    return type(value).__name__
+
+
+def load_dataclass(value: Any, cls, path: str):
+    """Build dataclass ``cls`` from a mapping, rejecting unknown and missing keys.
+
+    Field metadata may carry ``check``: a callable(value) returning an error
+    string or None, applied after conversion.
+    """
+    if not isinstance(value, dict):
+        _fail(path, f"expected a mapping, got {_describe(value)}")
+    hints = get_type_hints(cls)
+    fields = {f.name: f for f in dataclasses.fields(cls) if f.init}
+    for key in value:
+        if key not in fields:
+            known = ", ".join(sorted(fields))
+            _fail(f"{path}.{key}" if path else str(key), f"unknown key (known keys: {known})")
+    kwargs = {}
+    for name, field in fields.items():
+        sub = f"{path}.{name}" if path else name
+        if name not in value:
+            if field.default is dataclasses.MISSING and field.default_factory is dataclasses.MISSING:
+                _fail(sub, "required key is missing")
+            continue
+        converted = convert(value[name], hints[name], sub)
+        check = field.metadata.get("check")
+        if check is not None and converted is not None:
+            problem = check(converted)
+            if problem:
+                _fail(sub, problem)
+        kwargs[name] = converted
+    obj = cls(**kwargs)
+    validate = getattr(obj, "validate", None)
+    if validate is not None:
+        problem = validate()
+        if problem:
+            key, _, message = problem.partition(": ")
+            _fail(f"{path}.{key}" if path else key, message)
+    return obj
+
+
+def positive(v) -> str | None:
+    values = v if isinstance(v, tuple) else (v,)
+    bad = [x for x in values if x <= 0]
+    return f"must be > 0, got {bad[0]:g}" if bad else None
+
+
+def non_negative(v) -> str | None:
+    values = v if isinstance(v, tuple) else (v,)
+    bad = [x for x in values if x < 0]
+    return f"must be >= 0, got {bad[0]:g}" if bad else None
+
+
+def in_range(lo: float, hi: float):
+    def check(v) -> str | None:
+        return None if lo <= v <= hi else f"must be in [{lo:g}, {hi:g}], got {v:g}"
+
+    return check
+
+
+def checked(check, **kwargs):
+    """A dataclass field whose value must pass ``check``."""
+    return dataclasses.field(metadata={"check": check}, **kwargs)

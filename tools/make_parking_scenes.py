@@ -1,0 +1,149 @@
+"""Write yaml_scenes/parking_1.yaml and parking_2.yaml (the paper's Fig. 6, in spirit).
+
+Run: ``python3 tools/make_parking_scenes.py``. The YAML files are committed; this
+script documents how their geometry was laid out and regenerates it.
+
+* parking_1: a lot with two rows of spots and a planted island. The free spot
+  nearest the entrance is barred by bollards across its mouth (valid goal
+  samples, unreachable); another near one has a pillar inside (no valid
+  samples); three further spots are reachable.
+* parking_2: a three-room garage. Every free spot lies behind a wall with a
+  narrow opening (3.0 m for a 1.8 m wide, 4.5 m long car), so reaching any spot
+  means passing a narrow aisle; the near spots are the dead ends.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import yaml
+
+ROOT = Path(__file__).resolve().parents[1]
+SPOT = (5.5, 2.6)  # length along the spot's heading, width
+HALF_PI = round(math.pi / 2, 6)
+
+
+def box(id_, x, y, sx, sy, h=1.0, yaw=0.0, color=None):
+    out = {"id": id_, "geometry": {"box": [sx, sy, h]}, "pose": {"xyz": [x, y, h / 2], "rpy": [0, 0, yaw]}}
+    if color:
+        out["color"] = color
+    return out
+
+
+def spot(id_, x, y, yaw, occupied):
+    return {
+        "id": id_,
+        "type": "parking_spot",
+        "geometry": {"box": [SPOT[0], SPOT[1], 0.05]},
+        "pose": {"xyz": [x, y, 0.0], "rpy": [0, 0, yaw]},
+        "occupied": occupied,
+    }
+
+
+def walls(width, height, t=0.3, gaps=()):
+    """Perimeter walls of a width x height lot."""
+    return [
+        box("wall_south", width / 2, -t / 2, width + 2 * t, t, 2.0),
+        box("wall_north", width / 2, height + t / 2, width + 2 * t, t, 2.0),
+        box("wall_west", -t / 2, height / 2, t, height, 2.0),
+        box("wall_east", width + t / 2, height / 2, t, height, 2.0),
+    ]
+
+
+def car_robot(x, y, heading, width, height):
+    return {
+        "model": "car",
+        "start": {"car_x": x, "car_y": y, "car_qz": heading},
+        "limits": {"car_x": [0.0, width], "car_y": [0.0, height]},
+        "weights": {"car_qz": 2.0},
+    }
+
+
+def planner(step=1.0, time_limit=10.0):
+    return {"strategy": "reward-penalty", "goal_bias": 0.05, "step_size": step, "time_limit": time_limit, "seed": 0}
+
+
+def parking_1() -> dict:
+    W, H = 36.0, 24.0
+    free_bottom = {1, 9}  # spot b1: bollards at its mouth; b9: reachable
+    free_top = {3, 10}  # t3: pillar inside; t10: reachable
+    objects, obstacles = [], walls(W, H)
+    for i in range(12):
+        x = 3.0 + 2.6 * i + 1.3
+        objects.append(spot(f"spot_b{i}", x, SPOT[0] / 2, -HALF_PI, i not in free_bottom))
+        objects.append(spot(f"spot_t{i}", x, H - SPOT[0] / 2, HALF_PI, i not in free_top))
+    # the island between the two aisles, with a gap at each end
+    obstacles.append(box("island", 18.0, 12.0, 22.0, 2.0, 0.3, color="green"))
+    # b1 barred by three bollards across its mouth
+    xb1 = 3.0 + 2.6 * 1 + 1.3
+    for k, dx in enumerate((-0.9, 0.0, 0.9)):
+        obstacles.append({"id": f"bollard_{k}", "geometry": {"cylinder": {"radius": 0.15, "length": 1.0}},
+                          "pose": {"xyz": [xb1 + dx, SPOT[0] + 0.3, 0.5]}})
+    # t3 has a structural pillar inside
+    xt3 = 3.0 + 2.6 * 3 + 1.3
+    obstacles.append(box("pillar_t3", xt3, H - 2.2, 0.8, 0.8, 3.0))
+    return {
+        "name": "parking_1",
+        "description": "Automated valet parking (paper Fig. 6a in spirit): 4 free spots; the nearest is barred by "
+        "bollards, one has a pillar inside, two are reachable.",
+        "robot": car_robot(3.5, 8.25, 0.0, W, H),
+        "obstacles": obstacles,
+        "objects": objects,
+        "planner": planner(time_limit=10.0),
+        "expect": [
+            {"request": "park", "interpretations": ["park:spot_b1", "park:spot_b9", "park:spot_t10", "park:spot_t3"],
+             "success_rate": 0.9, "seeds": 10, "reachable": ["spot_b9", "spot_t10"]},
+        ],
+    }
+
+
+def parking_2() -> dict:
+    W, H = 40.0, 30.0
+    objects, obstacles = [], walls(W, H)
+    # two inner walls split the lot into three bays, each passed through a 3.0 m opening
+    obstacles += [
+        box("wall_a_low", 13.0, 5.5, 0.3, 11.0, 2.0),  # opening A: y in [11, 14]
+        box("wall_a_high", 13.0, 22.0, 0.3, 16.0, 2.0),
+        box("wall_b_low", 27.0, 9.75, 0.3, 19.5, 2.0),  # opening B: y in [19.5, 22.5]
+        box("wall_b_high", 27.0, 26.25, 0.3, 7.5, 2.0),
+    ]
+    # bay 1 (start bay, x < 13): spots along the south wall; the free one holds a trolley
+    for i in range(4):
+        objects.append(spot(f"spot_a{i}", 1.6 + 2.6 * i, SPOT[0] / 2, -HALF_PI, i != 2))
+    obstacles.append(box("trolley_a2", 1.6 + 2.6 * 2 + 0.9, 3.5, 1.0, 1.2, 1.0))
+    # bay 2 (13 < x < 27): spots along the north wall; b4 is barred by bollards
+    for i in range(5):
+        objects.append(spot(f"spot_b{i}", 14.5 + 2.6 * i, H - SPOT[0] / 2, HALF_PI, i not in (1, 4)))
+    xb4 = 14.5 + 2.6 * 4
+    for k, dx in enumerate((-0.9, 0.0, 0.9)):
+        obstacles.append({"id": f"bollard_{k}", "geometry": {"cylinder": {"radius": 0.15, "length": 1.0}},
+                          "pose": {"xyz": [xb4 + dx, H - SPOT[0] - 0.3, 0.5]}})
+    # bay 3 (x > 27): spots along the south wall, through both openings
+    for i in range(4):
+        objects.append(spot(f"spot_c{i}", 28.8 + 2.6 * i, SPOT[0] / 2, -HALF_PI, i not in (1, 2)))
+    return {
+        "name": "parking_2",
+        "description": "Automated valet parking through narrow aisles (paper Fig. 6b in spirit).",
+        "robot": car_robot(4.0, 20.0, 0.0, W, H),
+        "obstacles": obstacles,
+        "objects": objects,
+        "planner": planner(time_limit=20.0),
+        "expect": [
+            {"request": "park", "interpretations": ["park:spot_a2", "park:spot_b1", "park:spot_b4", "park:spot_c1", "park:spot_c2"],
+             "success_rate": 0.9, "seeds": 10, "reachable": ["spot_b1", "spot_c1", "spot_c2"]},
+        ],
+    }
+
+
+def main() -> None:
+    for make in (parking_1, parking_2):
+        scene = make()
+        path = ROOT / "yaml_scenes" / f"{scene['name']}.yaml"
+        header = f"# Generated by tools/make_parking_scenes.py; edit that script, not this file.\n"
+        path.write_text(header + yaml.safe_dump(scene, sort_keys=False, default_flow_style=None, width=120))
+        print(f"wrote {path.relative_to(ROOT)}")
+
+
+if __name__ == "__main__":
+    main()
