@@ -6,6 +6,7 @@ everything becomes numpy arrays over the *planned* coordinates.
 
 from __future__ import annotations
 
+import logging
 import time
 from dataclasses import dataclass
 
@@ -20,6 +21,8 @@ from lazyground.geometry import Pose
 from lazyground.planning.space import ConfigSpace
 from lazyground.scene.schema import Geometry, Scene, SceneObject
 from lazyground.scene.typed_yaml import SceneError
+
+logging.getLogger("drake").setLevel(logging.WARNING)  # silence "Allocating contexts ..." INFO lines
 
 PARKED_CAR_SIZE = (4.5, 1.8, 1.5)
 OBSTACLE_RGBA = (0.8, 0.25, 0.2, 1.0)

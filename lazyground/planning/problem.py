@@ -119,6 +119,7 @@ class PlanResult:
     goal_sampling_s: float
     collision_s: float
     message: str = ""
+    regions: tuple[GoalRegion, ...] = ()  # the goal source's regions; GoalSample.region indexes these
     region_stats: list[RegionStats] = field(default_factory=list)
     tree: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None  # (nodes, parents, goal-biased flag)
     failed_from: np.ndarray | None = None  # nodes from which a goal-biased extension failed

@@ -131,6 +131,7 @@ def solve(
             goal_sampling_s=goals.sample_time - sample_t0,
             collision_s=checker.check_time - check_t0,
             message=message,
+            regions=tuple(goals.regions),
             region_stats=list(goals.stats),
             tree=tree.arrays() if keep_tree else None,
             failed_from=np.array(failed_from, int) if keep_tree else None,

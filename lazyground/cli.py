@@ -1,0 +1,197 @@
+"""The ``lazyground`` command: a thin ``main(argv) -> int`` over library calls.
+
+Exit codes: 0 solved / done, 1 a planning failure status (timeout, invalid
+start, no valid goal), 2 bad input (scene, request, arguments), 3 an internal
+error (a bug: ``--debug`` shows the traceback), 130 interrupted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import traceback
+from pathlib import Path
+
+EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
+REPO_ROOT = Path(__file__).resolve().parents[1]
+
+
+class UsageError(Exception):
+    """Bad command-line input (exit 2)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):  # one line, exit 2, no usage dump
+        raise UsageError(message)
+
+
+def _add_plan_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--strategy", choices=["reward-penalty", "consecutive", "random"], help="goal-selection strategy")
+    p.add_argument("--goal-bias", type=float, help="probability of a goal-biased extension (0..1)")
+    p.add_argument("--step-size", type=float, help="longest extension, in the space's metric")
+    p.add_argument("--seed", type=int, help="random seed (default: the scene's)")
+    p.add_argument("--time-limit", type=float, help="seconds")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="lazyground", description="Ground ambiguous requests lazily inside a motion planner.")
+    parser.add_argument("--debug", action="store_true", help="show tracebacks")
+    sub = parser.add_subparsers(dest="command", parser_class=_Parser)
+
+    p = sub.add_parser("plan", help="ground a request and plan to whichever interpretation is reachable")
+    p.add_argument("scene")
+    p.add_argument("request")
+    _add_plan_options(p)
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--html", metavar="FILE", help="write a self-contained HTML replay (Meshcat)")
+    p.add_argument("--meshcat", action="store_true", help="show the result in a live Meshcat until Ctrl-C")
+    p.add_argument("--loop-once", action="store_true", help="with --meshcat: draw once and return (tests)")
+    p.add_argument("--plot", metavar="FILE", help="parking scenes: write a top-down PNG")
+    p.add_argument("--animate", metavar="FILE", help="parking scenes: write a top-down GIF")
+    p.add_argument("--debug", action="store_true", help="show tracebacks")
+
+    g = sub.add_parser("ground", help="print the interpretations of a request and their goal regions")
+    g.add_argument("scene")
+    g.add_argument("request")
+    g.add_argument("--json", action="store_true")
+    g.add_argument("--debug", action="store_true", help="show tracebacks")
+
+    d = sub.add_parser("demo", help="plan the bundled demo requests and write the visualisations")
+    d.add_argument("--out", default="lazyground_output", help="output folder (default: lazyground_output)")
+    d.add_argument("--seed", type=int, default=0)
+    d.add_argument("--debug", action="store_true", help="show tracebacks")
+
+    m = sub.add_parser("import-moveit", help="convert a MoveIt planning-scene YAML into a lazyground scene")
+    m.add_argument("file")
+    m.add_argument("--robot", default="fetch")
+    m.add_argument("-o", "--output", required=True)
+    m.add_argument("--debug", action="store_true", help="show tracebacks")
+
+    b = sub.add_parser("bench", help="benchmark strategies and peers (see benchmarks/RESULTS.md)", add_help=False)
+    b.add_argument("bench_args", nargs=argparse.REMAINDER)
+    return parser
+
+
+def cmd_ground(args) -> int:
+    import grounding
+    from lazyground.scene import load_scene
+
+    scene = load_scene(args.scene)
+    g = grounding.ground(args.request, scene)
+    if args.json:
+        print(json.dumps(g.to_json()))
+        return EXIT_OK
+    print(f"request: {args.request!r} -> action {g.action}, {len(g.interpretations)} interpretation(s)" + (" (ambiguous: all kept)" if g.ambiguous else ""))
+    for note in g.notes:
+        print(f"note: {note}")
+    for i in g.interpretations:
+        target = f" onto {i.target}" if i.target else ""
+        print(f"  {i.id}: {i.action} {', '.join(i.objects)}{target}")
+        for r in i.goal_regions + i.place_regions:
+            print(f"    region {r.id} ({r.kind}{', ' + r.label if r.label else ''})")
+    return EXIT_OK
+
+
+def cmd_plan(args) -> int:
+    from lazyground import api
+    from lazyground.report import report_lines, report_to_json
+    from lazyground.scene import load_scene
+
+    scene = load_scene(args.scene)
+    for name in ("goal_bias",):
+        v = getattr(args, name)
+        if v is not None and not 0.0 <= v <= 1.0:
+            raise UsageError(f"--goal-bias must be in [0, 1], got {v:g}")
+    for name in ("step_size", "time_limit"):
+        v = getattr(args, name)
+        if v is not None and not v > 0:
+            raise UsageError(f"--{name.replace('_', '-')} must be > 0, got {v:g}")
+    visual = bool(args.html or args.meshcat or args.plot or args.animate)
+    report = api.plan(
+        scene, args.request, seed=args.seed, keep_tree=visual,
+        strategy=args.strategy, goal_bias=args.goal_bias, step_size=args.step_size, time_limit=args.time_limit,
+    )
+    if args.json:
+        print(json.dumps(report_to_json(report)))
+    else:
+        print("\n".join(report_lines(report)))
+    _write_visuals(report, scene, args)
+    return EXIT_OK if report.result.solved else EXIT_FAILED
+
+
+def _write_visuals(report, scene, args) -> None:
+    out = sys.stderr if args.json else sys.stdout
+    if args.plot or args.animate:
+        from lazyground.viz import plots
+
+        if args.plot:
+            plots.plot_parking(report, scene, args.plot)
+            print(f"wrote {args.plot}", file=out)
+        if args.animate:
+            plots.animate_parking(report, scene, args.animate)
+            print(f"wrote {args.animate}", file=out)
+    if args.html or args.meshcat:
+        from lazyground.viz import meshcat_view
+
+        if args.html:
+            size = meshcat_view.write_html(report, scene, args.html)
+            print(f"wrote {args.html} ({size / 1e6:.1f} MB)", file=out)
+        if args.meshcat:
+            meshcat_view.show_live(report, scene, loop_once=args.loop_once, out=out)
+
+
+def cmd_demo(args) -> int:
+    from lazyground.viz.demo import run_demo
+
+    return run_demo(Path(args.out), seed=args.seed)
+
+
+def cmd_import_moveit(args) -> int:
+    from lazyground.moveit import import_moveit_file
+
+    for warning in import_moveit_file(args.file, args.robot, args.output):
+        print(f"warning: {warning}", file=sys.stderr)
+    print(f"wrote {args.output}")
+    return EXIT_OK
+
+
+def cmd_bench(args) -> int:
+    from lazyground.bench.cli import main as bench_main
+
+    return bench_main(args.bench_args)
+
+
+COMMANDS = {"plan": cmd_plan, "ground": cmd_ground, "demo": cmd_demo, "import-moveit": cmd_import_moveit, "bench": cmd_bench}
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    debug = "--debug" in argv
+    from grounding.model import GroundingError
+    from lazyground.scene.typed_yaml import SceneError
+
+    try:
+        parser = build_parser()
+        args = parser.parse_args(argv)
+        if args.command is None:
+            parser.print_help()
+            return EXIT_BAD_INPUT
+        return COMMANDS[args.command](args)
+    except (UsageError, SceneError, GroundingError) as exc:
+        if debug:
+            traceback.print_exc()
+        print(f"error: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except Exception as exc:  # a bug: one line unless --debug
+        if debug:
+            traceback.print_exc()
+        print(f"internal error: {type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''} (rerun with --debug)", file=sys.stderr)
+        return EXIT_INTERNAL
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,84 @@
+"""Plan reports as JSON and as a few human-readable lines (the CLI prints these)."""
+
+from __future__ import annotations
+
+from lazyground.api import PlanReport
+
+
+def _r(x: float, nd: int = 6) -> float:
+    return round(float(x), nd)
+
+
+def report_to_json(report: PlanReport) -> dict:
+    """The JSON document of ``lazyground plan --json``."""
+    res = report.result
+    chosen = report.chosen
+    out = {
+        "status": res.status.value,
+        "message": res.message,
+        "request": report.request,
+        "scene": report.scene,
+        "seed": report.seed,
+        "strategy": report.settings.strategy,
+        "goal_bias": report.settings.goal_bias,
+        "action": report.grounding.action,
+        "ambiguous": report.grounding.ambiguous,
+        "interpretations": [i.to_json() for i in report.grounding.interpretations],
+        "chosen": {
+            "interpretation": chosen.id if chosen else None,
+            "goal_region": res.goal_region.id if res.goal_region else None,
+            "object": report.chosen_object,
+            "goal_sample": res.goal.q.round(9).tolist() if res.goal is not None else None,
+        },
+        "joint_names": list(report.joint_names),
+        "path": res.path.round(9).tolist() if res.path is not None else None,
+        "path_length": _r(res.path_length),
+        "time_s": _r(report.time_s),
+        "time_split_s": {
+            "grounding": _r(report.grounding_s),
+            "goal_sampling": _r(res.goal_sampling_s),
+            "collision_checking": _r(res.collision_s),
+            "other": _r(res.other_s),
+        },
+        "setup_s": _r(report.setup_s),
+        "iterations": res.iterations,
+        "tree_size": res.tree_size,
+        "goal_samples": len(res.goal_samples),
+        "resamplings": res.resamplings,
+        "samples": [
+            {"region": res.regions[s.region].id, "weight": _r(s.weight), "attempts": s.attempts,
+             "rewards": s.rewards, "penalties": s.penalties}
+            for s in res.goal_samples
+        ],
+        "regions": {r.id: st.to_json() for r, st in zip(res.regions, res.region_stats)},
+        "notes": list(report.grounding.notes) + list(report.notes),
+    }
+    if report.steps:
+        out["steps"] = [report_to_json(s) for s in report.steps]
+        out.update(report.extra)
+    return out
+
+
+def report_lines(report: PlanReport) -> list[str]:
+    """A short human summary."""
+    res = report.result
+    g = report.grounding
+    lines = [f"request: {report.request!r} on scene {report.scene} (seed {report.seed}, {report.settings.strategy}, bias {report.settings.goal_bias:g})"]
+    kinds = "ambiguous: " if g.ambiguous else ""
+    lines.append(f"interpretations ({kinds}{len(g.interpretations)}): " + ", ".join(i.id for i in g.interpretations))
+    for note in g.notes + report.notes:
+        lines.append(f"note: {note}")
+    if res.solved:
+        lines.append(
+            f"reached: {report.chosen.id} via goal region {res.goal_region.id}"
+        )
+        lines.append(
+            f"path: {len(res.path)} waypoints, length {res.path_length:.3f}; time {report.time_s:.3f} s "
+            f"(goal sampling {res.goal_sampling_s:.3f}, collision {res.collision_s:.3f}); "
+            f"{res.iterations} iterations, tree {res.tree_size}, {len(res.goal_samples)} goal samples, {res.resamplings} resamplings"
+        )
+    else:
+        lines.append(f"status: {res.status.value}: {res.message}")
+        lines.append(f"time {report.time_s:.3f} s; {res.iterations} iterations, tree {res.tree_size}, {len(res.goal_samples)} goal samples")
+    return lines
+
