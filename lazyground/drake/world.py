@@ -70,12 +70,14 @@ class DrakeWorld:
         padding: collision padding in metres (default: the scene's planner setting).
         attached: an object carried by the robot (removed from the environment).
         visual: also register visual geometry (for Meshcat).
+        extend_builder: called with the RobotDiagramBuilder just before Build()
+            (e.g. to add a MeshcatVisualizer to the diagram).
 
     Raises:
         SceneError: when the model cannot be parsed or the start is invalid for it.
     """
 
-    def __init__(self, scene: Scene, padding: float | None = None, attached: Attachment | None = None, visual: bool = True):
+    def __init__(self, scene: Scene, padding: float | None = None, attached: Attachment | None = None, visual: bool = True, extend_builder=None):
         self.scene = scene
         self.attached = attached
         self.padding = scene.planner.collision_padding if padding is None else padding
@@ -95,6 +97,8 @@ class DrakeWorld:
         self._add_environment(plant, visual)
         if attached is not None:
             self._attach(plant, attached, visual)
+        if extend_builder is not None:
+            extend_builder(builder)
         diagram = builder.Build()
         self._setup_coordinates(diagram.plant())
         self.checker = SceneGraphCollisionChecker(

@@ -102,7 +102,7 @@ class Consecutive:
 
     def select(self, rng: np.random.Generator) -> int:
         i = self._order[self._next % len(self._order)]
-        self._next += 1
+        self._next = (self._next + 1) % len(self._order)  # as OMPL GoalStates::sampleGoal
         return i
 
     def weight(self, index: int) -> float:

@@ -43,14 +43,14 @@ def convert(value: Any, tp, path: str):
         args = get_args(tp)
         if value is None and type(None) in args:
             return None
-        errors = []
-        for arg in args:
-            if arg is type(None):
-                continue
+        options = [a for a in args if a is not type(None)]
+        if len(options) == 1:  # Optional[X]: X's own error is the useful one
+            return convert(value, options[0], path)
+        for arg in options:
             try:
                 return convert(value, arg, path)
-            except SceneError as exc:
-                errors.append(str(exc))
+            except SceneError:
+                pass
         _fail(path, f"expected {_type_name(tp)}, got {_describe(value)}")
     if dataclasses.is_dataclass(tp):
         return load_dataclass(value, tp, path)

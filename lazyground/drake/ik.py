@@ -1,0 +1,213 @@
+"""Goal sampling for workspace goal regions by inverse kinematics.
+
+One attempt on a region: draw a 6-vector v in the region, turn it into a
+target pose of the end-effector frame, solve Drake ``InverseKinematics`` for
+that pose over the planned coordinates (kinematics only: position box and
+orientation cone, joint limits as variable bounds), then confirm the answer
+with the collision checker. No minimum-distance constraint: with one, failed
+solves cost 0.3-0.8 s each (issue 7); without it a failed solve stops at the
+iteration limit after a few milliseconds, and collisions are checked after.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from pydrake.math import RotationMatrix
+from pydrake.multibody.inverse_kinematics import InverseKinematics
+from pydrake.solvers import IpoptSolver, SnoptSolver, SolverOptions
+
+from lazyground.geometry import Pose
+from lazyground.goals import RoundRobinGoalSource
+from lazyground.planning.problem import GoalSample
+from lazyground.regions import GoalRegion
+
+
+@dataclass(frozen=True)
+class IKSettings:
+    """How hard one goal-sampling attempt tries.
+
+    ``restarts`` solves per attempt share the drawn target pose: the first
+    starts from the region's last valid solution (when there is one), the
+    others from uniform random configurations drawn from the rng.
+    """
+
+    position_tolerance: float = 0.002  # m, half-width of the box around the target point
+    orientation_tolerance: float = 0.01  # rad, angle between target and solved orientation
+    restarts: int = 3
+    attempt_budget: float = 0.25  # s per attempt (also bounded by the planner's deadline)
+    major_iterations: int = 60  # SNOPT major iterations; IPOPT max_iter is 3x this
+    solver: str = "snopt"  # "snopt" or "ipopt"
+
+
+@dataclass
+class IKCounters:
+    """Every IK solve made by a source: for success rates and time per solve."""
+
+    solves: int = 0
+    successes: int = 0  # solves whose answer met the pose within tolerance
+    time: float = 0.0
+    success_time: float = 0.0
+
+    def to_json(self) -> dict:
+        return {
+            "solves": self.solves,
+            "successes": self.successes,
+            "success_rate": round(self.successes / self.solves, 4) if self.solves else None,
+            "mean_solve_ms": round(1e3 * self.time / self.solves, 3) if self.solves else None,
+            "mean_success_ms": round(1e3 * self.success_time / self.successes, 3) if self.successes else None,
+            "mean_failure_ms": round(1e3 * (self.time - self.success_time) / (self.solves - self.successes), 3)
+            if self.solves > self.successes else None,
+        }
+
+
+class IKGoalSource(RoundRobinGoalSource):
+    """Valid goal configurations for workspace (and placement) regions, by IK.
+
+    Args:
+        regions: goal regions of kind ``workspace`` (or ``placement`` when the
+            world carries an attached object).
+        world: the :class:`~lazyground.drake.world.DrakeWorld` to solve in.
+        settings: IK tolerances and per-attempt limits.
+        **kwargs: :class:`RoundRobinGoalSource` options.
+
+    A sample records ``extra = {"X_WG": Pose, "v": 6-vector, "frame": name}``.
+    """
+
+    def __init__(self, regions: tuple[GoalRegion, ...], world, settings: IKSettings = IKSettings(), **kwargs):
+        super().__init__(regions, **kwargs)
+        for r in self.regions:
+            if r.kind == "config":
+                raise ValueError(f"region {r.id} is a configuration region; use ConfigGoalSource")
+        self.world = world
+        self.settings = settings
+        self.counters = IKCounters()
+        self.region_counters = [IKCounters() for _ in self.regions]
+        self._plant = world.plant
+        self._context = self._plant.CreateDefaultContext()
+        self._planned = np.asarray(world.planned, int)
+        self._lower = world.q_full.copy()
+        self._upper = world.q_full.copy()
+        self._lower[self._planned] = world.space.lower
+        self._upper[self._planned] = world.space.upper
+        self._last: list[np.ndarray | None] = [None] * len(self.regions)
+        if settings.solver == "snopt" and SnoptSolver().available() and SnoptSolver().enabled():
+            self._solver = SnoptSolver()
+            self._options = SolverOptions()
+            self._options.SetOption(SnoptSolver.id(), "Major iterations limit", settings.major_iterations)
+        else:
+            self._solver = IpoptSolver()
+            self._options = SolverOptions()
+            self._options.SetOption(IpoptSolver.id(), "max_iter", 3 * settings.major_iterations)
+            self._options.SetOption(IpoptSolver.id(), "print_level", 0)
+
+    # --- hooks -------------------------------------------------------------------------------
+    def target_pose_for(self, region: GoalRegion, v: np.ndarray) -> tuple[str, Pose]:
+        """The robot frame to constrain and its target pose X_WT for a draw ``v`` of ``region``.
+
+        Workspace: the region's end-effector frame at ``region.pose_in_world(v)``.
+        Placement: the body carrying the world's attached object, placed so that
+        the object lands at ``region.pose_in_world(v)``. Override for other grasps.
+        """
+        X_WT = region.pose_in_world(v)
+        if region.kind == "workspace":
+            return region.frame, X_WT
+        attached = getattr(self.world, "attached", None)
+        if attached is None:
+            raise ValueError(f"placement region {region.id} needs a world with an attached object")
+        return attached.body, X_WT.compose(attached.X_BO.inverse())
+
+    # --- one attempt -------------------------------------------------------------------------
+    def attempt(self, j: int, rng: np.random.Generator, deadline: float) -> tuple[GoalSample | None, str]:
+        region = self.regions[j]
+        v = region.sample(rng)
+        frame, X_WT = self.target_pose_for(region, v)
+        stop = min(deadline, time.perf_counter() + self.settings.attempt_budget)
+        seeds = [self._last[j]] if self._last[j] is not None else []
+        reason = "time"
+        for k in range(self.settings.restarts):
+            if time.perf_counter() >= stop:
+                break
+            seed = seeds[k] if k < len(seeds) else self._random_full(rng)
+            q_full = self.solve(frame, X_WT, seed, counters=self.region_counters[j])
+            if q_full is None:
+                reason = "ik failed" if reason != "in collision" else reason
+                continue
+            q = q_full[self._planned]
+            if not self.world.space.within_bounds(q):
+                reason = "outside limits"
+                continue
+            if not self.world.config_free(q):
+                reason = "in collision"  # another restart may find a collision-free branch
+                continue
+            self._last[j] = q_full
+            return GoalSample(q=q, region=j, extra={"X_WG": X_WT, "v": v, "frame": frame}), ""
+        return None, reason
+
+    def solve(self, frame: str, X_WT: Pose, seed_full: np.ndarray, counters: IKCounters | None = None) -> np.ndarray | None:
+        """Full plant positions putting ``frame`` at ``X_WT`` (within tolerance), or None."""
+        s = self.settings
+        plant = self._plant
+        t0 = time.perf_counter()
+        ik = InverseKinematics(plant, with_joint_limits=False)
+        q = ik.q()
+        prog = ik.get_mutable_prog()
+        prog.AddBoundingBoxConstraint(self._lower, self._upper, q)
+        G = plant.GetFrameByName(frame)
+        X = X_WT.matrix()
+        p_WT = X[:3, 3]
+        tol = np.full(3, s.position_tolerance)
+        ik.AddPositionConstraint(G, np.zeros(3), plant.world_frame(), p_WT - tol, p_WT + tol)
+        ik.AddOrientationConstraint(plant.world_frame(), RotationMatrix(X[:3, :3]), G, RotationMatrix(), s.orientation_tolerance)
+        result = self._solver.Solve(prog, np.clip(seed_full, self._lower, self._upper), self._options)
+        q_sol = np.asarray(result.GetSolution(q), float)
+        ok = bool(np.all(np.isfinite(q_sol)))
+        if ok:  # judge the answer by forward kinematics, not by the solver's status
+            dp, angle = self.pose_error(frame, q_sol, X_WT)
+            ok = dp <= s.position_tolerance * np.sqrt(3) + 1e-6 and angle <= s.orientation_tolerance + 1e-6
+        dt = time.perf_counter() - t0
+        for c in (self.counters, counters):
+            if c is not None:
+                c.solves += 1
+                c.time += dt
+                if ok:
+                    c.successes += 1
+                    c.success_time += dt
+        return q_sol if ok else None
+
+    # --- kinematics helpers ------------------------------------------------------------------
+    def frame_pose(self, frame: str, q_full: np.ndarray) -> np.ndarray:
+        """World pose (4x4) of a frame at full plant positions ``q_full``."""
+        self._plant.SetPositions(self._context, q_full)
+        return self._plant.CalcRelativeTransform(self._context, self._plant.world_frame(), self._plant.GetFrameByName(frame)).GetAsMatrix4()
+
+    def pose_error(self, frame: str, q_full: np.ndarray, X_WT: Pose) -> tuple[float, float]:
+        """(position error in m, rotation angle in rad) of ``frame`` at ``q_full`` from ``X_WT``."""
+        X = self.frame_pose(frame, q_full)
+        T = X_WT.matrix()
+        R = T[:3, :3].T @ X[:3, :3]
+        angle = float(np.arccos(np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0)))
+        return float(np.linalg.norm(X[:3, 3] - T[:3, 3])), angle
+
+    def _random_full(self, rng: np.random.Generator) -> np.ndarray:
+        q = self.world.q_full.copy()
+        q[self._planned] = self.world.space.sample(rng)
+        return q
+
+    def ik_report(self) -> dict:
+        """IK counters overall and per region (JSON-ready)."""
+        return {"all": self.counters.to_json(), **{r.id: c.to_json() for r, c in zip(self.regions, self.region_counters)}}
+
+
+def region_coordinates(region: GoalRegion, X_WG: np.ndarray) -> np.ndarray:
+    """The end-effector pose ``X_WG`` (4x4) as a 6-vector in the region's sampled frame S.
+
+    Inverse of :meth:`GoalRegion.pose_in_world`: X_RS = X_WR^-1 · X_WG · X_SE^-1.
+    Callers test ``region.contains(v, tol)`` on the result.
+    """
+    X_RS = np.linalg.inv(region.X_WR.matrix()) @ X_WG @ np.linalg.inv(region.X_SE.matrix())
+    p = Pose.from_matrix(X_RS)
+    return np.array(p.xyz + p.rpy)
+

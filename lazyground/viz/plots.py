@@ -1,0 +1,213 @@
+"""Top-down parking figures in the style of the paper's Fig. 6 (PNG and animated GIF).
+
+Obstacles red, free spots green, parked cars in occupied spots, goal samples
+as arrows coloured by their final reward-penalty weight, the tree dark blue
+(goal-biased nodes blue, origins of failed goal-biased extensions red), the
+path light blue and the car's footprint along it.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")  # files only; never open a window
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.animation import FuncAnimation, PillowWriter  # noqa: E402
+from matplotlib.collections import LineCollection  # noqa: E402
+from matplotlib.colors import ListedColormap  # noqa: E402
+from matplotlib.patches import Circle, Polygon  # noqa: E402
+
+from lazyground.drake.world import PARKED_CAR_SIZE  # noqa: E402
+from lazyground.viz.style import (  # noqa: E402
+    CAR_RGBA,
+    FAILED_RGBA,
+    GOAL_BIASED_RGBA,
+    OBSTACLE_RGBA,
+    PATH_RGBA,
+    REGION_RGBA,
+    TREE_RGBA,
+    weight_rgba,
+)
+from lazyground.viz.trace import planar_indices, rect_corners, resample_path, tree_edges  # noqa: E402
+
+CAR_FOOTPRINT = PARKED_CAR_SIZE[:2]  # models/car/car.urdf: the planned car has the parked cars' size
+WEIGHT_CMAP = ListedColormap([weight_rgba(w) for w in np.linspace(0, 1, 256)], name="goal_weight")
+GROW_FRAMES, DRIVE_FRAMES, HOLD_FRAMES = 24, 40, 8
+
+
+def plot_parking(report, scene, path) -> None:
+    """Write a top-down PNG of the lot, goal samples, tree and path.
+
+    Raises:
+        SceneError: the robot is not planar.
+    """
+    view = _View(report, scene)
+    fig, ax = view.figure()
+    view.draw_tree(ax)
+    view.draw_samples(ax)
+    view.draw_path(ax, footprints=8)
+    view.finish(fig, ax)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def animate_parking(report, scene, path, fps: int = 12) -> None:
+    """Write a top-down GIF: the tree grows, then the car drives along the path.
+
+    Raises:
+        SceneError: the robot is not planar.
+    """
+    view = _View(report, scene)
+    fig, ax = view.figure(size=(7.2, 5.0))
+    view.draw_samples(ax)
+    tree = LineCollection([], colors=[TREE_RGBA], linewidths=0.6, zorder=3)
+    ax.add_collection(tree)
+    trail, = ax.plot([], [], color=PATH_RGBA, lw=2.5, zorder=6)
+    car = Polygon(view.footprint(view.start), closed=True, fc=CAR_RGBA, ec="black", lw=1.0, zorder=8)
+    ax.add_patch(car)
+    view.finish(fig, ax)
+    segments = view.tree_segments()
+    drive = view.resampled(DRIVE_FRAMES) if view.path is not None else np.repeat(view.start[None], DRIVE_FRAMES, 0)
+    grow = GROW_FRAMES if len(segments) else 0
+
+    def update(frame: int):
+        if frame < grow:
+            tree.set_segments(segments[: int(len(segments) * (frame + 1) / grow)])
+            return tree, trail, car
+        k = min(frame - grow, DRIVE_FRAMES - 1)
+        xy = drive[: k + 1][:, view.ix[:2]]
+        trail.set_data(xy[:, 0], xy[:, 1])
+        car.set_xy(view.footprint(drive[k]))
+        return tree, trail, car
+
+    anim = FuncAnimation(fig, update, frames=grow + DRIVE_FRAMES + HOLD_FRAMES, blit=False)
+    anim.save(str(path), writer=PillowWriter(fps=fps), dpi=72)
+    plt.close(fig)
+
+
+class _View:
+    """One report on one planar scene, in the plane's coordinates."""
+
+    def __init__(self, report, scene):
+        self.report, self.scene, self.res = report, scene, report.result
+        self.ix = planar_indices(report.joint_names)
+        self.path = self.res.path
+        q0 = self.path[0] if self.path is not None else self.res.tree[0][0] if self.res.tree is not None else None
+        self.start = np.asarray(q0, float) if q0 is not None else _start_from_scene(scene, report.joint_names)
+
+    # --- pieces --------------------------------------------------------------------------
+    def xyh(self, q) -> tuple[float, float, float]:
+        return float(q[self.ix[0]]), float(q[self.ix[1]]), float(q[self.ix[2]])
+
+    def footprint(self, q) -> np.ndarray:
+        return rect_corners(*self.xyh(q), *CAR_FOOTPRINT)
+
+    def resampled(self, n: int) -> np.ndarray:
+        wrap = np.zeros(self.path.shape[1], bool)
+        wrap[self.ix[2]] = True
+        return resample_path(self.path, n, wrap)
+
+    def tree_segments(self) -> np.ndarray:
+        if self.res.tree is None:
+            return np.zeros((0, 2, 2))
+        nodes, parents, _ = self.res.tree
+        child, parent = tree_edges(parents)
+        xy = nodes[:, list(self.ix[:2])]
+        return np.stack([xy[parent], xy[child]], axis=1)
+
+    # --- drawing -------------------------------------------------------------------------
+    def figure(self, size=(9.0, 6.4)):
+        fig, ax = plt.subplots(figsize=size)
+        ax.set_facecolor((0.93, 0.93, 0.93))
+        for obs in self.scene.obstacles:
+            ax.add_patch(_shape_patch(obs.geometry, obs.pose, fc=OBSTACLE_RGBA, ec="none", zorder=2))
+        for obj in self.scene.objects:
+            if obj.type != "parking_spot":
+                ax.add_patch(_shape_patch(obj.geometry, obj.pose, fc=(0.55, 0.55, 0.55, 1), ec="none", zorder=2))
+                continue
+            x, y, _ = obj.pose.xyz
+            yaw = obj.pose.rpy[2]
+            lx, ly = obj.geometry.box[:2] if obj.geometry.box else (5.0, 2.5)
+            spot = rect_corners(x, y, yaw, lx, ly)
+            if obj.occupied:
+                ax.add_patch(Polygon(spot, closed=True, fc="none", ec=(0.5, 0.5, 0.5), lw=0.8, zorder=1))
+                ax.add_patch(Polygon(rect_corners(x, y, yaw, *CAR_FOOTPRINT), closed=True, fc=OBSTACLE_RGBA, ec="black", lw=0.5, zorder=2))
+            else:
+                ax.add_patch(Polygon(spot, closed=True, fc=REGION_RGBA, ec=REGION_RGBA[:3], lw=1.2, zorder=1))
+                ax.text(x, y, obj.id, ha="center", va="center", fontsize=6, color=(0, 0.35, 0.1), rotation=0, zorder=1)
+        ax.add_patch(Polygon(self.footprint(self.start), closed=True, fc="none", ec="black", lw=1.0, ls="--", zorder=7))
+        return fig, ax
+
+    def draw_tree(self, ax) -> None:
+        if self.res.tree is None:
+            return
+        ax.add_collection(LineCollection(self.tree_segments(), colors=[TREE_RGBA], linewidths=0.6, zorder=3))
+        nodes, _, goal_biased = self.res.tree
+        xy = nodes[:, list(self.ix[:2])]
+        gb = np.asarray(goal_biased, bool)
+        ax.scatter(xy[gb, 0], xy[gb, 1], s=9, color=GOAL_BIASED_RGBA, zorder=4, label="goal-biased extension")
+        if self.res.failed_from is not None and len(self.res.failed_from):
+            f = xy[np.unique(self.res.failed_from)]
+            ax.scatter(f[:, 0], f[:, 1], s=14, color=FAILED_RGBA, zorder=4, label="failed goal-biased extension from")
+
+    def draw_samples(self, ax) -> None:
+        samples = self.res.goal_samples
+        if not samples:
+            return
+        q = np.array([s.q for s in samples])
+        w = np.array([s.weight for s in samples])
+        h = q[:, self.ix[2]]
+        ax.quiver(q[:, self.ix[0]], q[:, self.ix[1]], np.cos(h), np.sin(h), w, cmap=WEIGHT_CMAP, clim=(0, 1),
+                  angles="xy", scale_units="xy", scale=0.6, width=0.004, zorder=5)
+
+    def draw_path(self, ax, footprints: int) -> None:
+        if self.path is None:
+            return
+        ax.plot(self.path[:, self.ix[0]], self.path[:, self.ix[1]], color=PATH_RGBA, lw=2.5, zorder=6, label="path")
+        for q in self.resampled(footprints)[1:-1]:
+            ax.add_patch(Polygon(self.footprint(q), closed=True, fc="none", ec=PATH_RGBA, lw=0.8, zorder=6))
+        ax.add_patch(Polygon(self.footprint(self.path[-1]), closed=True, fc=CAR_RGBA, ec="black", lw=1.0, zorder=8))
+
+    def finish(self, fig, ax) -> None:
+        lo, hi = _extent(self.scene)
+        ax.set_xlim(lo[0] - 1, hi[0] + 1)
+        ax.set_ylim(lo[1] - 1, hi[1] + 1)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
+        res = self.res
+        where = f"reached {self.report.chosen_object} ({res.goal_region.label})" if res.solved else res.status.value
+        ax.set_title(f"{self.report.request!r} on {self.report.scene}: {where}; tree {res.tree_size}, "
+                     f"{len(res.goal_samples)} goal samples", fontsize=9)
+        sm = plt.cm.ScalarMappable(cmap=WEIGHT_CMAP, norm=plt.Normalize(0, 1))
+        fig.colorbar(sm, ax=ax, fraction=0.03, pad=0.02).set_label("goal-sample weight", fontsize=8)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(loc="upper right", fontsize=6, framealpha=0.8)
+        fig.tight_layout()
+
+
+def _shape_patch(geometry, pose, **style):
+    x, y, _ = pose.xyz
+    if geometry.box:
+        return Polygon(rect_corners(x, y, pose.rpy[2], geometry.box[0], geometry.box[1]), closed=True, **style)
+    return Circle((x, y), geometry.half_extents()[0], **style)
+
+
+def _extent(scene) -> tuple[np.ndarray, np.ndarray]:
+    """The (x, y) bounding box of every obstacle and object."""
+    pts = [np.zeros((0, 2))]
+    for item in list(scene.obstacles) + list(scene.objects):
+        x, y, _ = item.pose.xyz
+        hx, hy, _ = item.geometry.half_extents()
+        pts.append(rect_corners(x, y, item.pose.rpy[2], 2 * hx, 2 * hy))
+    pts = np.concatenate(pts)
+    if not len(pts):
+        return np.zeros(2), np.ones(2)
+    return pts.min(axis=0), pts.max(axis=0)
+
+
+def _start_from_scene(scene, joint_names) -> np.ndarray:
+    return np.array([scene.robot.start.get(n, 0.0) for n in joint_names], float)

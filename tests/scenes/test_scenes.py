@@ -1,0 +1,56 @@
+"""Scene regression tests: every yaml_scenes/*.yaml file's ``expect:`` blocks.
+
+Each block names a request; the test asserts the exact set of interpretations
+(when given), a success rate over several seeds (as OMPL's regression tests do,
+not exact paths), that solutions reach an allowed object, and re-checks every
+returned path for collisions at one tenth of the planner's edge resolution.
+"""
+
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("pydrake")
+
+import grounding  # noqa: E402
+from lazyground import api  # noqa: E402
+from lazyground.drake.world import DrakeWorld  # noqa: E402
+from lazyground.planning import path_is_valid  # noqa: E402
+from lazyground.scene import load_scene  # noqa: E402
+
+SCENES = sorted((Path(__file__).resolve().parents[2] / "yaml_scenes").glob("*.yaml"))
+CASES = [
+    pytest.param(path, k, id=f"{path.stem}[{k}]")
+    for path in SCENES
+    for k in range(len(load_scene(path).expect))
+]
+
+
+def test_every_scene_has_expectations():
+    missing = [p.name for p in SCENES if not load_scene(p).expect]
+    assert not missing, f"scenes without an expect: block: {missing}"
+
+
+@pytest.mark.parametrize("path,k", CASES)
+def test_scene_expectation(path, k):
+    scene = load_scene(path)
+    expect = scene.expect[k]
+    g = grounding.ground(expect.request, scene)
+    if expect.interpretations is not None:
+        assert {i.id for i in g.interpretations} == set(expect.interpretations)
+    world = DrakeWorld(scene)
+    overrides = {"time_limit": expect.time_limit, "strategy": expect.strategy, "goal_bias": expect.goal_bias}
+    solved = 0
+    for seed in range(expect.seeds):
+        report = api.plan(scene, expect.request, seed=seed, world=world, **overrides)
+        res = report.result
+        if not res.solved:
+            continue
+        solved += 1
+        if expect.reachable is not None:
+            assert report.chosen_object in expect.reachable, f"seed {seed} reached {report.chosen_object}"
+        assert res.goal_region.contains(res.path[-1]) if res.goal_region.kind == "config" else True
+        fine = report.settings.resolution / 10
+        assert path_is_valid(world.space, world, res.path, fine) == -1, f"seed {seed}: path collides at {fine:g}"
+    rate = solved / expect.seeds
+    assert rate >= expect.success_rate, f"{expect.request!r}: solved {solved}/{expect.seeds}"

@@ -1,0 +1,102 @@
+"""The RRT of Algorithm 1 on a 2-D toy world with a fake checker."""
+
+import time
+
+import numpy as np
+import pytest
+
+from lazyground.planning import PlannerSettings, PlanStatus, path_is_valid, solve
+from tests.unit.toy import INVALID, REACHABLE, SPACE, START, UNREACHABLE, WALLS, BoxWorld, goal_source
+
+SETTINGS = PlannerSettings(step_size=0.5, time_limit=5.0, goal_bias=0.1)
+
+
+def run(regions, seed, settings=SETTINGS, walls=WALLS, start=START):
+    world = BoxWorld(walls)
+    return world, solve(SPACE, world, goal_source(world, regions), start, settings, np.random.default_rng(seed), seed=seed)
+
+
+@pytest.mark.parametrize("strategy", ["reward-penalty", "consecutive", "random"])
+def test_reaches_the_only_reachable_grounding(strategy):
+    settings = PlannerSettings(step_size=0.5, time_limit=5.0, goal_bias=0.1, strategy=strategy)
+    solved = 0
+    for seed in range(8):
+        world, res = run([UNREACHABLE, INVALID, REACHABLE], seed, settings)
+        if res.solved:
+            solved += 1
+            assert res.goal_region.id == "open"
+            assert REACHABLE.contains(res.path[-1])
+            assert np.allclose(res.path[0], START)
+            # re-check at a tenth of the planner's edge resolution
+            assert path_is_valid(SPACE, world, res.path, settings.resolution / 10) == -1
+            steps = np.linalg.norm(np.diff(res.path, axis=0), axis=1)
+            assert steps.max() <= settings.step_size + 1e-9
+            assert res.seed == seed
+    assert solved >= 7
+
+
+def test_result_records_counts_and_time_split():
+    world, res = run([UNREACHABLE, REACHABLE], 3)
+    assert res.solved
+    assert res.iterations > 0 and res.tree_size >= len(res.path)
+    assert len(res.goal_samples) >= 10
+    assert sum(s.attempts for s in res.goal_samples) == sum(s.rewards + s.penalties for s in res.goal_samples)
+    assert res.collision_s > 0 and res.goal_sampling_s > 0
+    assert res.time_s >= res.collision_s + res.goal_sampling_s - 1e-9
+    pocket = [s for s in res.goal_samples if res.regions[s.region].id == "pocket"]
+    assert pocket and all(s.rewards == 0 or s.penalties > 0 for s in pocket)
+
+
+def test_reward_penalty_penalises_unreachable_samples_and_resamples():
+    settings = PlannerSettings(step_size=0.5, time_limit=5.0, goal_bias=0.5, initial_goal_samples=4, resample_count=4)
+    world, res = run([UNREACHABLE], 0, PlannerSettings(**{**settings.__dict__, "time_limit": 0.5}))
+    assert res.status is PlanStatus.TIMEOUT
+    assert res.resamplings >= 1
+    assert len(res.goal_samples) == 4 + 4 * res.resamplings
+
+
+def test_same_seed_same_path():
+    _, a = run([UNREACHABLE, REACHABLE], 11)
+    _, b = run([UNREACHABLE, REACHABLE], 11)
+    assert a.solved and b.solved
+    assert np.array_equal(a.path, b.path)
+    _, c = run([UNREACHABLE, REACHABLE], 12)
+    assert not (len(c.path) == len(a.path) and np.array_equal(c.path, a.path))
+
+
+def test_invalid_start():
+    world, res = run([REACHABLE], 0, start=np.array([4.5, 4.0]))
+    assert res.status is PlanStatus.INVALID_START
+    assert "collision" in res.message and res.path is None
+
+
+def test_start_outside_limits():
+    world, res = run([REACHABLE], 0, start=np.array([-1.0, 4.0]))
+    assert res.status is PlanStatus.INVALID_START and "limits" in res.message
+
+
+def test_no_valid_goal_names_each_region():
+    world, res = run([INVALID], 0)
+    assert res.status is PlanStatus.NO_VALID_GOAL
+    assert "block: 0/50 valid (in collision x50)" in res.message
+
+
+def test_timeout_respects_the_limit():
+    settings = PlannerSettings(step_size=0.5, time_limit=0.3, goal_bias=0.1)
+    t0 = time.perf_counter()
+    world, res = run([UNREACHABLE], 0, settings)
+    elapsed = time.perf_counter() - t0
+    assert res.status is PlanStatus.TIMEOUT and res.path is None
+    assert elapsed < settings.time_limit * 1.1 + 0.05
+
+
+def test_thin_obstacle_between_edge_checks_is_never_returned():
+    # A wall thinner than the edge resolution: the planner's coarse edge checks can step
+    # over it, the fine re-validation must not let such a path out.
+    thin = [(4.0, 0.0, 4.001, 10.0)]
+    settings = PlannerSettings(step_size=2.0, edge_resolution=1.0, time_limit=0.5, goal_bias=0.3, validation_factor=1000.0)
+    world = BoxWorld(thin)
+    goals = goal_source(world, [REACHABLE])
+    res = solve(SPACE, world, goals, START, settings, np.random.default_rng(0))
+    assert res.status is PlanStatus.TIMEOUT
+    assert res.invalid_paths_rejected >= 1

@@ -1,0 +1,96 @@
+"""The strict scene loader: good scenes load, every malformed one fails with one line."""
+
+import textwrap
+from pathlib import Path
+
+import pytest
+import yaml
+
+from lazyground.scene import SceneError, load_scene, parse_scene
+
+ROOT = Path(__file__).resolve().parents[2]
+CORPUS = yaml.safe_load((ROOT / "tests/corpus/bad_scenes.yaml").read_text())
+CAR = "robot: {model: car, start: {car_x: 3, car_y: 3, car_qz: 0}, limits: {car_x: [0, 40], car_y: [0, 40]}}\n"
+
+
+def test_corpus_is_large_enough():
+    assert len(CORPUS) >= 30
+    assert len({c["name"] for c in CORPUS}) == len(CORPUS)
+
+
+@pytest.mark.parametrize("case", CORPUS, ids=[c["name"] for c in CORPUS])
+def test_bad_scene_is_rejected_with_one_line(case):
+    text = case["scene"].replace("{CAR}", CAR)
+    with pytest.raises(SceneError) as info:
+        parse_scene(text, "bad.yaml", ROOT)
+    message = str(info.value)
+    assert "\n" not in message
+    assert message.startswith("bad.yaml: ")
+    assert case["error"] in message
+
+
+def test_minimal_scene_loads_with_defaults():
+    scene = parse_scene("name: x\n" + CAR, "ok.yaml", ROOT)
+    assert scene.robot.model.endswith("models/car/car.urdf")
+    assert scene.planner.goal_bias == 0.05 and scene.planner.strategy == "reward-penalty"
+    assert scene.objects == () and scene.expect == ()
+
+
+def test_full_object_record():
+    text = textwrap.dedent(
+        """\
+        name: kitchen
+        robot: {model: car, start: {}}
+        objects:
+          - id: can_1
+            type: can
+            color: red
+            size: small
+            geometry: {cylinder: {radius: 0.03, length: 0.12}}
+            pose: {xyz: [1, 2, 0.8], rpy: [0, 0, 1.57]}
+            attributes: {brand: fizz}
+          - id: spot
+            type: parking_spot
+            geometry: {box: [5.5, 2.6, 0.05]}
+            occupied: true
+        """
+    )
+    scene = parse_scene(text, "k.yaml", ROOT)
+    can = scene.object("can_1")
+    assert can.color == "red" and can.pose.xyz == (1.0, 2.0, 0.8) and can.attributes == {"brand": "fizz"}
+    assert can.collides and not scene.object("spot").collides and scene.object("spot").occupied
+
+
+def test_bundled_scenes_load():
+    paths = sorted((ROOT / "yaml_scenes").glob("*.yaml"))
+    assert len(paths) >= 2
+    for p in paths:
+        assert load_scene(p).expect, p
+
+
+def test_missing_file(tmp_path):
+    with pytest.raises(SceneError, match="no such scene file"):
+        load_scene(tmp_path / "nope.yaml")
+
+
+def test_huge_file_is_refused_without_parsing(tmp_path):
+    big = tmp_path / "big.yaml"
+    with big.open("w") as f:
+        f.write("name: x\n# " + "x" * (50 * 1024 * 1024) + "\n")
+    with pytest.raises(SceneError, match=r"file is 52 MB; scenes are limited to 5 MiB"):
+        load_scene(big)
+
+
+def test_binary_file(tmp_path):
+    p = tmp_path / "bin.yaml"
+    p.write_bytes(b"\xff\xfe\x00garbage")
+    with pytest.raises(SceneError, match="not a UTF-8 text file"):
+        load_scene(p)
+
+
+def test_model_path_relative_to_scene(tmp_path):
+    (tmp_path / "m").mkdir()
+    (tmp_path / "m/r.urdf").write_text((ROOT / "models/car/car.urdf").read_text())
+    scene_file = tmp_path / "s.yaml"
+    scene_file.write_text("name: x\nrobot: {model: m/r.urdf, start: {}}\n")
+    assert load_scene(scene_file).robot.model == str((tmp_path / "m/r.urdf").resolve())

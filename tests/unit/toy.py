@@ -1,0 +1,69 @@
+"""A 2-D toy world with a fake collision checker, for planner tests without Drake."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from lazyground.goals import ConfigGoalSource
+from lazyground.planning.space import ConfigSpace
+from lazyground.regions import GoalRegion
+
+
+class BoxWorld:
+    """Axis-aligned rectangular obstacles in [0, 10]^2; a point robot."""
+
+    def __init__(self, boxes):
+        self.boxes = np.array(boxes, float).reshape(-1, 4)  # xmin, ymin, xmax, ymax
+        self._time = 0.0
+        self.checks = 0
+
+    @property
+    def check_time(self) -> float:
+        return self._time
+
+    def configs_free(self, qs):
+        t0 = time.perf_counter()
+        qs = np.atleast_2d(qs)
+        self.checks += len(qs)
+        inside = np.zeros(len(qs), bool)
+        for x0, y0, x1, y1 in self.boxes:
+            inside |= (qs[:, 0] >= x0) & (qs[:, 0] <= x1) & (qs[:, 1] >= y0) & (qs[:, 1] <= y1)
+        self._time += time.perf_counter() - t0
+        return ~inside
+
+    def config_free(self, q) -> bool:
+        return bool(self.configs_free(q)[0])
+
+    def explain(self, q) -> str:
+        return "point inside a box"
+
+
+SPACE = ConfigSpace(("x", "y"), np.zeros(2), np.full(2, 10.0))
+
+# A wall at x in [4, 5] with a gap at y in [8, 9]; a box around (8, 2) encloses a pocket.
+WALLS = [
+    (4, 0, 5, 8),
+    (4, 9, 5, 10),
+    (6.5, 0.5, 9.5, 0.8),  # pocket: bottom
+    (6.5, 3.2, 9.5, 3.5),  # pocket: top
+    (6.5, 0.5, 6.8, 3.5),  # pocket: left
+    (9.2, 0.5, 9.5, 3.5),  # pocket: right
+    (7.0, 6.0, 9.0, 7.5),  # a solid block (goal inside it is invalid)
+]
+START = np.array([1.0, 1.0])
+
+
+def region(name, x, y, half=0.3):
+    return GoalRegion(id=name, interpretation=f"go:{name}", object=name, kind="config",
+                      lower=(x - half, y - half), upper=(x + half, y + half))
+
+
+REACHABLE = region("open", 8.0, 9.0)
+UNREACHABLE = region("pocket", 8.0, 2.0)  # valid samples, enclosed
+INVALID = region("block", 8.0, 6.75, half=0.5)  # entirely inside the block
+
+
+def goal_source(world, regions):
+    return ConfigGoalSource(tuple(regions), SPACE, world)
