@@ -1,9 +1,13 @@
 """Rule-based grounding: a text request → every valid interpretation → goal regions.
 
-Pure Python (no pydrake). ``ground(request, scene)`` is the entry point.
+Pure Python (no pydrake). ``ground(request, scene)`` is the entry point; the
+words live in ``lexicon.yaml`` (extend it, or set $LAZYGROUND_LEXICON), the
+goal-region definitions per type in ``types.yaml``. The request language is
+documented in docs/requests.md.
 """
 
 from grounding.model import ACTIONS, Grounding, GroundingError, Interpretation
+from grounding.lexicon import Lexicon, load_lexicon
 from grounding.ground import ground
 
-__all__ = ["ACTIONS", "Grounding", "GroundingError", "Interpretation", "ground"]
+__all__ = ["ACTIONS", "Grounding", "GroundingError", "Interpretation", "Lexicon", "ground", "load_lexicon"]

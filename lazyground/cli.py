@@ -172,6 +172,8 @@ def main(argv: list[str] | None = None) -> int:
     from lazyground.scene.typed_yaml import SceneError
 
     try:
+        if argv[:1] == ["bench"]:  # argparse's REMAINDER drops leading options: hand them over untouched
+            return cmd_bench(argparse.Namespace(bench_args=argv[1:]))
         parser = build_parser()
         args = parser.parse_args(argv)
         if args.command is None:

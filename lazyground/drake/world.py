@@ -120,7 +120,8 @@ class DrakeWorld:
         carried = self.attached.object.id if self.attached else None
         for obj in self.scene.objects:
             if obj.type == "parking_spot" and obj.occupied:
-                items.append((f"{obj.id}/parked_car", Geometry(box=PARKED_CAR_SIZE), _on_ground(obj), (0.75, 0.2, 0.2, 1.0)))
+                # no "/" in geometry names: Meshcat would nest the car under the spot's transform
+                items.append((f"{obj.id}.parked_car", Geometry(box=PARKED_CAR_SIZE), _on_ground(obj), (0.75, 0.2, 0.2, 1.0)))
             elif obj.collides and obj.id != carried:
                 items.append((obj.id, obj.geometry, obj.pose.pose(), object_rgba(obj)))
         for name, geometry, pose, rgba in items:
@@ -186,6 +187,15 @@ class DrakeWorld:
         weights = np.array([robot.weights.get(all_names[i], 1.0) for i in idx])
         self.space = ConfigSpace(tuple(all_names[i] for i in idx), lower[idx], upper[idx], weights, wrap[idx])
         self.start = self.q_full[idx].copy()
+
+    # --- kinematics ------------------------------------------------------------------------
+    def frame_pose(self, frame: str, q: np.ndarray) -> Pose:
+        """World pose X_WF of a robot frame at planned coordinates ``q``."""
+        if not hasattr(self, "_fk_context"):
+            self._fk_context = self.plant.CreateDefaultContext()
+        self.plant.SetPositions(self._fk_context, self.full(q))
+        X = self.plant.CalcRelativeTransform(self._fk_context, self.plant.world_frame(), self.plant.GetFrameByName(frame, self.robot))
+        return Pose.from_matrix(X.GetAsMatrix4())
 
     # --- ValidityChecker -------------------------------------------------------------------
     @property

@@ -1,0 +1,123 @@
+"""Spatial facts the request language refers to, computed from scene geometry.
+
+* **support** — ``support_of(obj, scene)``: the object ``obj`` rests on. ``obj``'s
+  bottom must lie within ``TOUCH_TOL`` (3 cm) of the support's top face and its
+  centre over the support's footprint; the closest such face wins. An object
+  resting on nothing within 3 cm of z = 0 is on the ``floor``. Only direct
+  support counts (a can on a tray on a table is on the tray).
+* **directions** — the robot looks along its base +x: "left" is +y and "right"
+  is -y in the robot's base frame (the world frame when the scene gives no
+  base pose); "top" is +z.
+* **units** — boards of one piece of furniture (shelf boards of one rack): the
+  objects of one type sharing ``attributes: {unit: NAME}``, else those whose
+  footprints overlap (stacked boards). "left/right shelf" compares whole units;
+  "top/middle/bottom shelf" ranks boards within each unit.
+* **thirds** — a relative word picks by value, not by count: over the values v
+  of the compared objects (range r = max - min), the upper third
+  (v >= max - r/3) is left/top/large, the lower third (v <= min + r/3) is
+  right/bottom/small and the rest is middle/medium. When the spread is too
+  small to tell (``SPREAD`` 5 cm, or volumes within 10 %) the word does not
+  narrow anything.
+"""
+
+from __future__ import annotations
+
+import math
+from itertools import product
+
+import numpy as np
+
+from lazyground.scene.schema import Scene, SceneObject
+
+TOUCH_TOL = 0.03
+SPREAD = 0.05
+VOLUME_SPREAD = 1.10
+FLOOR = "floor"
+
+
+def world_box(obj: SceneObject) -> tuple[np.ndarray, np.ndarray]:
+    """Axis-aligned world bounds of the object's shape."""
+    h = np.asarray(obj.geometry.half_extents())
+    corners = np.array(list(product(*[(-v, v) for v in h])))
+    pts = obj.pose.pose().transform_points(corners)
+    return pts.min(axis=0), pts.max(axis=0)
+
+
+def _over_footprint(point: np.ndarray, support: SceneObject) -> bool:
+    """Whether ``point`` (x, y) lies over the support's top face."""
+    X = support.pose.pose()
+    p = (np.asarray(point, float) - np.asarray(X.xyz)) @ X.rotation()
+    hx, hy, _ = support.geometry.half_extents()
+    if support.geometry.kind == "box":
+        return abs(p[0]) <= hx + 1e-9 and abs(p[1]) <= hy + 1e-9
+    return math.hypot(p[0], p[1]) <= hx + 1e-9
+
+
+def support_of(obj: SceneObject, scene: Scene) -> str | None:
+    """Id of the object ``obj`` rests on, ``FLOOR``, or None when it rests on nothing known."""
+    lo, _ = world_box(obj)
+    centre = np.asarray(obj.pose.xyz, float)
+    best, best_gap = None, TOUCH_TOL
+    for other in scene.objects:
+        if other is obj or not other.collides:
+            continue
+        gap = abs(lo[2] - world_box(other)[1][2])
+        if gap <= best_gap and _over_footprint(np.array([centre[0], centre[1], world_box(other)[1][2]]), other):
+            best, best_gap = other.id, gap
+    if best is None and abs(lo[2]) <= TOUCH_TOL:
+        return FLOOR
+    return best
+
+
+def lateral(obj: SceneObject, scene: Scene) -> float:
+    """The object's y in the robot's base frame: larger is further left."""
+    base = scene.robot.base
+    x, y, _ = obj.pose.xyz
+    if base is None:
+        return float(y)
+    yaw = base.rpy[2]
+    dx, dy = x - base.xyz[0], y - base.xyz[1]
+    return float(-math.sin(yaw) * dx + math.cos(yaw) * dy)
+
+
+def top_height(obj: SceneObject) -> float:
+    return float(world_box(obj)[1][2])
+
+
+def units(objs: list[SceneObject]) -> list[list[SceneObject]]:
+    """Group boards into pieces of furniture: by ``attributes.unit``, else by overlapping footprints."""
+    named: dict[str, list[SceneObject]] = {}
+    loose: list[list[SceneObject]] = []
+    for o in objs:
+        name = o.attributes.get("unit")
+        if name is not None:
+            named.setdefault(str(name), []).append(o)
+            continue
+        lo, hi = world_box(o)
+        joined = [g for g in loose if any(_overlap(lo, hi, *world_box(m)) for m in g)]
+        merged = [o] + [m for g in joined for m in g]
+        loose = [g for g in loose if g not in joined] + [merged]
+    return list(named.values()) + loose
+
+
+def _overlap(lo_a, hi_a, lo_b, hi_b, eps: float = 1e-3) -> bool:
+    return bool(np.all(lo_a[:2] < hi_b[:2] - eps) and np.all(lo_b[:2] < hi_a[:2] - eps))
+
+
+def thirds(values: dict[str, float], spread: float) -> dict[str, str] | None:
+    """Map ids to "high" / "mid" / "low" by the thirds rule; None when the spread is below ``spread``."""
+    if not values:
+        return {}
+    vmax, vmin = max(values.values()), min(values.values())
+    r = vmax - vmin
+    if r < spread:
+        return None
+    return {k: "high" if v >= vmax - r / 3 else "low" if v <= vmin + r / 3 else "mid" for k, v in values.items()}
+
+
+def extremes(values: dict[str, float], high: bool, tol: float) -> set[str]:
+    """Ids whose value is within ``tol`` of the maximum (``high``) or the minimum."""
+    if not values:
+        return set()
+    best = max(values.values()) if high else min(values.values())
+    return {k for k, v in values.items() if abs(v - best) <= tol}

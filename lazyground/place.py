@@ -1,0 +1,221 @@
+"""Pick and place, grounded lazily across both steps ("put a cup on the table").
+
+Step 1 plans from the start to a grasp of *any* object matching the request
+(reward-penalty over all their grasp regions). The chosen object is then
+attached to the gripper at the grasp it was reached with: its collision
+geometry rides on the gripper body (contacts with the fingers are filtered as
+adjacent bodies; everything else is checked, including the surface it came
+from). A short lift-off follows, then step 2 plans to a placement region on
+any matching surface. If the object cannot be placed within
+``place_share * time_limit``, the planner goes back, excludes that object and
+plans step 1 again over the others; the report says so.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from grounding.model import Grounding
+from lazyground.api import PlanReport
+from lazyground.drake.ik import IKGoalSource
+from lazyground.drake.world import Attachment, DrakeWorld
+from lazyground.geometry import Pose
+from lazyground.planning.problem import PlannerSettings, PlanResult, PlanStatus
+from lazyground.planning.rrt import path_is_valid, solve
+from lazyground.regions import GoalRegion
+from lazyground.scene.schema import Scene
+
+PLACE_SHARE = 0.4  # of the time limit, for one placement attempt before falling back
+LIFT_HEIGHTS = (0.03, 0.05, 0.08)  # m, tried in turn until the carried object is clear
+
+
+@dataclass(frozen=True)
+class Lift:
+    """The lift-off after grasping: waypoints from the grasp to a collision-free pose above it."""
+
+    path: np.ndarray
+    height: float
+
+    @property
+    def q_lift(self) -> np.ndarray:
+        return self.path[-1]
+
+
+def _regions_by_object(g: Grounding) -> tuple[list[GoalRegion], dict[str, list[GoalRegion]]]:
+    """All grasp regions (each once) and, per object, the placement regions of its targets."""
+    grasps: dict[str, GoalRegion] = {}
+    places: dict[str, dict[str, GoalRegion]] = {}
+    for interp in g.interpretations:
+        for r in interp.goal_regions:
+            grasps.setdefault(r.id, r)
+        for obj in interp.objects:
+            for r in interp.place_regions:
+                places.setdefault(obj, {}).setdefault(r.id, r)
+    return list(grasps.values()), {k: list(v.values()) for k, v in places.items()}
+
+
+def _placement_regions(regions: list[GoalRegion], half_height: float) -> tuple[GoalRegion, ...]:
+    """Placement regions bound the carried object's bottom centre; the IK target is its centre."""
+    return tuple(replace(r, X_SE=Pose((0.0, 0.0, half_height))) for r in regions)
+
+
+def lift_off(world: DrakeWorld, carrying: DrakeWorld, ik: IKGoalSource, frame: str, q_grasp: np.ndarray, resolution: float) -> Lift | None:
+    """Raise the gripper (and object) straight up until the carried object is clear of its support.
+
+    The lift is solved in 1 cm IK steps, each seeded by the last, so the path
+    stays close to a vertical line. The object rests on its support at the
+    grasp, so the first millimetres may touch it; from the first collision-free
+    configuration on, the whole lift must be free. It stops at the first of
+    ``LIFT_HEIGHTS`` where the carried object is clear.
+    """
+    X_WG = world.frame_pose(frame, q_grasp)
+    path = [np.asarray(q_grasp, float)]
+    q_full = world.full(q_grasp)
+    step = 0.01
+    for k in range(1, int(round(max(LIFT_HEIGHTS) / step)) + 1):
+        h = k * step
+        target = Pose((X_WG.xyz[0], X_WG.xyz[1], X_WG.xyz[2] + h), X_WG.rpy)
+        q_full = ik.solve(frame, target, q_full)
+        if q_full is None:
+            return None
+        path.append(q_full[world.planned])
+        if not any(abs(h - lh) < 1e-9 for lh in LIFT_HEIGHTS) or not carrying.config_free(path[-1]):
+            continue
+        dense = np.vstack([carrying.space.discretize(a, b, resolution) for a, b in zip(path[:-1], path[1:])])
+        free = carrying.configs_free(dense)
+        first = int(np.argmax(free))
+        if np.all(free[first:]) and np.all(world.configs_free(dense)):
+            return Lift(np.array(path), h)
+    return None
+
+
+def _combine(results: list[PlanResult], status: PlanStatus, path, goal, region, elapsed: float, message: str) -> PlanResult:
+    last = results[-1]
+    return replace(
+        last,
+        status=status,
+        path=path,
+        goal=goal,
+        goal_region=region,
+        iterations=sum(r.iterations for r in results),
+        tree_size=sum(r.tree_size for r in results),
+        resamplings=sum(r.resamplings for r in results),
+        time_s=elapsed,
+        goal_sampling_s=sum(r.goal_sampling_s for r in results),
+        collision_s=sum(r.collision_s for r in results),
+        message=message,
+        path_length=sum(r.path_length for r in results),
+        invalid_paths_rejected=sum(r.invalid_paths_rejected for r in results),
+    )
+
+
+def plan_pick_and_place(
+    scene: Scene,
+    g: Grounding,
+    settings: PlannerSettings,
+    seed: int,
+    grounding_s: float,
+    keep_tree: bool = False,
+    place_share: float = PLACE_SHARE,
+) -> PlanReport:
+    """Plan "put X on Y": a grasp of any X, then a placement on any Y, with fallback."""
+    t0 = time.perf_counter()
+    deadline = t0 + settings.time_limit
+    rng = np.random.default_rng(seed)
+    world = DrakeWorld(scene)
+    setup_s = time.perf_counter() - t0
+    frame = scene.robot.end_effector or "gripper_link"
+    grasps, places = _regions_by_object(g)
+    excluded: list[str] = []
+    notes: list[str] = []
+    results: list[PlanResult] = []
+    steps: tuple[PlanReport, ...] = ()
+
+    def step_report(request: str, result: PlanResult, setup: float) -> PlanReport:
+        return PlanReport(request, scene.name, seed, settings, g, result, world.space.names, 0.0, setup)
+
+    def finish(status: PlanStatus, message: str, extra: dict | None = None, path=None, goal=None, region=None) -> PlanReport:
+        elapsed = time.perf_counter() - t0
+        if results:
+            combined = _combine(results, status, path, goal, region, elapsed, message)
+        else:
+            combined = PlanResult(status, seed, None, None, None, 0, 0, [], 0, elapsed, 0.0, 0.0, message)
+        return PlanReport(
+            g.request, scene.name, seed, settings, g, combined, world.space.names, grounding_s, setup_s,
+            steps=steps, notes=tuple(notes), extra=extra or {},
+        )
+
+    while True:
+        remaining = deadline - time.perf_counter()
+        candidates = [r for r in grasps if r.object not in excluded]
+        if remaining <= 0 or not candidates:
+            break
+        pick = solve(world.space, world, IKGoalSource(tuple(candidates), world), world.start,
+                     replace(settings, time_limit=remaining), rng, seed=seed, keep_tree=keep_tree)
+        results.append(pick)
+        if not pick.solved:
+            return finish(pick.status, f"pick: {pick.message}")
+        obj = scene.object(pick.goal_region.object)
+        q_grasp = pick.path[-1]
+        X_WG = world.frame_pose(frame, q_grasp)
+        X_GO = X_WG.inverse().compose(obj.pose.pose())
+        t_setup = time.perf_counter()
+        carrying = DrakeWorld(scene, attached=Attachment(obj, frame, X_GO))
+        regions = _placement_regions(places.get(obj.id, []), obj.geometry.half_extents()[2])
+        source = IKGoalSource(regions, carrying)
+        setup = time.perf_counter() - t_setup
+        lift = lift_off(world, carrying, source, frame, q_grasp, settings.resolution)
+        if lift is None:
+            notes.append(f"picked {obj.id} ({pick.goal_region.label}) but could not lift it clear; trying another object")
+            excluded.append(obj.id)
+            continue
+        budget = min(deadline - time.perf_counter(), place_share * settings.time_limit)
+        place = solve(carrying.space, carrying, source, lift.q_lift, replace(settings, time_limit=max(budget, 1e-3)),
+                      rng, seed=seed, keep_tree=keep_tree)
+        results.append(place)
+        if not place.solved:
+            notes.append(f"picked {obj.id} but could not place it within {budget:.1f} s ({place.status.value}); "
+                         "went back for another object")
+            excluded.append(obj.id)
+            continue
+        q_final = place.path[-1]
+        X_WO = carrying.frame_pose(frame, q_final).compose(X_GO)
+        steps = (step_report(f"pick {obj.id}", pick, 0.0), step_report(f"place {obj.id}", place, setup))
+        extra = {
+            "picked": obj.id,
+            "grasp": {"region": pick.goal_region.id, "label": pick.goal_region.label, "X_WG": X_WG.to_json(), "X_GO": X_GO.to_json()},
+            "placement": {"region": place.goal_region.id, "target": place.goal_region.object, "X_WO": X_WO.to_json()},
+            "lift": {"height": lift.height, "path": lift.path.round(9).tolist()},
+            "fallbacks": len(excluded),
+        }
+        path = np.vstack([pick.path, lift.path[1:], place.path[1:]])
+        return finish(PlanStatus.SOLVED, "", extra, path, place.goal, place.goal_region)
+    if not results:
+        return finish(PlanStatus.TIMEOUT, "no time left")
+    tried = ", ".join(excluded) or "none"
+    status = PlanStatus.TIMEOUT if deadline - time.perf_counter() <= 0 else PlanStatus.NO_VALID_GOAL
+    return finish(status, f"no object could be picked and placed in time (tried: {tried})")
+
+
+def validate_pick_and_place(report: PlanReport, scene: Scene, resolution: float) -> list[str]:
+    """Re-check both steps at ``resolution``, the carried object included; returns problems found."""
+    problems = []
+    pick, place = (s.result for s in report.steps)
+    world = DrakeWorld(scene, visual=False)
+    if path_is_valid(world.space, world, pick.path, resolution) >= 0:
+        problems.append("pick path collides")
+    obj = scene.object(report.extra["picked"])
+    X_GO = Pose(tuple(report.extra["grasp"]["X_GO"]["xyz"]), tuple(report.extra["grasp"]["X_GO"]["rpy"]))
+    frame = scene.robot.end_effector or "gripper_link"
+    carrying = DrakeWorld(scene, attached=Attachment(obj, frame, X_GO), visual=False)
+    if path_is_valid(carrying.space, carrying, place.path, resolution) >= 0:
+        problems.append("place path collides (with the carried object)")
+    lift = np.array(report.extra["lift"]["path"])
+    dense = np.vstack([carrying.space.discretize(a, b, resolution) for a, b in zip(lift[:-1], lift[1:])])
+    free = carrying.configs_free(dense)
+    if not np.all(free[int(np.argmax(free)):]) or path_is_valid(world.space, world, lift, resolution) >= 0:
+        problems.append("lift-off collides after leaving the support")
+    return problems

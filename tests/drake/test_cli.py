@@ -1,0 +1,118 @@
+"""The `lazyground` command: JSON output, exit codes, one-line errors and statuses."""
+
+import json
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("pydrake")
+
+from lazyground.cli import main  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[2]
+P1 = str(ROOT / "yaml_scenes/parking_1.yaml")
+
+LOT = textwrap.dedent(
+    """\
+    name: tiny_lot
+    robot:
+      model: car
+      start: {{car_x: {x}, car_y: 3.0, car_qz: 0.0}}
+      limits: {{car_x: [0, 30], car_y: [0, 20]}}
+      weights: {{car_qz: 2.0}}
+    obstacles:
+      - {{id: pillar, geometry: {{cylinder: {{radius: 0.3, length: 3}}}}, pose: {{xyz: [10, 3, 1.5]}}}}
+      {extra}
+    objects:
+      - {{id: spot_1, type: parking_spot, geometry: {{box: [5.5, 2.6, 0.05]}}, pose: {{xyz: [20, 17, 0], rpy: [0, 0, 1.5708]}}}}
+      - {{id: spot_2, type: parking_spot, occupied: true, geometry: {{box: [5.5, 2.6, 0.05]}}, pose: {{xyz: [23, 17, 0], rpy: [0, 0, 1.5708]}}}}
+    planner: {{step_size: 1.0, time_limit: 5}}
+    """
+)
+
+
+def lot(tmp_path, x=3.0, extra=""):
+    p = tmp_path / "lot.yaml"
+    p.write_text(LOT.format(x=x, extra=extra))
+    return str(p)
+
+
+def test_plan_json_solves(capsys):
+    assert main(["plan", P1, "park", "--json", "--seed", "1"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    for key in ("status", "request", "interpretations", "chosen", "joint_names", "path", "time_s", "iterations",
+                "tree_size", "goal_samples", "resamplings", "seed"):
+        assert key in doc
+    assert doc["status"] == "solved" and doc["seed"] == 1
+    assert doc["joint_names"] == ["car_x", "car_y", "car_qz"]
+    assert doc["chosen"]["interpretation"] == f"park:{doc['chosen']['object']}"
+    assert {i["id"] for i in doc["interpretations"]} >= {doc["chosen"]["interpretation"]}
+    assert all(len(q) == 3 for q in doc["path"])
+    assert doc["time_s"] >= doc["time_split_s"]["goal_sampling"] + doc["time_split_s"]["collision_checking"]
+
+
+def test_plan_human_output(capsys):
+    assert main(["plan", P1, "park", "--seed", "2"]) == 0
+    out = capsys.readouterr().out
+    assert "reached: park:spot_" in out and "iterations" in out
+
+
+def test_start_in_collision_names_the_pair(tmp_path, capsys):
+    assert main(["plan", lot(tmp_path, x=10.0), "park", "--json"]) == 1
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["status"] == "invalid_start"
+    assert "car_body collides with pillar" in doc["message"]
+
+
+def test_no_valid_goal(tmp_path, capsys):
+    blocker = "- {id: blocker, geometry: {box: [3, 6, 2]}, pose: {xyz: [20, 17, 1]}}"
+    assert main(["plan", lot(tmp_path, extra=blocker), "park", "--json"]) == 1
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["status"] == "no_valid_goal"
+    assert "spot_1/forwards: 0/50 valid (in collision x50)" in doc["message"]
+
+
+def test_timeout_when_unreachable(tmp_path, capsys):
+    wall = "- {id: wall, geometry: {box: [30, 0.3, 2]}, pose: {xyz: [15, 12, 1]}}"
+    assert main(["plan", lot(tmp_path, extra=wall), "park", "--json", "--time-limit", "1"]) == 1
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["status"] == "timeout" and doc["time_s"] <= 1.1
+
+
+@pytest.mark.parametrize(
+    "argv,fragment",
+    [
+        (["plan", "no/such.yaml", "park"], "no such scene file"),
+        (["plan", P1, "fly to the moon"], "error: "),
+        (["plan", P1, "park", "--goal-bias", "2"], "--goal-bias must be in [0, 1]"),
+        (["plan", P1, "park", "--time-limit", "-1"], "--time-limit must be > 0"),
+        (["plan", P1, "park", "--strategy", "greedy"], "invalid choice: 'greedy'"),
+        (["plan", P1], "the following arguments are required: request"),
+        (["frobnicate"], "invalid choice: 'frobnicate'"),
+    ],
+)
+def test_bad_input_exits_2_with_one_line(argv, fragment, capsys):
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert fragment in err and len(err.splitlines()) == 1
+
+
+def test_subprocess_error_has_no_traceback(tmp_path):
+    bad = lot(tmp_path, x=999)
+    run = subprocess.run([sys.executable, "-m", "lazyground", "plan", bad, "park"], capture_output=True, text=True)
+    assert run.returncode == 2
+    assert "Traceback" not in run.stderr
+    assert run.stderr.strip().splitlines() == [f"error: {bad}: robot.start.car_x: 999 is outside the joint limits [0, 30]"]
+    debug = subprocess.run([sys.executable, "-m", "lazyground", "--debug", "plan", bad, "park"], capture_output=True, text=True)
+    assert debug.returncode == 2 and "Traceback" in debug.stderr
+
+
+def test_ground_json(capsys):
+    assert main(["ground", P1, "park", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["ambiguous"] is True and doc["action"] == "park"
+    assert {i["id"] for i in doc["interpretations"]} == {"park:spot_b1", "park:spot_b9", "park:spot_t3", "park:spot_t10"}
+    assert all(len(i["goal_regions"]) == 2 for i in doc["interpretations"])
