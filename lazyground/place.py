@@ -29,7 +29,7 @@ from lazyground.regions import GoalRegion
 from lazyground.scene.schema import Scene
 
 PLACE_SHARE = 0.4  # of the time limit, for one placement attempt before falling back
-LIFT_HEIGHTS = (0.03, 0.05, 0.08)  # m, tried in turn until the carried object is clear
+MIN_LIFT, MAX_LIFT, LIFT_STEP = 0.02, 0.08, 0.01  # m: the lift stops at the first clear height above MIN_LIFT
 
 
 @dataclass(frozen=True)
@@ -68,21 +68,20 @@ def lift_off(world: DrakeWorld, carrying: DrakeWorld, ik: IKGoalSource, frame: s
     The lift is solved in 1 cm IK steps, each seeded by the last, so the path
     stays close to a vertical line. The object rests on its support at the
     grasp, so the first millimetres may touch it; from the first collision-free
-    configuration on, the whole lift must be free. It stops at the first of
-    ``LIFT_HEIGHTS`` where the carried object is clear.
+    configuration on, the whole lift must be free. It stops at the first height
+    of at least ``MIN_LIFT`` where the carried object is clear.
     """
     X_WG = world.frame_pose(frame, q_grasp)
     path = [np.asarray(q_grasp, float)]
     q_full = world.full(q_grasp)
-    step = 0.01
-    for k in range(1, int(round(max(LIFT_HEIGHTS) / step)) + 1):
-        h = k * step
+    for k in range(1, int(round(MAX_LIFT / LIFT_STEP)) + 1):
+        h = k * LIFT_STEP
         target = Pose((X_WG.xyz[0], X_WG.xyz[1], X_WG.xyz[2] + h), X_WG.rpy)
         q_full = ik.solve(frame, target, q_full)
         if q_full is None:
             return None
         path.append(q_full[world.planned])
-        if not any(abs(h - lh) < 1e-9 for lh in LIFT_HEIGHTS) or not carrying.config_free(path[-1]):
+        if h < MIN_LIFT - 1e-9 or not carrying.config_free(path[-1]):
             continue
         dense = np.vstack([carrying.space.discretize(a, b, resolution) for a, b in zip(path[:-1], path[1:])])
         free = carrying.configs_free(dense)

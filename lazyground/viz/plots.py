@@ -15,7 +15,7 @@ import matplotlib
 matplotlib.use("Agg")  # files only; never open a window
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from matplotlib.animation import FuncAnimation, PillowWriter  # noqa: E402
+from PIL import Image  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.colors import ListedColormap  # noqa: E402
 from matplotlib.patches import Circle, Polygon  # noqa: E402
@@ -50,42 +50,50 @@ def plot_parking(report, scene, path) -> None:
     view.draw_samples(ax)
     view.draw_path(ax, footprints=8)
     view.finish(fig, ax)
-    fig.savefig(path, dpi=110)
+    fig.savefig(path)
     plt.close(fig)
 
 
 def animate_parking(report, scene, path, fps: int = 12) -> None:
     """Write a top-down GIF: the tree grows, then the car drives along the path.
 
+    The scene is rendered once; each frame redraws only the tree, the trail and
+    the car over it (blitting), which keeps a 70-frame GIF to about a second.
+
     Raises:
         SceneError: the robot is not planar.
     """
     view = _View(report, scene)
-    fig, ax = view.figure(size=(7.2, 5.0))
+    fig, ax = view.figure(size=(7.2, 5.0), dpi=72)
     view.draw_samples(ax)
-    tree = LineCollection([], colors=[TREE_RGBA], linewidths=0.6, zorder=3)
+    tree = LineCollection([], colors=[TREE_RGBA], linewidths=0.6, zorder=3, animated=True)
     ax.add_collection(tree)
-    trail, = ax.plot([], [], color=PATH_RGBA, lw=2.5, zorder=6)
-    car = Polygon(view.footprint(view.start), closed=True, fc=CAR_RGBA, ec="black", lw=1.0, zorder=8)
+    trail, = ax.plot([], [], color=PATH_RGBA, lw=2.5, zorder=6, animated=True)
+    car = Polygon(view.footprint(view.start), closed=True, fc=CAR_RGBA, ec="black", lw=1.0, zorder=8, animated=True)
     ax.add_patch(car)
     view.finish(fig, ax)
+    fig.canvas.draw()
+    background = fig.canvas.copy_from_bbox(fig.bbox)
     segments = view.tree_segments()
     drive = view.resampled(DRIVE_FRAMES) if view.path is not None else np.repeat(view.start[None], DRIVE_FRAMES, 0)
     grow = GROW_FRAMES if len(segments) else 0
-
-    def update(frame: int):
+    frames = []
+    for frame in range(grow + DRIVE_FRAMES + HOLD_FRAMES):
         if frame < grow:
             tree.set_segments(segments[: int(len(segments) * (frame + 1) / grow)])
-            return tree, trail, car
-        k = min(frame - grow, DRIVE_FRAMES - 1)
-        xy = drive[: k + 1][:, view.ix[:2]]
-        trail.set_data(xy[:, 0], xy[:, 1])
-        car.set_xy(view.footprint(drive[k]))
-        return tree, trail, car
-
-    anim = FuncAnimation(fig, update, frames=grow + DRIVE_FRAMES + HOLD_FRAMES, blit=False)
-    anim.save(str(path), writer=PillowWriter(fps=fps), dpi=72)
+        else:
+            k = min(frame - grow, DRIVE_FRAMES - 1)
+            xy = drive[: k + 1][:, list(view.ix[:2])]
+            trail.set_data(xy[:, 0], xy[:, 1])
+            car.set_xy(view.footprint(drive[k]))
+        fig.canvas.restore_region(background)
+        for artist in (tree, trail, car):
+            ax.draw_artist(artist)
+        frames.append(Image.fromarray(np.asarray(fig.canvas.buffer_rgba())[..., :3].copy()))
     plt.close(fig)
+    palette = frames[-1].quantize(colors=128)  # one shared palette keeps the GIF small and steady
+    frames = [f.quantize(palette=palette, dither=Image.Dither.NONE) for f in frames]
+    frames[0].save(str(path), save_all=True, append_images=frames[1:], duration=int(1000 / fps), loop=0, optimize=True)
 
 
 class _View:
@@ -119,8 +127,8 @@ class _View:
         return np.stack([xy[parent], xy[child]], axis=1)
 
     # --- drawing -------------------------------------------------------------------------
-    def figure(self, size=(9.0, 6.4)):
-        fig, ax = plt.subplots(figsize=size)
+    def figure(self, size=(9.0, 6.4), dpi=110):
+        fig, ax = plt.subplots(figsize=size, dpi=dpi)
         ax.set_facecolor((0.93, 0.93, 0.93))
         for obs in self.scene.obstacles:
             ax.add_patch(_shape_patch(obs.geometry, obs.pose, fc=OBSTACLE_RGBA, ec="none", zorder=2))
@@ -151,7 +159,7 @@ class _View:
         ax.scatter(xy[gb, 0], xy[gb, 1], s=9, color=GOAL_BIASED_RGBA, zorder=4, label="goal-biased extension")
         if self.res.failed_from is not None and len(self.res.failed_from):
             f = xy[np.unique(self.res.failed_from)]
-            ax.scatter(f[:, 0], f[:, 1], s=14, color=FAILED_RGBA, zorder=4, label="failed goal-biased extension from")
+            ax.scatter(f[:, 0], f[:, 1], s=22, marker="x", color=FAILED_RGBA, zorder=4, label="failed goal-biased extension from")
 
     def draw_samples(self, ax) -> None:
         samples = self.res.goal_samples
@@ -161,7 +169,7 @@ class _View:
         w = np.array([s.weight for s in samples])
         h = q[:, self.ix[2]]
         ax.quiver(q[:, self.ix[0]], q[:, self.ix[1]], np.cos(h), np.sin(h), w, cmap=WEIGHT_CMAP, clim=(0, 1),
-                  angles="xy", scale_units="xy", scale=0.6, width=0.004, zorder=5)
+                  angles="xy", scale_units="xy", scale=0.6, width=0.004, zorder=9)
 
     def draw_path(self, ax, footprints: int) -> None:
         if self.path is None:

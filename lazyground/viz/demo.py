@@ -1,0 +1,65 @@
+"""``lazyground demo``: plan the bundled requests and write what they look like.
+
+"park" on the parking lot (a PNG, a GIF and an HTML replay) and, where the
+Fetch scene is bundled, "pick up a can" (an HTML replay).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from lazyground import api
+from lazyground.report import report_lines
+from lazyground.scene import load_scene
+
+SCENES = Path(__file__).resolve().parents[2] / "yaml_scenes"
+
+
+@dataclass(frozen=True)
+class Demo:
+    scene: str  # file in yaml_scenes/
+    request: str
+    png: str | None = None
+    gif: str | None = None
+    html: str | None = None
+
+
+DEMOS = (
+    Demo("parking_1.yaml", "park", png="parking.png", gif="parking.gif", html="parking.html"),
+    Demo("fetch_cans_1.yaml", "pick up a can", html="fetch.html"),
+)
+
+
+def run_demo(out_dir: Path, seed: int) -> int:
+    """Plan every bundled demo, print a summary, write the files; 0 when every planned request is solved."""
+    from lazyground.viz import meshcat_view, plots
+
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    all_solved = True
+    for demo in DEMOS:
+        scene_path = SCENES / demo.scene
+        if not scene_path.exists():
+            print(f"skipped {demo.request!r}: {scene_path} is not bundled")
+            continue
+        scene = load_scene(scene_path)
+        report = api.plan(scene, demo.request, seed=seed, keep_tree=True)
+        all_solved &= report.result.solved
+        print("\n".join(report_lines(report)))
+        if demo.png:
+            plots.plot_parking(report, scene, out_dir / demo.png)
+            _wrote(out_dir / demo.png)
+        if demo.gif:
+            plots.animate_parking(report, scene, out_dir / demo.gif)
+            _wrote(out_dir / demo.gif)
+        if demo.html:
+            meshcat_view.write_html(report, scene, out_dir / demo.html)
+            _wrote(out_dir / demo.html)
+        print()
+    print(f"output folder: {out_dir.resolve()}")
+    return 0 if all_solved else 1
+
+
+def _wrote(path: Path) -> None:
+    print(f"  wrote {path.name} ({path.stat().st_size / 1e6:.2f} MB)")

@@ -1,0 +1,290 @@
+"""A planned grounding in Drake's Meshcat: live on localhost, or one self-contained HTML replay.
+
+What is drawn (colours from :mod:`lazyground.viz.style`, as in the paper's Figs. 4 and 6):
+
+* the scene and the robot (Drake's MeshcatVisualizer on the scene's
+  ``DrakeWorld``), the robot animated along the path in a Meshcat recording;
+  a pick-and-place report animates its ``steps`` one after the other, each in
+  its own world, only the current one visible: the pick, then the lift-off and
+  the place with the object riding on the gripper (``lazyground.place`` puts
+  ``picked``, ``grasp.X_GO`` and ``lift.path`` in the report's ``extra``; a
+  step may instead carry its own ``Attachment`` as ``extra["attached"]``);
+* the goal regions, translucent green: the object's box for configuration
+  regions (a parking spot), the region's box in its frame for workspace and
+  placement regions;
+* the goal samples coloured by their final reward-penalty weight, at the
+  *tracer* point: the end effector for arms, the base for mobile robots
+  (with an arrow along its heading and, for the car, its footprint);
+* the tree's edges (dark blue) in the tracer's workspace, the nodes added by
+  goal-biased extensions (blue) and the origins of failed goal-biased
+  extensions (red), and the solution path (light blue).
+"""
+
+from __future__ import annotations
+
+import re
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from pydrake.geometry import Box, Meshcat, MeshcatAnimation, MeshcatVisualizer, MeshcatVisualizerParams, Rgba, Sphere
+from pydrake.math import RigidTransform
+from pydrake.perception import BaseField, Fields, PointCloud
+
+from grounding.regions import END_EFFECTOR
+from lazyground.drake.world import PARKED_CAR_SIZE, Attachment, DrakeWorld, rigid_transform
+from lazyground.geometry import Pose
+from lazyground.viz.style import FAILED_RGBA, GOAL_BIASED_RGBA, PATH_RGBA, REGION_RGBA, TREE_RGBA, weight_rgba
+from lazyground.viz.trace import resample_path, tree_edges
+
+FPS = 30
+STEP_SECONDS = 4.0  # animation length of one planned step
+PAUSE_SECONDS = 0.5  # hold at the end of a step
+ROOT = "/lazyground"
+EXTERNAL_SCRIPT = re.compile(r"<script[^>]*\bsrc\s*=\s*[\"']?(https?:)?//", re.IGNORECASE)
+
+
+def write_html(report, scene, path) -> int:
+    """Write the self-contained HTML replay of ``report``; returns the bytes written.
+
+    Raises:
+        RuntimeError: Meshcat's page refers to an external script (it would not open offline).
+    """
+    meshcat = Meshcat()
+    draw(report, scene, meshcat)
+    html = meshcat.StaticHtml()
+    if EXTERNAL_SCRIPT.search(html):
+        raise RuntimeError("Meshcat's static HTML refers to an external script")
+    data = html.encode("utf-8")
+    Path(path).write_bytes(data)
+    return len(data)
+
+
+def show_live(report, scene, loop_once: bool, out) -> None:
+    """Serve ``report`` in a live Meshcat on localhost until Ctrl-C (or return at once with ``loop_once``)."""
+    meshcat = Meshcat()
+    seconds = draw(report, scene, meshcat)
+    print(f"meshcat: {meshcat.web_url()} (replay {seconds:.1f} s; press Ctrl-C to stop)", file=out, flush=True)
+    if loop_once:
+        return
+    try:
+        while True:
+            time.sleep(0.5)
+    except KeyboardInterrupt:
+        print("meshcat: stopped", file=out)
+
+
+def draw(report, scene, meshcat: Meshcat) -> float:
+    """Draw ``report`` into ``meshcat`` and record the robot's motion; returns the replay length in seconds."""
+    meshcat.Delete()
+    meshcat.DeleteRecording()
+    meshcat.StartRecording(frames_per_second=FPS, set_visualizations_while_recording=True)
+    views = [_StepView(s, scene, meshcat, f"robot{k}") for k, s in enumerate(_segments(report, scene))]
+    for k, view in enumerate(views):
+        view.draw_overlays(f"{ROOT}/step{k}")
+    t = 0.0
+    for k, view in enumerate(views):
+        for j, other in enumerate(views if len(views) > 1 else []):  # only the current step's world is visible
+            meshcat.SetProperty(f"/drake/{other.prefix}", "visible", j == k, time_in_recording=t)
+        t = view.animate(t) + PAUSE_SECONDS
+    meshcat.StopRecording()
+    animation = meshcat.get_mutable_recording()
+    animation.set_loop_mode(MeshcatAnimation.LoopMode.kLoopRepeat)
+    animation.set_autoplay(True)
+    meshcat.PublishRecording()
+    if not views[0].tracer.arm:  # a 10 m grid at the origin only clutters a parking lot
+        meshcat.SetProperty("/Grid", "visible", False)
+    _set_camera(meshcat, views)
+    return t
+
+
+@dataclass(frozen=True)
+class _Segment:
+    """One animated step: its report, the object its robot carries, and the motion to replay."""
+
+    report: object
+    attached: Attachment | None
+    motion: np.ndarray | None
+
+
+def _segments(report, scene) -> list[_Segment]:
+    """The steps to replay: one for a plain plan; pick, then lift and place (carrying) for pick and place."""
+    if not report.steps:
+        return [_Segment(report, report.extra.get("attached"), report.result.path)]
+    out = [_Segment(report.steps[0], None, report.steps[0].result.path)]
+    carried = None
+    if "picked" in report.extra:  # lazyground.place: the grasp and the lift-off are in the parent's extra
+        X_GO = report.extra["grasp"]["X_GO"]
+        frame = scene.robot.end_effector or END_EFFECTOR
+        carried = Attachment(scene.object(report.extra["picked"]), frame, Pose(tuple(X_GO["xyz"]), tuple(X_GO["rpy"])))
+    for step in report.steps[1:]:
+        motion = step.result.path
+        lift = report.extra.get("lift", {}).get("path")
+        if motion is not None and lift is not None and step is report.steps[1]:
+            motion = np.vstack([np.asarray(lift, float), motion[1:]])
+        out.append(_Segment(step, step.extra.get("attached", carried), motion))
+    return out
+
+
+@dataclass(frozen=True)
+class _Tracer:
+    """The robot point whose workspace positions stand for configurations."""
+
+    body: object  # a RigidBody of the world's plant
+    p_BT: np.ndarray
+    arm: bool  # an end effector (metres-scale markers) or a mobile base (car-scale markers)
+
+
+class _StepView:
+    """One planned step: its own DrakeWorld with a MeshcatVisualizer, and its overlays."""
+
+    def __init__(self, segment: _Segment, scene, meshcat: Meshcat, prefix: str):
+        report = segment.report
+        self.report, self.motion, self.scene, self.meshcat, self.prefix = report, segment.motion, scene, meshcat, prefix
+        params = MeshcatVisualizerParams(prefix=prefix, delete_on_initialization_event=False)
+
+        def add_visualizer(builder):
+            MeshcatVisualizer.AddToBuilder(builder.builder(), builder.scene_graph(), meshcat, params)
+
+        self.world = DrakeWorld(scene, attached=segment.attached, extend_builder=add_visualizer)
+        self.context = self.world.diagram.CreateDefaultContext()
+        self.plant_context = self.world.plant.GetMyMutableContextFromRoot(self.context)
+        self.tracer = _tracer(self.world, scene)
+        res = report.result
+        self.start = self.motion[0] if self.motion is not None else res.tree[0][0] if res.tree is not None else self.world.start
+        self.scale = 0.02 if self.tracer.arm else 0.25  # marker size, metres
+
+    # --- kinematics ----------------------------------------------------------------------
+    def poses(self, qs) -> list[RigidTransform]:
+        """World poses of the tracer point at planned configurations ``qs``."""
+        plant, out = self.world.plant, []
+        for q in self.world.full(np.atleast_2d(qs)):
+            plant.SetPositions(self.plant_context, q)
+            X_WB = plant.EvalBodyPoseInWorld(self.plant_context, self.tracer.body)
+            out.append(X_WB.multiply(RigidTransform(self.tracer.p_BT)))
+        return out
+
+    def points(self, qs) -> np.ndarray:
+        """(3, n) tracer positions at ``qs``."""
+        if len(qs) == 0:
+            return np.zeros((3, 0))
+        return np.array([X.translation() for X in self.poses(qs)]).T
+
+    # --- drawing -------------------------------------------------------------------------
+    def draw_overlays(self, path: str) -> None:
+        res = self.report.result
+        self._draw_regions(f"{path}/goal_regions", res.regions)
+        self._draw_samples(f"{path}/goal_samples", res.goal_samples)
+        if res.tree is not None:
+            nodes, parents, goal_biased = res.tree
+            p = self.points(nodes)
+            child, parent = tree_edges(parents)
+            if len(child):
+                # an arm's tree is a dense ball around the gripper: draw it see-through
+                rgba = Rgba(*TREE_RGBA[:3], 0.35 if self.tracer.arm else 1.0)
+                self.meshcat.SetLineSegments(f"{path}/tree/edges", p[:, parent], p[:, child], 1.0, rgba)
+            self._points(f"{path}/tree/goal_biased", p[:, np.asarray(goal_biased, bool)], GOAL_BIASED_RGBA, 1.0)
+            if res.failed_from is not None:
+                self._points(f"{path}/tree/failed_goal_biased_from", p[:, np.unique(res.failed_from)], FAILED_RGBA, 1.5)
+        if self.motion is not None:
+            dense = resample_path(self.motion, 200, self.world.space.wrap)
+            self.meshcat.SetLine(f"{path}/path", self.points(dense), 4.0, Rgba(*PATH_RGBA))
+
+    def animate(self, t0: float) -> float:
+        """Record the robot along the path from time ``t0``; returns the end time."""
+        if self.motion is None:
+            qs = np.atleast_2d(self.start)
+        else:
+            qs = resample_path(self.motion, int(STEP_SECONDS * FPS) + 1, self.world.space.wrap)
+        for i, q in enumerate(qs):
+            self.context.SetTime(t0 + i / FPS)
+            self.world.plant.SetPositions(self.plant_context, self.world.full(q))
+            self.world.diagram.ForcedPublish(self.context)
+        return t0 + (len(qs) - 1) / FPS
+
+    def _points(self, path: str, p: np.ndarray, rgba, size: float) -> None:
+        if p.shape[1] == 0:
+            return
+        cloud = PointCloud(p.shape[1], Fields(BaseField.kXYZs))
+        cloud.mutable_xyzs()[:] = p
+        self.meshcat.SetObject(path, cloud, size * self.scale, Rgba(*rgba))
+
+    def _draw_regions(self, path: str, regions) -> None:
+        drawn = set()
+        for region in regions:
+            if region.kind == "config":
+                if region.object in drawn:  # one box per object (a spot's forwards and reversing regions)
+                    continue
+                drawn.add(region.object)
+                obj = self.scene.object(region.object)
+                hx, hy, hz = obj.geometry.half_extents()
+                shape = Box(2 * hx, 2 * hy, max(2 * hz, 1.0))
+                X = rigid_transform(obj.pose.pose()).multiply(RigidTransform([0, 0, shape.depth() / 2]))
+            else:
+                lo, hi = np.asarray(region.lower[:3]), np.asarray(region.upper[:3])
+                size = np.maximum(hi - lo, 0.03)  # a point-like region (a top grasp) stays visible
+                shape = Box(*size)
+                X = rigid_transform(region.X_WR).multiply(RigidTransform((lo + hi) / 2))
+            name = f"{path}/{_safe(region.object if region.kind == 'config' else region.id)}"
+            self.meshcat.SetObject(name, shape, Rgba(*REGION_RGBA))
+            self.meshcat.SetTransform(name, X)
+
+    def _draw_samples(self, path: str, samples) -> None:
+        if not samples:
+            return
+        poses = self.poses(np.array([s.q for s in samples]))
+        for i, (s, X) in enumerate(zip(samples, poses)):
+            rgba = Rgba(*weight_rgba(s.weight))
+            name = f"{path}/{i}"
+            self.meshcat.SetObject(f"{name}/point", Sphere(self.scale * 0.6), rgba)
+            if not self.tracer.arm:  # the car's footprint at the sample, translucent
+                x, y, _ = PARKED_CAR_SIZE
+                self.meshcat.SetObject(f"{name}/footprint", Box(x, y, 0.04), Rgba(*weight_rgba(s.weight, 0.35)))
+            length = self.scale * (4.0 if self.tracer.arm else 10.0)
+            head = np.array([[length, 0, 0], [0.7 * length, 0.2 * length, 0], [0.7 * length, -0.2 * length, 0]]).T
+            start = np.array([[0, 0, 0], head[:, 0], head[:, 0]]).T
+            end = np.array([head[:, 0], head[:, 1], head[:, 2]]).T
+            self.meshcat.SetLineSegments(f"{name}/arrow", start, end, 2.0, rgba)
+            self.meshcat.SetTransform(name, X)
+
+
+def _tracer(world: DrakeWorld, scene) -> _Tracer:
+    """The end effector if the robot has one, otherwise its base (lifted off the ground)."""
+    plant = world.plant
+    ee = scene.robot.end_effector or END_EFFECTOR
+    if plant.HasBodyNamed(ee, world.robot):
+        return _Tracer(plant.GetBodyByName(ee, world.robot), np.zeros(3), arm=True)
+    base = plant.get_body(plant.GetBodyIndices(world.robot)[0])
+    return _Tracer(base, np.array([0.0, 0.0, 0.1]), arm=False)
+
+
+def _set_camera(meshcat: Meshcat, views: list[_StepView]) -> None:
+    """Look at everything that was drawn: a car's lot from the south and above, an arm from behind its shoulder."""
+    pts = [v.points(np.atleast_2d(v.start)) for v in views]
+    for v in views:
+        res = v.report.result
+        if res.tree is not None:
+            pts.append(v.points(res.tree[0]))
+        if res.goal_samples:
+            pts.append(v.points(np.array([s.q for s in res.goal_samples])))
+    p = np.concatenate(pts, axis=1)
+    lo, hi = p.min(axis=1), p.max(axis=1)
+    scene = views[0].scene
+    if views[0].tracer.arm:
+        base = scene.robot.base.pose() if scene.robot.base is not None else None
+        p_WB = np.asarray(base.xyz if base else (0.0, 0.0, 0.0))
+        lo, hi = np.minimum(lo, p_WB), np.maximum(hi, p_WB)  # include the robot's base
+        yaw = base.rpy[2] if base else 0.0
+        c, s = np.cos(yaw), np.sin(yaw)
+        direction = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]]) @ np.array([-1.0, 0.9, 0.9])
+    else:
+        direction = np.array([0.0, -0.7, 1.6])
+    target = (lo + hi) / 2
+    radius = max(float(np.linalg.norm(hi - lo)) / 2, 0.6)
+    camera = target + 1.4 * radius * direction / np.linalg.norm(direction)
+    meshcat.SetCameraPose(camera, target)
+
+
+def _safe(name: str) -> str:
+    return re.sub(r"[^A-Za-z0-9_.-]+", "_", name)
