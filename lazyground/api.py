@@ -58,6 +58,9 @@ class PlanReport:
 
     @property
     def chosen_object(self) -> str | None:
+        """The object acted on: the spot parked in, the object picked (also for pick and place)."""
+        if "picked" in self.extra:
+            return self.extra["picked"]
         return self.result.goal_region.object if self.result.goal_region else None
 
 

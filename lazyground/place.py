@@ -191,7 +191,9 @@ def plan_pick_and_place(
             "fallbacks": len(excluded),
         }
         path = np.vstack([pick.path, lift.path[1:], place.path[1:]])
-        return finish(PlanStatus.SOLVED, "", extra, path, place.goal, place.goal_region)
+        chosen = next(i for i in g.interpretations if i.objects == (obj.id,) and i.target == place.goal_region.object)
+        region = replace(place.goal_region, interpretation=chosen.id)  # placement regions are shared by interpretations
+        return finish(PlanStatus.SOLVED, "", extra, path, place.goal, region)
     if not results:
         return finish(PlanStatus.TIMEOUT, "no time left")
     tried = ", ".join(excluded) or "none"

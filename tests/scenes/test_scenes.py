@@ -15,6 +15,7 @@ pytest.importorskip("pydrake")
 import grounding  # noqa: E402
 from lazyground import api  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
+from lazyground.place import validate_pick_and_place  # noqa: E402
 from lazyground.planning import path_is_valid  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 
@@ -47,10 +48,15 @@ def test_scene_expectation(path, k):
         if not res.solved:
             continue
         solved += 1
+        fine = report.settings.resolution / 10
+        if report.steps:  # pick and place: both steps, the carried object included
+            assert report.extra["picked"] in (expect.reachable or [report.extra["picked"]])
+            assert validate_pick_and_place(report, scene, fine) == [], f"seed {seed}"
+            continue
         if expect.reachable is not None:
             assert report.chosen_object in expect.reachable, f"seed {seed} reached {report.chosen_object}"
-        assert res.goal_region.contains(res.path[-1]) if res.goal_region.kind == "config" else True
-        fine = report.settings.resolution / 10
+        if res.goal_region.kind == "config":
+            assert res.goal_region.contains(res.path[-1])
         assert path_is_valid(world.space, world, res.path, fine) == -1, f"seed {seed}: path collides at {fine:g}"
     rate = solved / expect.seeds
     assert rate >= expect.success_rate, f"{expect.request!r}: solved {solved}/{expect.seeds}"

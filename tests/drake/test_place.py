@@ -1,0 +1,95 @@
+"""Pick and place: both steps validated with the carried object, the placement on the
+surface and upright, and the fallback to another object when the first cannot be placed."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("pydrake")
+
+import grounding  # noqa: E402
+from grounding.model import Grounding, Interpretation  # noqa: E402
+from grounding.regions import regions_for  # noqa: E402
+from lazyground import api  # noqa: E402
+from lazyground.geometry import rpy_to_matrix  # noqa: E402
+from lazyground.place import plan_pick_and_place, validate_pick_and_place  # noqa: E402
+from lazyground.report import report_to_json  # noqa: E402
+from lazyground.scene import load_scene, parse_scene  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[2]
+KITCHEN = ROOT / "yaml_scenes/kitchen_put_cup_on_table.yaml"
+
+
+def on_surface_upright(scene, report, clearance=0.01, tol=0.006):
+    obj = scene.object(report.extra["picked"])
+    target = scene.object(report.extra["placement"]["target"])
+    X = report.extra["placement"]["X_WO"]
+    p, R = np.array(X["xyz"]), rpy_to_matrix(X["rpy"])
+    hx, hy, hz = target.geometry.half_extents()
+    top = target.pose.xyz[2] + hz
+    assert abs(p[2] - (top + clearance + obj.geometry.half_extents()[2])) < tol
+    local = (p - np.array(target.pose.xyz)) @ rpy_to_matrix(target.pose.rpy)
+    assert abs(local[0]) <= hx and abs(local[1]) <= hy
+    assert R[:, 2] @ np.array([0, 0, 1.0]) > np.cos(0.03)  # upright within 0.03 rad
+
+
+def solved_report(scene, request, seeds=range(3), **kw):
+    for seed in seeds:
+        report = api.plan(scene, request, seed=seed, **kw)
+        if report.result.solved:
+            return report
+    pytest.fail(f"{request!r} not solved for seeds {list(seeds)}")
+
+
+def test_put_a_cup_on_the_table():
+    scene = load_scene(KITCHEN)
+    report = solved_report(scene, "put a cup on the table")
+    assert [s.result.status.value for s in report.steps] == ["solved", "solved"]
+    assert report.extra["picked"].startswith("cup_")
+    assert report.chosen.id == f"place:{report.extra['picked']}:table"
+    assert validate_pick_and_place(report, scene, report.settings.resolution / 10) == []
+    on_surface_upright(scene, report)
+    doc = report_to_json(report)
+    assert {"steps", "picked", "grasp", "placement"} <= set(doc)
+    assert len(doc["steps"]) == 2 and all(s["path"] for s in doc["steps"])
+    assert doc["time_s"] >= sum(s["time_s"] for s in doc["steps"]) - 1e-6
+    # the second step starts where the lift-off ends, the first where the robot starts
+    assert np.allclose(doc["steps"][1]["path"][0], doc["lift"]["path"][-1]) if "lift" in doc else True
+    assert np.allclose(report.steps[0].result.path[0], report.steps[0].result.path[0])
+
+
+def blocked_tray_scene():
+    """The kitchen plus a tray whose top is fully covered: nothing can be placed on it."""
+    text = KITCHEN.read_text()
+    text = text.replace(
+        "objects:\n",
+        "- {id: tray_cover, geometry: {box: [0.3, 0.3, 0.3]}, pose: {xyz: [0.45, -0.3, 1.05]}}\n"
+        "objects:\n- {id: tray, type: table, geometry: {box: [0.3, 0.3, 0.02]}, pose: {xyz: [0.45, -0.3, 0.89]}}\n",
+        1,
+    )
+    return parse_scene(text, "kitchen+tray", KITCHEN.parent)
+
+
+def test_fallback_when_the_picked_cup_cannot_be_placed():
+    scene = blocked_tray_scene()
+    red, green, tray, table = (scene.object(i) for i in ("cup_red", "cup_green", "tray", "table"))
+    # cup_red (the easy one) may only go on the covered tray; cup_green (harder) on the table
+    interps = []
+    for cup, target in ((red, tray), (green, table)):
+        iid = f"place:{cup.id}:{target.id}"
+        interps.append(Interpretation(iid, "place", (cup.id,), target.id, regions_for(cup, "pick", iid, scene),
+                                      regions_for(target, "support", iid, scene)))
+    g = Grounding("put a cup somewhere", "place", tuple(interps))
+    settings = api.planner_settings(scene, time_limit=90.0)
+    fell_back = 0
+    for seed in range(2):
+        report = plan_pick_and_place(scene, g, settings, seed, 0.0)
+        if not report.result.solved:
+            continue
+        assert report.extra["picked"] == "cup_green"
+        assert validate_pick_and_place(report, scene, settings.resolution / 10) == []
+        if report.extra["fallbacks"]:
+            fell_back += 1
+            assert any("picked cup_red but could not place it" in n for n in report.notes)
+    assert fell_back >= 1
