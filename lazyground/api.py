@@ -71,6 +71,7 @@ def planner_settings(scene: Scene, **overrides) -> PlannerSettings:
         strategy=spec.strategy,
         goal_bias=spec.goal_bias,
         step_size=spec.step_size,
+        edge_resolution=spec.edge_resolution,
         time_limit=spec.time_limit,
         max_iterations=spec.max_iterations,
         initial_goal_samples=spec.initial_goal_samples,

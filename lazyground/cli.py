@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 import traceback
 from pathlib import Path
@@ -93,6 +94,23 @@ def cmd_ground(args) -> int:
     return EXIT_OK
 
 
+def _import_drake() -> None:
+    """Import the Drake side with Ctrl-C held back until done: pydrake logs a stack trace and
+    fails to import when interrupted midway. A Ctrl-C pressed meanwhile is raised right after."""
+    import signal
+
+    pressed = []
+    old = signal.signal(signal.SIGINT, lambda *_: pressed.append(True))
+    try:
+        import lazyground.drake.ik  # noqa: F401  (imports lazyground.drake.world)
+    except ImportError:
+        pass  # no pydrake: planning says so when it needs it
+    finally:
+        signal.signal(signal.SIGINT, old)
+    if pressed:
+        raise KeyboardInterrupt
+
+
 def cmd_plan(args) -> int:
     from lazyground import api
     from lazyground.report import report_lines, report_to_json
@@ -108,6 +126,7 @@ def cmd_plan(args) -> int:
         if v is not None and not v > 0:
             raise UsageError(f"--{name.replace('_', '-')} must be > 0, got {v:g}")
     visual = bool(args.html or args.meshcat or args.plot or args.animate)
+    _import_drake()
     report = api.plan(
         scene, args.request, seed=args.seed, keep_tree=visual,
         strategy=args.strategy, goal_bias=args.goal_bias, step_size=args.step_size, time_limit=args.time_limit,
@@ -116,8 +135,13 @@ def cmd_plan(args) -> int:
         print(json.dumps(report_to_json(report)))
     else:
         print("\n".join(report_lines(report)))
+    res = report.result
+    if res.status.value == "interrupted":  # Ctrl-C inside the planner: the partial statistics are printed above
+        print(f"interrupted after {report.time_s:.1f} s: {res.iterations} iterations, tree {res.tree_size}, "
+              f"{len(res.goal_samples)} goal samples", file=sys.stderr)
+        return EXIT_INTERRUPTED
     _write_visuals(report, scene, args)
-    return EXIT_OK if report.result.solved else EXIT_FAILED
+    return EXIT_OK if res.solved else EXIT_FAILED
 
 
 def _write_visuals(report, scene, args) -> None:
@@ -166,7 +190,31 @@ COMMANDS = {"plan": cmd_plan, "ground": cmd_ground, "demo": cmd_demo, "import-mo
 
 
 def main(argv: list[str] | None = None) -> int:
-    argv = sys.argv[1:] if argv is None else list(argv)
+    as_program = argv is None
+    try:
+        code = _main(sys.argv[1:] if argv is None else list(argv))
+    except KeyboardInterrupt:  # Ctrl-C while the imports below were still running
+        print("interrupted", file=sys.stderr)
+        code = EXIT_INTERRUPTED
+    if code == EXIT_INTERRUPTED and as_program:
+        # CPython exits by SIGINT (status -2, not 130) when the Ctrl-C landed in code an
+        # extension module ran through PyRun_* (pydrake's imports), even once handled.
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(code)
+    return code
+
+
+def _interrupted(exc: BaseException) -> bool:
+    """Whether ``exc`` was caused by Ctrl-C (pydrake turns it into "ImportError: initialization failed")."""
+    while exc is not None:
+        if isinstance(exc, KeyboardInterrupt):
+            return True
+        exc = exc.__cause__ or exc.__context__
+    return False
+
+
+def _main(argv: list[str]) -> int:
     debug = "--debug" in argv
     from grounding.model import GroundingError
     from lazyground.scene.typed_yaml import SceneError
@@ -189,6 +237,9 @@ def main(argv: list[str] | None = None) -> int:
         print("interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
     except Exception as exc:  # a bug: one line unless --debug
+        if _interrupted(exc):
+            print("interrupted", file=sys.stderr)
+            return EXIT_INTERRUPTED
         if debug:
             traceback.print_exc()
         print(f"internal error: {type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''} (rerun with --debug)", file=sys.stderr)

@@ -175,6 +175,8 @@ def plan_pick_and_place(
         place = solve(carrying.space, carrying, source, lift.q_lift, replace(settings, time_limit=max(budget, 1e-3)),
                       rng, seed=seed, keep_tree=keep_tree)
         results.append(place)
+        if place.status is PlanStatus.INTERRUPTED:  # Ctrl-C is not a reason to try another object
+            return finish(place.status, f"place: {place.message}")
         if not place.solved:
             notes.append(f"picked {obj.id} but could not place it within {budget:.1f} s ({place.status.value}); "
                          "went back for another object")

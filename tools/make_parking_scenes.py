@@ -60,8 +60,10 @@ def car_robot(x, y, heading, width, height):
     }
 
 
-def planner(step=1.0, time_limit=10.0):
-    return {"strategy": "reward-penalty", "goal_bias": 0.05, "step_size": step, "time_limit": time_limit, "seed": 0}
+def planner(step=2.0, time_limit=10.0):
+    # 2 m extensions, collision-checked every 0.1 m (measured fastest of 1-4 m on both lots)
+    return {"strategy": "reward-penalty", "goal_bias": 0.05, "step_size": step, "edge_resolution": 0.1,
+            "time_limit": time_limit, "seed": 0}
 
 
 def parking_1() -> dict:

@@ -12,17 +12,21 @@ iteration limit after a few milliseconds, and collisions are checked after.
 from __future__ import annotations
 
 import time
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
 from pydrake.math import RotationMatrix
 from pydrake.multibody.inverse_kinematics import InverseKinematics
+from pydrake.multibody.tree import RevoluteJoint
 from pydrake.solvers import IpoptSolver, SnoptSolver, SolverOptions
+from scipy.spatial import cKDTree
 
 from lazyground.geometry import Pose
 from lazyground.goals import RoundRobinGoalSource
 from lazyground.planning.problem import GoalSample
 from lazyground.regions import GoalRegion
+from lazyground.scene.typed_yaml import SceneError
 
 
 @dataclass(frozen=True)
@@ -40,6 +44,8 @@ class IKSettings:
     attempt_budget: float = 0.25  # s per attempt (also bounded by the planner's deadline)
     major_iterations: int = 60  # SNOPT major iterations; IPOPT max_iter is 3x this
     solver: str = "snopt"  # "snopt" or "ipopt"
+    reach_check: bool = True  # reject targets whose wrist point is far outside the sampled reach
+    reach_margin: float = 0.08  # m, distance to the nearest sampled wrist point that still counts
 
 
 @dataclass
@@ -81,6 +87,8 @@ class IKGoalSource(RoundRobinGoalSource):
         for r in self.regions:
             if r.kind == "config":
                 raise ValueError(f"region {r.id} is a configuration region; use ConfigGoalSource")
+            if r.kind == "workspace" and not world.plant.HasFrameNamed(r.frame):  # a scene/request mismatch, not a bug
+                raise SceneError(f"{world.scene.source}: robot: no frame {r.frame!r} to reach goal region {r.id} with (set robot.end_effector)")
         self.world = world
         self.settings = settings
         self.counters = IKCounters()
@@ -124,6 +132,8 @@ class IKGoalSource(RoundRobinGoalSource):
         region = self.regions[j]
         v = region.sample(rng)
         frame, X_WT = self.target_pose_for(region, v)
+        if self.settings.reach_check and not reach_map(self.world, frame).plausible(X_WT.matrix(), self.settings.reach_margin):
+            return None, "out of reach"
         stop = min(deadline, time.perf_counter() + self.settings.attempt_budget)
         seeds = [self._last[j]] if self._last[j] is not None else []
         reason = "time"
@@ -212,3 +222,84 @@ def region_coordinates(region: GoalRegion, X_WG: np.ndarray) -> np.ndarray:
     p = Pose.from_matrix(X_RS)
     return np.array(p.xyz + p.rpy)
 
+
+
+# --- a cheap reachability filter ------------------------------------------------------------
+REACH_SAMPLES = 10000
+REACH_SEED = 20190520  # the map is a deterministic property of the robot, not of a plan's rng
+_REACH_MAPS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+
+@dataclass(frozen=True)
+class ReachMap:
+    """Where the robot's wrist point can be: world positions over random joint configurations.
+
+    The wrist point W is fixed in the end-effector frame and independent of the
+    last joint (or the last two, when they intersect as on Fetch), so a target
+    pose fixes where W must be. A target whose W is farther than a margin from
+    every sampled W is out of reach; IK on it would fail slowly.
+    """
+
+    frame: str
+    p_EW: np.ndarray  # wrist point in the end-effector frame
+    tree: cKDTree
+
+    def wrist(self, X_WT: np.ndarray) -> np.ndarray:
+        return X_WT[:3, :3] @ self.p_EW + X_WT[:3, 3]
+
+    def plausible(self, X_WT: np.ndarray, margin: float) -> bool:
+        distance, _ = self.tree.query(self.wrist(X_WT))
+        return bool(distance <= margin)
+
+
+def reach_map(world, frame: str) -> ReachMap:
+    """The (cached) reach map of ``frame`` in ``world``."""
+    maps = _REACH_MAPS.setdefault(world, {})
+    if frame not in maps:
+        maps[frame] = _build_reach_map(world, frame)
+    return maps[frame]
+
+
+def _build_reach_map(world, frame: str) -> ReachMap:
+    plant = world.plant
+    context = plant.CreateDefaultContext()
+    plant.SetPositions(context, world.q_full)
+    E = plant.GetFrameByName(frame)
+    X_WE = plant.CalcRelativeTransform(context, plant.world_frame(), E)
+    joints = _joints_to_root(plant, E.body())
+    # W: the child-side origin of the last movable joint; one joint further up while
+    # that joint's origin lies on the axis of the joint below it (a spherical-ish wrist).
+    W = joints[0].frame_on_child() if joints else E
+    for below, above in zip(joints, joints[1:]):
+        if not isinstance(below, RevoluteJoint):
+            break
+        X_Wb = plant.CalcRelativeTransform(context, plant.world_frame(), below.frame_on_child())
+        axis = X_Wb.rotation() @ below.revolute_axis()
+        o = plant.CalcRelativeTransform(context, plant.world_frame(), above.frame_on_child()).translation()
+        r = o - X_Wb.translation()
+        if np.linalg.norm(r - axis * (r @ axis)) > 1e-6:
+            break
+        W = above.frame_on_child()
+    p_EW = X_WE.inverse() @ plant.CalcRelativeTransform(context, plant.world_frame(), W).translation()
+    rng = np.random.default_rng(REACH_SEED)
+    q = world.q_full.copy()
+    points = np.empty((REACH_SAMPLES, 3))
+    for k in range(REACH_SAMPLES):
+        q[world.planned] = world.space.sample(rng)
+        plant.SetPositions(context, q)
+        points[k] = plant.CalcRelativeTransform(context, plant.world_frame(), W).translation()
+    return ReachMap(frame, np.asarray(p_EW), cKDTree(points))
+
+
+def _joints_to_root(plant, body) -> list:
+    """Movable joints from ``body`` up to the world, nearest first."""
+    out = []
+    world_index = plant.world_body().index()
+    while body.index() != world_index:
+        joint = next((plant.get_joint(j) for j in plant.GetJointIndices() if plant.get_joint(j).child_body().index() == body.index()), None)
+        if joint is None:
+            break
+        if joint.num_positions() > 0:
+            out.append(joint)
+        body = joint.parent_body()
+    return out

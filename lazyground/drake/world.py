@@ -15,7 +15,7 @@ from pydrake.geometry import Box, Cylinder, Sphere
 from pydrake.math import RigidTransform, RollPitchYaw
 from pydrake.multibody.plant import CoulombFriction
 from pydrake.multibody.tree import PlanarJoint, RevoluteJoint
-from pydrake.planning import RobotDiagramBuilder, SceneGraphCollisionChecker
+from pydrake.planning import LinearDistanceAndInterpolationProvider, RobotDiagramBuilder, SceneGraphCollisionChecker
 
 from lazyground.geometry import Pose
 from lazyground.planning.space import ConfigSpace
@@ -93,7 +93,10 @@ class DrakeWorld:
                 base = plant.GetFrameByName(scene.robot.base_link, self.robot)
             except Exception:
                 raise SceneError(f"{scene.source}: robot.base_link: no link {scene.robot.base_link!r} in the model") from None
-            plant.WeldFrames(plant.world_frame(), base, rigid_transform(scene.robot.base.pose()))
+            try:
+                plant.WeldFrames(plant.world_frame(), base, rigid_transform(scene.robot.base.pose()))
+            except RuntimeError:  # e.g. the link already hangs on a joint to the world (a planar car)
+                raise SceneError(f"{scene.source}: robot.base: cannot weld {scene.robot.base_link!r} to the world: it is already jointed to it") from None
         self._add_environment(plant, visual)
         if attached is not None:
             self._attach(plant, attached, visual)
@@ -101,9 +104,13 @@ class DrakeWorld:
             extend_builder(builder)
         diagram = builder.Build()
         self._setup_coordinates(diagram.plant())
+        # Drake's edge checks step in the same weighted metric as ours (fixed coordinates weigh 0).
+        weights = np.zeros(diagram.plant().num_positions())
+        weights[self.planned] = self.space.weights
         self.checker = SceneGraphCollisionChecker(
             model=diagram,
             robot_model_instances=[self.robot],
+            distance_and_interpolation_provider=LinearDistanceAndInterpolationProvider(diagram.plant(), weights),
             edge_step_size=0.05,
             env_collision_padding=self.padding,
             self_collision_padding=self.padding,
@@ -166,6 +173,8 @@ class DrakeWorld:
             if unknown:
                 raise SceneError(f"{self.scene.source}: robot.planned_joints: no joint {unknown[0]!r} in the model (joints: {', '.join(dict.fromkeys(joint_of))})")
         self.planned = [i for i, n in enumerate(all_names) if planned is None or n in planned or joint_of[i] in planned]
+        if not self.planned:
+            raise SceneError(f"{self.scene.source}: robot: nothing to plan: no movable joint selected (robot.planned_joints)")
         for key in list(robot.start) + list(robot.limits) + list(robot.weights):
             if key not in all_names:
                 raise SceneError(f"{self.scene.source}: robot: no position {key!r} in the model (positions: {', '.join(all_names)})")
@@ -187,6 +196,7 @@ class DrakeWorld:
         weights = np.array([robot.weights.get(all_names[i], 1.0) for i in idx])
         self.space = ConfigSpace(tuple(all_names[i] for i in idx), lower[idx], upper[idx], weights, wrap[idx])
         self.start = self.q_full[idx].copy()
+        self._plans_all = idx == list(range(len(all_names)))
 
     # --- kinematics ------------------------------------------------------------------------
     def frame_pose(self, frame: str, q: np.ndarray) -> Pose:
@@ -205,7 +215,10 @@ class DrakeWorld:
     def full(self, q: np.ndarray) -> np.ndarray:
         """The plant's position vector for planned coordinates ``q`` (rows or one vector)."""
         q = np.asarray(q, float)
-        out = np.broadcast_to(self.q_full, q.shape[:-1] + self.q_full.shape).copy()
+        if self._plans_all:
+            return q
+        out = np.empty(q.shape[:-1] + self.q_full.shape)
+        out[...] = self.q_full
         out[..., self.planned] = q
         return out
 
@@ -226,6 +239,23 @@ class DrakeWorld:
         self._check_time += time.perf_counter() - t0
         self.checks += len(qs)
         return np.asarray(free, bool)
+
+    def edge_free(self, a: np.ndarray, b: np.ndarray, resolution: float) -> bool:
+        """Whether the motion a → b is free, checked in C++ every ``resolution`` with early exit.
+
+        Drake interpolates linearly, so b is first unwrapped onto the shorter arc
+        from a (an angle of 3.5 rad is the same pose as -2.78 rad). Drake's
+        weighted metric counts an angle step w·|dθ|, never less than our chord,
+        so its steps are at least as fine as ``resolution`` in our metric.
+        """
+        if self.checker.edge_step_size() != resolution:
+            self.checker.set_edge_step_size(resolution)
+        t0 = time.perf_counter()
+        a = np.asarray(a, float)
+        free = self.checker.CheckEdgeCollisionFree(self.full(a), self.full(a + self.space.difference(a, b)))
+        self._check_time += time.perf_counter() - t0
+        self.checks += 1
+        return bool(free)
 
     def explain(self, q: np.ndarray) -> str:
         """The colliding pairs at q, e.g. "car_body collides with wall_1"."""

@@ -105,6 +105,7 @@ def solve(
     t0 = time.perf_counter()
     deadline = t0 + settings.time_limit
     check_t0, sample_t0 = checker.check_time, goals.sample_time
+    sampling_checks = [0.0]  # collision checks made by the goal sampler count as goal sampling, not twice
     start = np.asarray(start, float)
     samples: list[GoalSample] = []
     selector = make_strategy(
@@ -129,7 +130,7 @@ def solve(
             resamplings=resamplings,
             time_s=time.perf_counter() - t0,
             goal_sampling_s=goals.sample_time - sample_t0,
-            collision_s=checker.check_time - check_t0,
+            collision_s=checker.check_time - check_t0 - sampling_checks[0],
             message=message,
             regions=tuple(goals.regions),
             region_stats=list(goals.stats),
@@ -140,7 +141,9 @@ def solve(
         )
 
     def draw(n: int) -> None:
+        c0 = checker.check_time
         new = goals.draw(n, rng, deadline)
+        sampling_checks[0] += checker.check_time - c0
         first = len(samples)
         samples.extend(new)
         selector.add(list(range(first, len(samples))))
@@ -169,7 +172,7 @@ def solve(
             near = tree.nearest(q_towards)
             q_near = tree.nodes[near]
             q_new, reached = space.steer(q_near, q_towards, settings.step_size)
-            if np.all(checker.configs_free(space.discretize(q_near, q_new, resolution)[1:])):
+            if checker.edge_free(q_near, q_new, resolution):
                 node = tree.add(q_new, near, goal_biased)
                 if not goal_biased:
                     continue

@@ -26,6 +26,9 @@ class ConfigSpace:
     wrap: np.ndarray = None  # bool mask; default: none
     _lin: np.ndarray = field(init=False, repr=False)
     _ang: np.ndarray = field(init=False, repr=False)
+    _w2: np.ndarray = field(init=False, repr=False)
+    _w2_lin: np.ndarray = field(init=False, repr=False)
+    _w2_ang: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self):
         n = len(self.names)
@@ -42,6 +45,9 @@ class ConfigSpace:
             object.__setattr__(self, name, value)
         object.__setattr__(self, "_lin", np.flatnonzero(~wrap))
         object.__setattr__(self, "_ang", np.flatnonzero(wrap))
+        object.__setattr__(self, "_w2", weights**2)
+        object.__setattr__(self, "_w2_lin", weights[~wrap] ** 2)
+        object.__setattr__(self, "_w2_ang", weights[wrap] ** 2)
 
     @property
     def dim(self) -> int:
@@ -71,7 +77,16 @@ class ConfigSpace:
         return d
 
     def distance(self, a: np.ndarray, b: np.ndarray) -> float:
-        return float(np.linalg.norm(self.embed(a) - self.embed(b)))
+        """The embedding's Euclidean distance, computed without embedding.
+
+        An angle difference d weighted w contributes the chord (2 w sin(d/2))^2
+        = 2 w^2 (1 - cos d), which needs no wrapping.
+        """
+        d = np.subtract(b, a)
+        if not len(self._ang):
+            return float(np.sqrt(np.dot(self._w2, d * d)))
+        lin = d[self._lin]
+        return float(np.sqrt(np.dot(self._w2_lin, lin * lin) + np.dot(self._w2_ang, 2.0 * (1.0 - np.cos(d[self._ang])))))
 
     def interpolate(self, a: np.ndarray, b: np.ndarray, t) -> np.ndarray:
         """Configurations a + t (b - a) along shortest arcs; ``t`` scalar or 1-D."""
@@ -81,10 +96,11 @@ class ConfigSpace:
             q[..., self._ang] = wrap_angle(q[..., self._ang])
         return q
 
-    def discretize(self, a: np.ndarray, b: np.ndarray, resolution: float) -> np.ndarray:
-        """Configurations from a to b (both included) no more than ``resolution`` apart."""
+    def discretize(self, a: np.ndarray, b: np.ndarray, resolution: float, skip_first: bool = False) -> np.ndarray:
+        """Configurations from a to b (both included, or b only) no more than ``resolution`` apart."""
         n = max(1, int(np.ceil(self.distance(a, b) / resolution)))
-        return self.interpolate(a, b, np.linspace(0.0, 1.0, n + 1))
+        t = np.arange(1 if skip_first else 0, n + 1) / n
+        return self.interpolate(a, b, t)
 
     def steer(self, a: np.ndarray, b: np.ndarray, step: float) -> tuple[np.ndarray, bool]:
         """Move from a towards b by at most ``step``; returns (q, reached_b)."""

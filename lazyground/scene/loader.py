@@ -40,6 +40,8 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
     """Parse scene YAML text; errors are SceneError with one line naming ``source``."""
     try:
         data = yaml.safe_load(text)
+    except RecursionError:  # PyYAML composes nested collections recursively
+        raise SceneError(f"{source}: YAML nesting too deep") from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""

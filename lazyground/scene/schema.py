@@ -132,6 +132,7 @@ class PlannerSpec:
     strategy: str = "reward-penalty"
     goal_bias: float = checked(in_range(0.0, 1.0), default=0.05)
     step_size: float = checked(positive, default=0.5)
+    edge_resolution: float | None = checked(positive, default=None)  # collision-check spacing; default step_size / 10
     time_limit: float = checked(positive, default=10.0)
     max_iterations: int = checked(positive, default=10_000_000)
     seed: int = checked(non_negative, default=0)

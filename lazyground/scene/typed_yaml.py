@@ -13,12 +13,15 @@ import typing
 from typing import Any, Union, get_args, get_origin, get_type_hints
 
 
+INT_LIMIT = 2**63 - 1  # integers beyond 64 bits are never meaningful in a scene
+
+
 class SceneError(ValueError):
     """A scene file that cannot be used; the message is one line."""
 
 
 def _fail(path: str, problem: str) -> typing.NoReturn:
-    raise SceneError(f"{path}: {problem}")
+    raise SceneError(f"{path}: {problem}" if path else problem)
 
 
 def _type_name(tp) -> str:
@@ -38,6 +41,10 @@ def convert(value: Any, tp, path: str):
     """Convert a parsed YAML value to ``tp``; raise SceneError naming ``path``."""
     origin = get_origin(tp)
     if tp is Any:
+        return value
+    if tp in (dict, list):  # untyped contents (e.g. grasp_types' per-type layout): check the container only
+        if not isinstance(value, tp):
+            _fail(path, f"expected {'a mapping' if tp is dict else 'a list'}, got {_describe(value)}")
         return value
     if origin in (Union, types.UnionType):
         args = get_args(tp)
@@ -71,12 +78,16 @@ def convert(value: Any, tp, path: str):
     if tp is float:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             _fail(path, f"expected a number, got {_describe(value)}")
+        if isinstance(value, int) and abs(value) > INT_LIMIT:  # float() would raise OverflowError
+            _fail(path, "number out of range")
         if value != value or value in (float("inf"), float("-inf")):
             _fail(path, "expected a finite number")
         return float(value)
     if tp is int:
         if isinstance(value, bool) or not isinstance(value, int):
             _fail(path, f"expected an integer, got {_describe(value)}")
+        if abs(value) > INT_LIMIT:
+            _fail(path, "number out of range")
         return value
     if tp is bool:
         if not isinstance(value, bool):

@@ -36,6 +36,9 @@ class BoxWorld:
     def config_free(self, q) -> bool:
         return bool(self.configs_free(q)[0])
 
+    def edge_free(self, a, b, resolution) -> bool:
+        return bool(np.all(self.configs_free(SPACE.discretize(a, b, resolution, skip_first=True))))
+
     def explain(self, q) -> str:
         return "point inside a box"
 

@@ -1,0 +1,234 @@
+"""``lazyground bench``: scenes x strategies x goal bias x seeds, in parallel, with the paper's tables.
+
+    lazyground bench --table 1 --runs 20 --out bench_t1
+    lazyground bench --table 2 --runs 5 --peers --jobs 2
+    lazyground bench --scenes parking_1,arm:8 --strategies reward-penalty --biases 0.05,0.5 --runs 50
+    lazyground bench --dof-sweep --runs 10
+    lazyground bench --nn-scaling
+    lazyground bench --table 1 --cluster tcp://scheduler:8786
+
+Writes into ``--out``: results.csv (every run, written as it finishes),
+table.md (the paper's layout + where the time goes), boxplots.png,
+ompl_<scene>.log (OMPL benchmark logs) and, for the sweep, dof_sweep.png.
+Ctrl-C keeps the finished runs, writes the outputs from them and exits 130.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+from pathlib import Path
+
+from lazyground.bench import arms
+from lazyground.bench.runner import LAZYGROUND, RunSpec, execute, row_key, Progress
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+SCENES_DIR = REPO_ROOT / "yaml_scenes"
+ALL_STRATEGIES = ("consecutive", "random", "reward-penalty")
+TABLES = {
+    1: dict(scenes=("parking_1", "parking_2"), strategies=ALL_STRATEGIES, biases=(0.05,), runs=1000,
+            title="Table I: parking, computation time (s)"),
+    2: dict(scenes=("fetch_cans_1", "fetch_cans_2", "fetch_boxes_3"), strategies=("consecutive", "reward-penalty"),
+            biases=(0.05, 0.5), runs=100, title="Table II: Fetch, computation time (s)",
+            requests={"fetch_cans_1": "pick up a can", "fetch_cans_2": "pick up a can", "fetch_boxes_3": "pick up a box"}),
+}
+EXIT_OK, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 2, 130
+
+
+class BenchUsageError(Exception):
+    """Bad bench arguments (exit 2, one line)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        raise BenchUsageError(message)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = _Parser(prog="lazyground bench", description="Benchmark goal-selection strategies (and OMPL peers).")
+    p.add_argument("--table", type=int, choices=sorted(TABLES), help="the paper's Table I (parking) or II (Fetch)")
+    p.add_argument("--dof-sweep", action="store_true", help=f"generated planar arms of {', '.join(map(str, arms.DOFS))} DOF")
+    p.add_argument("--nn-scaling", action="store_true", help="time per iteration from 1,000 to 100,000 tree nodes")
+    p.add_argument("--scenes", help="comma list: scene files, names in yaml_scenes/, or arm:<dof>")
+    p.add_argument("--strategies", help=f"comma list of {', '.join(ALL_STRATEGIES)}")
+    p.add_argument("--biases", help="comma list of goal biases in [0, 1]")
+    p.add_argument("--runs", type=int, help="seeds per configuration (tables: 1000 / 100; otherwise 10)")
+    p.add_argument("--time-limit", type=float, help="seconds per run (default: each scene's; arms 10)")
+    p.add_argument("--request", help="the request (default: each scene's first expectation)")
+    p.add_argument("--peers", action="store_true", help="also run OMPL RRT and RRTConnect (pip install .[bench])")
+    p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="worker processes (default: cores)")
+    p.add_argument("--cluster", metavar="ADDRESS", help="run on this Dask scheduler instead (pip install .[cluster])")
+    p.add_argument("--seed", type=int, default=0, help="first seed (runs use seed, seed+1, ...)")
+    p.add_argument("--out", default="bench_output", help="output folder (default: bench_output)")
+    p.add_argument("--resume", action="store_true", help="keep results.csv in --out and skip the runs it holds")
+    p.add_argument("--debug", action="store_true")
+    return p
+
+
+def _csv_list(text: str | None, default) -> list[str]:
+    return [t.strip() for t in text.split(",") if t.strip()] if text else list(default)
+
+
+def resolve_scene(name: str) -> str | None:
+    """A scene key: ``arm:<dof>``, a file path, or a name in yaml_scenes/; None when missing."""
+    if arms.parse_arm_key(name) is not None:
+        return name
+    for cand in (Path(name), SCENES_DIR / name, SCENES_DIR / f"{name}.yaml"):
+        if cand.is_file():
+            return str(cand)
+    return None
+
+
+def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
+    """(runs in order, notes, title) from the arguments."""
+    notes: list[str] = []
+    preset = TABLES.get(args.table, {})
+    if args.dof_sweep:
+        preset = dict(scenes=tuple(arms.arm_key(d) for d in arms.DOFS), strategies=ALL_STRATEGIES, biases=(0.05,), runs=10,
+                      title="Generated planar arms: time (s) against DOF")
+    scene_names = _csv_list(args.scenes, preset.get("scenes", ("parking_1",)))
+    strategies = _csv_list(args.strategies, preset.get("strategies", ALL_STRATEGIES))
+    unknown = [s for s in strategies if s not in ALL_STRATEGIES]
+    if unknown:
+        raise BenchUsageError(f"unknown strategy {unknown[0]!r} (known: {', '.join(ALL_STRATEGIES)})")
+    try:
+        biases = [float(b) for b in _csv_list(args.biases, preset.get("biases", (0.05,)))]
+    except ValueError:
+        raise BenchUsageError(f"--biases: not a list of numbers: {args.biases!r}") from None
+    if any(not 0.0 <= b <= 1.0 for b in biases):
+        raise BenchUsageError("--biases: every goal bias must be in [0, 1]")
+    runs = args.runs if args.runs is not None else preset.get("runs", 10)
+    if runs < 1:
+        raise BenchUsageError("--runs must be >= 1")
+    if args.time_limit is not None and not args.time_limit > 0:
+        raise BenchUsageError("--time-limit must be > 0")
+    keys, missing = [], []
+    for name in scene_names:
+        key = resolve_scene(name)
+        (keys if key else missing).append(key or name)
+    if missing:
+        notes.append(f"missing scenes (not in {SCENES_DIR.relative_to(REPO_ROOT)}/): {', '.join(missing)}")
+    if not keys:
+        raise BenchUsageError(f"no scene to run: {notes[0]}")
+    configs = [(LAZYGROUND, s, b) for b in biases for s in strategies]
+    if args.peers:
+        from lazyground.bench.ompl_peer import MISSING, ompl_available
+
+        if ompl_available():
+            configs += [("ompl-RRT", "goal-states", b) for b in biases] + [("ompl-RRTConnect", "goal-states", None)]
+        else:
+            notes.append(MISSING)
+    specs = []
+    for i in range(runs):  # seeds outermost: an interrupted run still covers every configuration
+        for key in keys:
+            limit = args.time_limit if args.time_limit is not None else _scene_time_limit(key)
+            request = args.request or preset.get("requests", {}).get(Path(key).stem)
+            for planner, strategy, bias in configs:
+                specs.append(RunSpec(key, planner, strategy, bias, args.seed + i, limit, request))
+    return specs, notes, preset.get("title", "Computation time (s)")
+
+
+def _scene_time_limit(key: str) -> float:
+    if arms.parse_arm_key(key) is not None:
+        return 10.0
+    from lazyground.scene import load_scene
+
+    return load_scene(key).planner.time_limit
+
+
+def main(argv: list[str]) -> int:
+    debug = "--debug" in argv
+    try:
+        return _main(build_parser().parse_args(argv))
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except Exception as exc:
+        from grounding.model import GroundingError
+        from lazyground.scene.typed_yaml import SceneError
+
+        if debug or not isinstance(exc, (BenchUsageError, SceneError, GroundingError, ImportError)):
+            raise
+        print(f"error: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+
+
+def _main(args) -> int:
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    if args.nn_scaling:
+        from lazyground.bench import nn_scaling
+
+        text = nn_scaling.report(nn_scaling.measure())
+        (out / "nn_scaling.md").write_text(text)
+        print(text, end="")
+        if not (args.table or args.dof_sweep or args.scenes):
+            return EXIT_OK
+    specs, notes, title = plan_specs(args)
+    for note in notes:
+        print(f"note: {note}", file=sys.stderr)
+    from lazyground.bench.tables import CsvSink, read_csv
+
+    csv_path = out / "results.csv"
+    if args.resume and csv_path.is_file():
+        done = {row_key(r) for r in read_csv(csv_path)}
+        specs = [s for s in specs if s.key() not in done]
+        print(f"resume: {len(done)} runs in {csv_path}, {len(specs)} to go", file=sys.stderr)
+    cluster = args.cluster
+    if cluster is not None:
+        try:
+            import distributed  # noqa: F401
+        except ImportError:
+            raise BenchUsageError("--cluster needs Dask distributed: pip install .[cluster]") from None
+    where = f"cluster {cluster}" if cluster else f"{args.jobs} worker process(es)"
+    print(f"{len(specs)} runs on {where}; results in {csv_path}", file=sys.stderr)
+    sink = CsvSink(csv_path, append=args.resume)
+    progress = Progress(len(specs), sys.stderr)
+    t0 = time.perf_counter()
+    interrupted = False
+
+    def on_row(row):
+        if row["status"] == "interrupted":
+            return
+        sink.write(row)
+        progress.update(row)
+
+    try:
+        execute(specs, on_row, jobs=args.jobs, cluster=cluster)
+    except KeyboardInterrupt:
+        interrupted = True
+    finally:
+        sink.close()
+        progress.close()
+    rows = [r for r in read_csv(csv_path) if r["status"] != "interrupted"]
+    write_outputs(rows, out, title, notes, time.perf_counter() - t0, dof_sweep=args.dof_sweep)
+    errors = [r for r in rows if r["status"] == "error"]
+    if errors:
+        print(f"warning: {len(errors)} run(s) failed, e.g. {errors[0]['scene']}: {errors[0]['message']}", file=sys.stderr)
+    if interrupted:
+        print(f"interrupted: kept {progress.done} finished run(s) in {csv_path}", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    return EXIT_OK
+
+
+def write_outputs(rows: list[dict], out: Path, title: str, notes: list[str], total_s: float, dof_sweep: bool = False) -> None:
+    """table.md, boxplots.png, ompl_<scene>.log (and dof_sweep.png) from the finished rows."""
+    from lazyground.bench import ompl_log, tables
+
+    md = [tables.markdown_table(rows, f"## {title}"), "## Where the time goes (solved runs, mean seconds)\n", tables.time_split_table(rows)]
+    md += [f"Note: {n}\n" for n in notes]
+    (out / "table.md").write_text("\n".join(md))
+    print("\n".join(md))
+    if not rows:
+        return
+    tables.box_plots(rows, out / "boxplots.png")
+    if dof_sweep:
+        tables.dof_plot(rows, out / "dof_sweep.png")
+    for scene in tables.scenes_of(rows):
+        srows = [r for r in rows if r["scene"] == scene]
+        limit = max(float(r["time_limit"]) for r in srows)
+        setup = f"lazyground bench: scene {scene}; times include grounding and goal sampling"
+        ompl_log.write_log(out / f"ompl_{scene}.log", scene, srows, limit, total_s, setup)
+    print(f"wrote {out}/: results.csv, table.md, boxplots.png, ompl_<scene>.log" + (", dof_sweep.png" if dof_sweep else ""), file=sys.stderr)

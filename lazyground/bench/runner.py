@@ -1,0 +1,284 @@
+"""One benchmark run as a plain function, and the executors that fan runs out.
+
+:func:`run` turns a :class:`RunSpec` into one CSV row (a dict). It is the
+same function whether it runs in a local process pool (:func:`run_local`,
+each worker loads every scene's DrakeWorld once, in its initializer, and
+reuses it) or on a Dask cluster (:func:`run_cluster`, worlds are loaded on
+first use in each worker). Rows come back as runs finish, so the caller can
+write them at once and keep them when interrupted.
+"""
+
+from __future__ import annotations
+
+import signal
+import time
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from dataclasses import dataclass
+from typing import Callable, Iterable, Iterator
+
+import numpy as np
+
+from lazyground.bench import arms
+
+LAZYGROUND = "lazyground"
+PEERS = ("ompl-RRT", "ompl-RRTConnect")
+
+FIELDS = (
+    "scene", "planner", "strategy", "bias", "seed", "status", "time_s", "grounding_s", "goal_sampling_s",
+    "collision_s", "other_s", "iterations", "tree_size", "goal_samples", "resamplings", "interpretation",
+    "region", "path_length", "time_limit", "message",
+)
+
+
+@dataclass(frozen=True)
+class RunSpec:
+    """One run: a scene (file path or ``arm:<dof>``), a planner configuration and a seed."""
+
+    scene: str
+    planner: str  # "lazyground" or one of PEERS
+    strategy: str  # lazyground: a strategy name; peers: "goal-states"
+    bias: float | None  # goal bias; None for RRTConnect (it has none)
+    seed: int
+    time_limit: float
+    request: str | None = None  # None: the scene's first expectation's request
+
+    def key(self) -> tuple:
+        """What identifies a run in a results file (for --resume)."""
+        return (self.scene_name, self.planner, self.strategy, _fmt_bias(self.bias), str(self.seed))
+
+    @property
+    def scene_name(self) -> str:
+        dof = arms.parse_arm_key(self.scene)
+        if dof is not None:
+            return f"arm_{dof}"
+        from pathlib import Path
+
+        return Path(self.scene).stem
+
+
+def _fmt_bias(b) -> str:
+    return "" if b is None or b == "" else f"{float(b):g}"
+
+
+def row_key(row: dict) -> tuple:
+    return (row["scene"], row["planner"], row["strategy"], _fmt_bias(row["bias"]), str(row["seed"]))
+
+
+@dataclass
+class Problem:
+    """A loaded benchmark problem: the scene, its Drake world and how to get goal regions."""
+
+    name: str
+    scene: object
+    world: object
+    request: str | None
+    regions: tuple = ()  # fixed C-space regions (generated arms); empty: ground the request
+
+    def ground(self):
+        """(goal regions, grounding seconds)."""
+        if self.regions:
+            return self.regions, 0.0
+        import grounding
+
+        t0 = time.perf_counter()
+        g = grounding.ground(self.request, self.scene)
+        return g.goal_regions, time.perf_counter() - t0
+
+
+_PROBLEMS: dict[str, Problem] = {}
+
+
+def load_problem(key: str) -> Problem:
+    """The problem for a scene key, built once per process and cached."""
+    if key in _PROBLEMS:
+        return _PROBLEMS[key]
+    from lazyground.drake.world import DrakeWorld
+
+    dof = arms.parse_arm_key(key)
+    if dof is not None:
+        scene = arms.arm_scene(dof)
+        world = DrakeWorld(scene, visual=False)
+        problem = Problem(scene.name, scene, world, None, arms.goal_regions(dof, world.config_free))
+    else:
+        from lazyground.scene import load_scene
+
+        scene = load_scene(key)
+        request = scene.expect[0].request if scene.expect else None
+        problem = Problem(scene.name, scene, DrakeWorld(scene, visual=False), request)
+    _PROBLEMS[key] = problem
+    return problem
+
+
+def init_worker(scene_keys: Iterable[str]) -> None:
+    """Process-pool initializer: load each scene's world once; Ctrl-C is the parent's business."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    for key in scene_keys:
+        try:
+            load_problem(key)
+        except Exception:  # reported per run by run()
+            pass
+
+
+def run(spec: RunSpec) -> dict:
+    """Run one benchmark configuration; never raises (failures become status "error")."""
+    row = {f: "" for f in FIELDS}
+    row.update(scene=spec.scene_name, planner=spec.planner, strategy=spec.strategy, bias=_fmt_bias(spec.bias),
+               seed=spec.seed, time_limit=spec.time_limit)
+    try:
+        problem = load_problem(spec.scene)
+        if spec.request is not None and not problem.regions:
+            problem = Problem(problem.name, problem.scene, problem.world, spec.request)
+        if problem.request is None and not problem.regions:
+            raise ValueError(f"scene {problem.name} has no expect: request; give --request")
+        if spec.planner == LAZYGROUND:
+            row.update(_run_lazyground(problem, spec))
+        else:
+            from lazyground.bench.ompl_peer import run_peer
+
+            row.update(run_peer(problem, spec))
+    except Exception as exc:  # a benchmark keeps going; the row says why this run failed
+        text = str(exc).strip().splitlines()
+        row.update(status="error", message=f"{type(exc).__name__}: {text[0] if text else ''}")
+    return row
+
+
+def _run_lazyground(problem: Problem, spec: RunSpec) -> dict:
+    overrides = dict(strategy=spec.strategy, goal_bias=spec.bias, time_limit=spec.time_limit)
+    if problem.regions:  # generated arm: C-space regions, no grounding
+        from lazyground.api import planner_settings
+        from lazyground.goals import ConfigGoalSource
+        from lazyground.planning import solve
+
+        settings = planner_settings(problem.scene, edge_resolution=arms.EDGE_RESOLUTION, **overrides)
+        world = problem.world
+        source = ConfigGoalSource(problem.regions, world.space, world)
+        result = solve(world.space, world, source, world.start, settings, np.random.default_rng(spec.seed), seed=spec.seed)
+        region = result.goal_region
+        return result_fields(result, 0.0, region.interpretation if region else "", region.id if region else "")
+    from lazyground import api
+
+    report = api.plan(problem.scene, problem.request, seed=spec.seed, world=problem.world, **overrides)
+    region = report.result.goal_region
+    return result_fields(report.result, report.grounding_s, report.chosen.id if report.chosen else "", region.id if region else "")
+
+
+def result_fields(result, grounding_s: float, interpretation: str, region: str) -> dict:
+    """The CSV fields of a PlanResult; time_s includes grounding, as a user experiences it."""
+    return dict(
+        status=result.status.value,
+        time_s=grounding_s + result.time_s,
+        grounding_s=grounding_s,
+        goal_sampling_s=result.goal_sampling_s,
+        collision_s=result.collision_s,
+        other_s=result.other_s,
+        iterations=result.iterations,
+        tree_size=result.tree_size,
+        goal_samples=len(result.goal_samples),
+        resamplings=result.resamplings,
+        interpretation=interpretation,
+        region=region,
+        path_length=result.path_length,
+        message=result.message,
+    )
+
+
+# --- executors ------------------------------------------------------------------------------
+
+def run_local(specs: list[RunSpec], jobs: int) -> Iterator[dict]:
+    """Rows in completion order from a pool of ``jobs`` worker processes.
+
+    Closing the generator early (e.g. on KeyboardInterrupt in the consumer)
+    cancels the pending runs and stops the workers.
+    """
+    keys = sorted({s.scene for s in specs})
+    pool = ProcessPoolExecutor(max_workers=max(1, jobs), initializer=init_worker, initargs=(keys,))
+    pending = set()
+    try:
+        queue = iter(specs)
+        # Keep a bounded number of runs in flight so an interrupt has little to cancel.
+        for spec in queue:
+            pending.add(pool.submit(run, spec))
+            if len(pending) >= 4 * jobs:
+                break
+        while pending:
+            done, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for fut in done:
+                yield fut.result()
+                nxt = next(queue, None)
+                if nxt is not None:
+                    pending.add(pool.submit(run, nxt))
+    finally:
+        if pending:  # interrupted: drop what is queued, stop the workers we started
+            for fut in pending:
+                fut.cancel()
+            for proc in list(getattr(pool, "_processes", {}).values()):
+                proc.terminate()
+        pool.shutdown(wait=True, cancel_futures=True)
+
+
+def run_cluster(specs: list[RunSpec], address) -> Iterator[dict]:
+    """Rows in completion order from an existing Dask distributed scheduler.
+
+    Args:
+        address: the scheduler address (``tcp://host:8786``) or a ``distributed.Client``.
+
+    Raises:
+        ImportError: dask.distributed is not installed (``pip install .[cluster]``).
+    """
+    from dask.distributed import Client, as_completed
+
+    client = address if isinstance(address, Client) else Client(address)
+    futures = client.map(run, specs, pure=False)
+    try:
+        for fut in as_completed(futures):
+            yield fut.result()
+    finally:
+        client.cancel([f for f in futures if not f.done()])
+        if client is not address:
+            client.close()
+
+
+class Progress:
+    """A one-line progress bar with an ETA on a stream (stderr)."""
+
+    def __init__(self, total: int, stream, width: int = 30):
+        self.total, self.stream, self.width = total, stream, width
+        self.done = self.solved = 0
+        self.t0 = self._last = time.perf_counter()
+        self._tty = bool(getattr(stream, "isatty", lambda: False)())
+
+    def update(self, row: dict) -> None:
+        self.done += 1
+        self.solved += row.get("status") == "solved"
+        elapsed = time.perf_counter() - self.t0
+        eta = elapsed / self.done * (self.total - self.done)
+        fill = int(self.width * self.done / max(1, self.total))
+        bar = "#" * fill + "." * (self.width - fill)
+        text = f"[{bar}] {self.done}/{self.total} ({self.solved} solved) elapsed {_hms(elapsed)} ETA {_hms(eta)}"
+        if self._tty:
+            self.stream.write("\r" + text + " ")
+        elif self.done == self.total or time.perf_counter() - self._last > 10.0:  # logs: a line every 10 s
+            self.stream.write(text + "\n")
+            self._last = time.perf_counter()
+        self.stream.flush()
+
+    def close(self) -> None:
+        if self._tty:
+            self.stream.write("\n")
+        self.stream.flush()
+
+
+def _hms(s: float) -> str:
+    s = int(round(s))
+    return f"{s // 3600}:{s % 3600 // 60:02d}:{s % 60:02d}"
+
+
+def execute(specs: list[RunSpec], on_row: Callable[[dict], None], jobs: int = 1, cluster=None) -> None:
+    """Run every spec locally or on a cluster, calling ``on_row`` as each finishes."""
+    rows = run_cluster(specs, cluster) if cluster is not None else run_local(specs, jobs)
+    try:
+        for row in rows:
+            on_row(row)
+    finally:
+        rows.close()
+

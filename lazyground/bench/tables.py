@@ -1,0 +1,204 @@
+"""Benchmark results: the CSV of every run, summary statistics, Markdown tables, plots.
+
+Statistics count an unsolved run (timeout, error, no valid goal) at the time
+limit, so a configuration that often fails cannot look fast; the success rate
+is shown next to it.
+"""
+
+from __future__ import annotations
+
+import csv
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from lazyground.bench.runner import FIELDS
+
+STRATEGY_LABEL = {
+    "consecutive": "Consecutive", "random": "Random", "reward-penalty": "Reward-Penalty",
+}
+
+
+# --- CSV ------------------------------------------------------------------------------------
+
+class CsvSink:
+    """Append rows to results.csv as they finish (flushed), so an interrupt keeps them."""
+
+    def __init__(self, path: Path, append: bool = False):
+        self.path = Path(path)
+        fresh = not (append and self.path.is_file() and self.path.stat().st_size > 0)
+        self._f = open(self.path, "w" if fresh else "a", newline="")
+        self._w = csv.DictWriter(self._f, fieldnames=FIELDS, extrasaction="ignore")
+        if fresh:
+            self._w.writeheader()
+            self._f.flush()
+
+    def write(self, row: dict) -> None:
+        self._w.writerow({k: _csv_value(row.get(k, "")) for k in FIELDS})
+        self._f.flush()
+
+    def close(self) -> None:
+        self._f.close()
+
+
+def _csv_value(v):
+    return f"{v:.6f}" if isinstance(v, float) else v
+
+
+def read_csv(path) -> list[dict]:
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+# --- statistics -----------------------------------------------------------------------------
+
+def config_label(row: dict) -> str:
+    """How a configuration is named in tables and plots."""
+    if row["planner"] == "lazyground":
+        return STRATEGY_LABEL.get(row["strategy"], row["strategy"])
+    return row["planner"].replace("ompl-", "OMPL ")
+
+
+def counted_time(row: dict) -> float:
+    """The run's time, or the time limit when it did not solve."""
+    if row["status"] == "solved":
+        return float(row["time_s"])
+    return float(row["time_limit"])
+
+
+@dataclass(frozen=True)
+class Stats:
+    n: int
+    mean: float
+    std: float
+    median: float
+    success: float  # fraction solved
+    other_share: float  # mean of other_s / time_s over solved runs (planner's own time share)
+
+    @staticmethod
+    def of(rows: list[dict]) -> "Stats":
+        t = np.array([counted_time(r) for r in rows])
+        solved = [r for r in rows if r["status"] == "solved"]
+        share = [float(r["other_s"]) / float(r["time_s"]) for r in solved if float(r["time_s"]) > 0]
+        return Stats(len(rows), float(t.mean()), float(t.std(ddof=1)) if len(t) > 1 else 0.0, float(np.median(t)),
+                     len(solved) / len(rows), float(np.mean(share)) if share else float("nan"))
+
+
+def group(rows: list[dict]) -> dict[tuple, dict[str, list[dict]]]:
+    """{(config label, bias): {scene: rows}}: ours by bias and strategy, then the peers."""
+    out: dict[tuple, dict[str, list[dict]]] = {}
+    for r in rows:
+        out.setdefault((config_label(r), r["bias"]), {}).setdefault(r["scene"], []).append(r)
+    order = list(STRATEGY_LABEL.values())
+
+    def rank(key):  # ours by bias then strategy as in the paper, then the peers
+        label, bias = key
+        b = float(bias) if bias not in ("", None) else 2.0
+        return (label not in order, b, order.index(label) if label in order else label)
+
+    return dict(sorted(out.items(), key=lambda kv: rank(kv[0])))
+
+
+def scenes_of(rows: list[dict]) -> list[str]:
+    return list(dict.fromkeys(r["scene"] for r in rows))
+
+
+# --- Markdown -------------------------------------------------------------------------------
+
+def markdown_table(rows: list[dict], title: str = "") -> str:
+    """The paper's layout: one row per strategy and bias, per scene mean and std (plus median, success)."""
+    rows = [r for r in rows if r["status"] != "interrupted"]
+    if not rows:
+        return f"{title}\n\n(no finished runs)\n" if title else "(no finished runs)\n"
+    scenes = scenes_of(rows)
+    head = ["Strategy", "Bias %"]
+    for s in scenes:
+        head += [f"{s} mean", "std", "median", "solved"]
+    lines = [f"{title}\n" if title else "", "| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for (label, bias), per_scene in group(rows).items():
+        cells = [label, f"{float(bias) * 100:g}" if bias not in ("", None) else "-"]
+        for s in scenes:
+            if s in per_scene:
+                st = Stats.of(per_scene[s])
+                cells += [f"{st.mean:.3f}", f"{st.std:.3f}", f"{st.median:.3f}", f"{st.success * 100:.0f}% of {st.n}"]
+            else:
+                cells += ["", "", "", ""]
+        lines.append("| " + " | ".join(cells) + " |")
+    limits = sorted({float(r["time_limit"]) for r in rows})
+    lines.append("")
+    lines.append(f"Times in seconds, including grounding and goal sampling. Unsolved runs count at the time limit "
+                 f"({', '.join(f'{t:g}' for t in limits)} s).")
+    return "\n".join(lines).lstrip("\n") + "\n"
+
+
+def time_split_table(rows: list[dict]) -> str:
+    """Where the time goes (solved runs): mean seconds and shares of grounding, goal sampling, collision, the rest."""
+    rows = [r for r in rows if r["status"] == "solved"]
+    if not rows:
+        return "(no solved runs)\n"
+    head = ["Scene", "Strategy", "Bias %", "runs", "time", "grounding", "goal sampling", "collision", "other", "other share"]
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for (label, bias), per_scene in group(rows).items():
+        for scene, rs in per_scene.items():
+            m = {k: np.mean([float(r[k]) for r in rs]) for k in ("time_s", "grounding_s", "goal_sampling_s", "collision_s", "other_s")}
+            share = Stats.of(rs).other_share
+            b = f"{float(bias) * 100:g}" if bias not in ("", None) else "-"
+            lines.append(f"| {scene} | {label} | {b} | {len(rs)} | {m['time_s']:.3f} | {m['grounding_s']:.3f} | "
+                         f"{m['goal_sampling_s']:.3f} | {m['collision_s']:.3f} | {m['other_s']:.3f} | {share * 100:.0f}% |")
+    return "\n".join(lines) + "\n"
+
+
+# --- plots ----------------------------------------------------------------------------------
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def box_plots(rows: list[dict], path) -> None:
+    """One panel per scene, one box per configuration (unsolved runs at the time limit)."""
+    plt = _pyplot()
+    rows = [r for r in rows if r["status"] != "interrupted"]
+    scenes = scenes_of(rows)
+    fig, axes = plt.subplots(1, max(1, len(scenes)), figsize=(4.5 * max(1, len(scenes)), 4.2), squeeze=False)
+    for ax, scene in zip(axes[0], scenes):
+        data, labels = [], []
+        for (label, bias), per_scene in group(rows).items():
+            if scene in per_scene:
+                data.append([counted_time(r) for r in per_scene[scene]])
+                labels.append(label + (f"\n{float(bias) * 100:g}%" if bias not in ("", None) else ""))
+        ax.boxplot(data)
+        ax.set_xticks(range(1, len(labels) + 1), labels, rotation=30, fontsize=8)
+        ax.set_title(scene)
+        ax.set_ylabel("time (s)")
+        ax.yaxis.grid(True, alpha=0.4)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def dof_plot(rows: list[dict], path) -> None:
+    """Median time (unsolved at the limit) against DOF, one line per configuration; bars: quartiles."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for (label, bias), per_scene in group(rows).items():
+        pts = sorted((int(s.split("_")[-1]), [counted_time(r) for r in rs]) for s, rs in per_scene.items())
+        dofs = [d for d, _ in pts]
+        med = np.array([np.median(t) for _, t in pts])
+        lo = med - np.array([np.percentile(t, 25) for _, t in pts])
+        hi = np.array([np.percentile(t, 75) for _, t in pts]) - med
+        name = label + (f" {float(bias) * 100:g}%" if bias not in ("", None) else "")
+        ax.errorbar(dofs, med, yerr=[lo, hi], marker="o", capsize=3, label=name)
+    ax.set_xlabel("degrees of freedom")
+    ax.set_ylabel("time (s), median and quartiles")
+    ax.set_yscale("log")
+    ax.legend(fontsize=8)
+    ax.grid(True, alpha=0.4)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

@@ -1,0 +1,139 @@
+"""The bench command end to end on a tiny configuration: every output is written and parses."""
+
+from __future__ import annotations
+
+import csv
+import os
+import signal
+import subprocess
+import sys
+import time
+from argparse import Namespace
+from pathlib import Path
+
+import pytest
+
+from lazyground.bench import ompl_log
+from lazyground.bench.cli import plan_specs
+from lazyground.cli import main
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def _rows(out: Path) -> list[dict]:
+    with open(out / "results.csv", newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def test_tiny_parking_run_writes_all_outputs(tmp_path, capsys):
+    out = tmp_path / "bench"
+    code = main(["bench", "--scenes", "parking_1", "--runs", "2", "--time-limit", "0.5", "--jobs", "1", "--out", str(out)])
+    assert code == 0
+    rows = _rows(out)
+    assert len(rows) == 6  # 3 strategies x 2 seeds
+    assert {r["strategy"] for r in rows} == {"consecutive", "random", "reward-penalty"}
+    assert {r["seed"] for r in rows} == {"0", "1"}
+    for r in rows:
+        assert r["status"] in ("solved", "timeout"), r["message"]
+        t = float(r["time_s"])
+        assert t >= float(r["grounding_s"]) + float(r["goal_sampling_s"]) - 1e-6
+        if r["status"] == "solved":
+            assert r["interpretation"].startswith("park:") and r["region"]
+    table = (out / "table.md").read_text()
+    assert "| Strategy | Bias % | parking_1 mean | std | median | solved |" in table
+    assert "| Reward-Penalty | 5 |" in table and "time limit (0.5 s)" in table
+    assert (out / "boxplots.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    exp = ompl_log.read_log(out / "ompl_parking_1.log")
+    assert exp.name == "parking_1" and exp.time_limit == 0.5
+    assert set(exp.planners) == {f"lazyground_{s}_bias0.05" for s in ("consecutive", "random", "reward-penalty")}
+    by_planner = {}
+    for r in rows:
+        by_planner.setdefault(ompl_log.planner_name(r), []).append(r)
+    for name, runs in exp.planners.items():
+        csv_runs = by_planner[name]
+        assert [round(x["time"], 6) for x in runs] == [round(float(r["time_s"]), 6) for r in csv_runs]
+        assert [x["solved"] for x in runs] == [float(r["status"] == "solved") for r in csv_runs]
+        chosen = exp.enums["chosen_interpretation"]
+        assert [chosen[int(x["chosen_interpretation"])] for x in runs] == [r["interpretation"] or "none" for r in csv_runs]
+    assert "Processing" not in capsys.readouterr().out
+
+
+def test_ompl_statistics_script_reads_our_log(tmp_path):
+    stats = pytest.importorskip("ompl._benchmark_statistics", reason="OMPL's own reader comes with the 'ompl' package")
+    import sqlite3
+
+    rows = [dict(scene="s", planner="lazyground", strategy="reward-penalty", bias="0.5", seed=i, status=st, time_s=0.25 * (i + 1),
+                 grounding_s=0.01, goal_sampling_s=0.02, collision_s=0.1, other_s=0.05, iterations=10, tree_size=5, goal_samples=10,
+                 resamplings=1, interpretation="pick:can_1" if st == "solved" else "", region="can_1/top" if st == "solved" else "",
+                 path_length=1.5, time_limit=1.0) for i, st in enumerate(["solved", "timeout", "solved"])]
+    log = tmp_path / "x.log"
+    ompl_log.write_log(log, "s", rows, 1.0, 3.0)
+    stats.readBenchmarkLog(str(tmp_path / "x.db"), [str(log)], False)
+    db = sqlite3.connect(tmp_path / "x.db")
+    assert db.execute("select count(*), sum(solved), sum(time) from runs").fetchone() == (3, 2, 1.5)
+
+
+def test_malformed_log_is_rejected(tmp_path):
+    bad = tmp_path / "bad.log"
+    bad.write_text("Experiment x\nRunning on h\nStarting at now\n<<<|\n|>>>\nnot a seed line\n")
+    with pytest.raises(ompl_log.LogFormatError):
+        ompl_log.read_log(bad)
+
+
+def _args(**kw):
+    base = dict(table=None, dof_sweep=False, scenes=None, strategies=None, biases=None, runs=None, time_limit=None,
+                request=None, peers=False, seed=0)
+    base.update(kw)
+    return Namespace(**base)
+
+
+def test_table_two_names_missing_scenes():
+    present = [n for n in ("fetch_cans_1", "fetch_cans_2", "fetch_boxes_3") if (REPO / "yaml_scenes" / f"{n}.yaml").is_file()]
+    if not present:
+        from lazyground.bench.cli import BenchUsageError
+
+        with pytest.raises(BenchUsageError, match="missing scenes"):
+            plan_specs(_args(table=2))
+        return
+    specs, notes, _ = plan_specs(_args(table=2, runs=1, time_limit=1.0))
+    assert len(specs) == len(present) * 4  # 2 strategies x 2 biases
+    missing = 3 - len(present)
+    assert (len(notes) == 1) == bool(missing)
+
+
+def test_peers_missing_is_said_clearly(monkeypatch):
+    import lazyground.bench.ompl_peer as peer
+
+    monkeypatch.setattr(peer, "ompl_available", lambda: False)
+    specs, notes, _ = plan_specs(_args(scenes="parking_1", runs=1, peers=True, time_limit=1.0))
+    assert notes == ["OMPL peers skipped: the 'ompl' package is not installed (pip install .[bench])"]
+    assert {s.planner for s in specs} == {"lazyground"}
+
+
+def test_bad_arguments_exit_2(tmp_path, capsys):
+    assert main(["bench", "--strategies", "greedy", "--out", str(tmp_path)]) == 2
+    assert "unknown strategy 'greedy'" in capsys.readouterr().err
+
+
+def test_ctrl_c_keeps_finished_runs(tmp_path):
+    out = tmp_path / "bench"
+    cmd = [sys.executable, "-m", "lazyground", "bench", "--scenes", "parking_1", "--strategies", "reward-penalty",
+           "--runs", "500", "--time-limit", "0.5", "--jobs", "1", "--out", str(out)]
+    proc = subprocess.Popen(cmd, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.time() + 40
+        while not ((out / "results.csv").is_file() and len(_rows(out)) >= 2):
+            assert proc.poll() is None, proc.stderr.read()
+            assert time.time() < deadline, "no finished runs within 40 s"
+            time.sleep(0.2)
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=30)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert proc.returncode == 130, err
+    kept = _rows(out)
+    assert 2 <= len(kept) < 500
+    assert all(r["status"] in ("solved", "timeout") for r in kept)
+    assert "interrupted: kept" in err
+    assert (out / "table.md").is_file()
