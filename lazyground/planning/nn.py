@@ -1,9 +1,12 @@
-"""Nearest neighbours over a growing tree: a k-d tree plus a brute-force buffer.
+"""Nearest neighbours over a growing tree: two k-d trees plus a brute-force buffer.
 
-Points go into a buffer; when the buffer outgrows a fraction of the indexed
-points the k-d tree is rebuilt over all of them. A query is one k-d tree
-lookup plus a vectorised scan of the buffer, so time per query grows roughly
-logarithmically with tree size (amortised rebuild cost O(log n) per insert).
+New points go into a small buffer scanned by brute force. When the buffer is
+full, it is merged into a *recent* k-d tree, rebuilt over the points since the
+last major rebuild; when that grows past a fraction of the *main* k-d tree,
+the main tree is rebuilt over everything. A query is two k-d tree lookups and
+one vectorised scan of at most ``buffer`` points, so its cost grows roughly
+logarithmically with tree size, and the amortised rebuild cost per insert
+stays small (the recent tree is at most ``recent_fraction`` of the points).
 scipy's cKDTree is used because it is well kept and much faster than a tree
 we would write in Python.
 """
@@ -19,13 +22,15 @@ FAR = 1e12
 class NearestNeighbors:
     """Exact Euclidean nearest neighbour over points added one at a time."""
 
-    def __init__(self, dim: int, capacity: int = 1024, rebuild_fraction: float = 0.05, min_buffer: int = 256):
+    def __init__(self, dim: int, capacity: int = 1024, buffer: int = 256, recent_fraction: float = 0.25):
         self._points = np.empty((capacity, dim))
         self._size = 0
-        self._indexed = 0  # points [0, _indexed) are in the k-d tree
-        self._tree: cKDTree | None = None
-        self._fraction = rebuild_fraction
-        self._min_buffer = min_buffer
+        self._main: cKDTree | None = None
+        self._main_end = 0  # points [0, _main_end) are in the main tree
+        self._recent: cKDTree | None = None
+        self._recent_end = 0  # points [_main_end, _recent_end) are in the recent tree
+        self._buffer = buffer
+        self._fraction = recent_fraction
 
     def __len__(self) -> int:
         return self._size
@@ -41,27 +46,37 @@ class NearestNeighbors:
             self._points = grown
         self._points[self._size] = x
         self._size += 1
-        if self._size - self._indexed > max(self._min_buffer, self._fraction * self._indexed):
-            self._rebuild()
+        if self._size - self._recent_end >= self._buffer:
+            if self._size - self._main_end > self._fraction * self._main_end:
+                self._rebuild_main()
+            else:
+                self._recent_end = self._size
+                self._recent = cKDTree(self._points[self._main_end : self._recent_end])
         return self._size - 1
 
     def remove(self, indices) -> None:
         """Exclude points from all later queries (their index stays reserved)."""
         self._points[np.asarray(indices, int)] = FAR
-        self._rebuild()
+        self._rebuild_main()
 
     def nearest(self, x: np.ndarray) -> int:
         best, best_d = -1, np.inf
-        if self._tree is not None:
-            best_d, best = self._tree.query(x)
-        buf = self._points[self._indexed : self._size]
+        if self._main is not None:
+            best_d, best = self._main.query(x)
+        if self._recent is not None:
+            d, j = self._recent.query(x)
+            if d < best_d:
+                best_d, best = d, self._main_end + j
+        buf = self._points[self._recent_end : self._size]
         if len(buf):
-            d = np.einsum("ij,ij->i", buf - x, buf - x)
+            diff = buf - x
+            d = np.einsum("ij,ij->i", diff, diff)
             j = int(np.argmin(d))
             if d[j] < best_d * best_d:
-                best = self._indexed + j
+                best = self._recent_end + j
         return int(best)
 
-    def _rebuild(self) -> None:
-        self._indexed = self._size
-        self._tree = cKDTree(self._points[: self._size]) if self._size else None
+    def _rebuild_main(self) -> None:
+        self._main_end = self._recent_end = self._size
+        self._main = cKDTree(self._points[: self._size]) if self._size else None
+        self._recent = None

@@ -1,0 +1,35 @@
+"""Nearest neighbours: exact against brute force across rebuild boundaries and removals."""
+
+import numpy as np
+
+from lazyground.planning.nn import NearestNeighbors
+
+
+def test_exact_nearest_through_growth():
+    rng = np.random.default_rng(0)
+    nn = NearestNeighbors(4, capacity=8, buffer=16)
+    pts = rng.random((3000, 4))
+    for i, p in enumerate(pts):
+        if i:
+            q = rng.random(4)
+            j = nn.nearest(q)
+            d = np.linalg.norm(pts[:i] - q, axis=1)
+            assert np.isclose(d[j], d.min())
+        assert nn.add(p) == i
+    assert len(nn) == 3000
+
+
+def test_removed_points_are_never_returned():
+    rng = np.random.default_rng(1)
+    nn = NearestNeighbors(2, buffer=8)
+    pts = rng.random((200, 2))
+    for p in pts:
+        nn.add(p)
+    gone = list(range(0, 200, 3))
+    nn.remove(gone)
+    for _ in range(200):
+        q = rng.random(2)
+        j = nn.nearest(q)
+        assert j not in gone
+        alive = np.setdiff1d(np.arange(200), gone)
+        assert np.isclose(np.linalg.norm(pts[j] - q), np.linalg.norm(pts[alive] - q, axis=1).min())
