@@ -41,6 +41,7 @@ class PlannerSettings:
     resample_threshold: float = 0.2
     resample_count: int = 10
     validation_factor: float = 10.0  # returned paths are re-checked at edge_resolution / this
+    goal_extension: str = "extend"  # "extend": one step (Algorithm 1); "connect": step until blocked
 
     @property
     def resolution(self) -> float:

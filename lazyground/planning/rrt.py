@@ -176,6 +176,12 @@ def solve(
                 node = tree.add(q_new, near, goal_biased)
                 if not goal_biased:
                     continue
+                # "connect" keeps stepping towards the goal sample while the steps are free
+                while settings.goal_extension == "connect" and not reached and time.perf_counter() < deadline:
+                    q_next, r = space.steer(q_new, q_towards, settings.step_size)
+                    if not checker.edge_free(q_new, q_next, resolution):
+                        break
+                    node, q_new, reached = tree.add(q_next, node, True), q_next, r
                 samples[gi].rewards += 1
                 selector.reward(gi)
                 if reached:

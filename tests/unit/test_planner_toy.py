@@ -100,3 +100,16 @@ def test_thin_obstacle_between_edge_checks_is_never_returned():
     res = solve(SPACE, world, goals, START, settings, np.random.default_rng(0))
     assert res.status is PlanStatus.TIMEOUT
     assert res.invalid_paths_rejected >= 1
+
+
+def test_connect_extension_reaches_the_goal_and_stays_valid():
+    settings = PlannerSettings(step_size=0.5, time_limit=5.0, goal_bias=0.1, goal_extension="connect")
+    solved = 0
+    for seed in range(5):
+        world, res = run([UNREACHABLE, REACHABLE], seed, settings)
+        if res.solved:
+            solved += 1
+            assert res.goal_region.id == "open"
+            assert path_is_valid(SPACE, world, res.path, settings.resolution / 10) == -1
+            assert np.linalg.norm(np.diff(res.path, axis=0), axis=1).max() <= settings.step_size + 1e-9
+    assert solved >= 4
