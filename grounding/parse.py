@@ -206,6 +206,8 @@ class _Cursor:
             np = NounPhrase("")
         if det is None and not mods and not np.head:
             return None
+        if not mods and not np.head:  # "pick up the": a dangling article must not mean "anything"
+            raise GroundingError(f"expected an object after {det.text!r}")
         text = " ".join(x.text for x in self.toks[start + (det is not None):self.i])
         return replace(np, text=text, determiner=det.value if det else "", determiner_word=det.text if det else "",
                        modifiers=tuple(mods))

@@ -47,11 +47,16 @@ def regions_for(obj: SceneObject, role: str, interpretation: str, scene: Scene |
         raise GroundingError(f"no {role} definition for type {obj.type!r} (see grounding/types.yaml)")
     ee = (scene.robot.end_effector if scene is not None and scene.robot.end_effector else END_EFFECTOR)
     out: list[GoalRegion] = []
-    for spec in definition:
-        template = TEMPLATES.get(spec.get("template"))
-        if template is None:
-            raise GroundingError(f"type {obj.type!r}: unknown region template {spec.get('template')!r}")
-        out.extend(template(obj, spec, interpretation, ee))
+    try:
+        for spec in definition:
+            template = TEMPLATES.get(spec.get("template"))
+            if template is None:
+                raise GroundingError(f"type {obj.type!r}: unknown region template {spec.get('template')!r}")
+            out.extend(template(obj, spec, interpretation, ee))
+    except GroundingError:
+        raise
+    except (AttributeError, KeyError, TypeError, ValueError) as exc:  # a scene's grasp_types override is malformed
+        raise GroundingError(f"type {obj.type!r}: malformed {role} definition ({type(exc).__name__}: {exc})") from None
     return tuple(out)
 
 
@@ -59,7 +64,14 @@ def _top_z(obj: SceneObject) -> float:
     return obj.geometry.half_extents()[2]
 
 
-def _region(obj, interpretation, label, kind, lower, upper, frame, X_WR, X_SE=Pose(), wrap=()):
+def _approach(spec, axis: int, sign: float) -> tuple[float, float, float]:
+    """The pre-pose offset from ``spec['approach']`` (metres) along one axis of the target frame."""
+    v = [0.0, 0.0, 0.0]
+    v[axis] = sign * float(spec.get("approach", 0.0))
+    return tuple(v)
+
+
+def _region(obj, interpretation, label, kind, lower, upper, frame, X_WR, X_SE=Pose(), wrap=(), approach=(0.0, 0.0, 0.0)):
     return GoalRegion(
         id=f"{obj.id}/{label}",
         interpretation=interpretation,
@@ -72,6 +84,7 @@ def _region(obj, interpretation, label, kind, lower, upper, frame, X_WR, X_SE=Po
         X_SE=X_SE,
         wrap=wrap,
         label=label,
+        approach=approach,
     )
 
 
@@ -80,7 +93,8 @@ def top(obj, spec, interpretation, ee):
     d0, d1 = spec["depth"]
     X_WR = obj.pose.pose().compose(Pose((0.0, 0.0, _top_z(obj)), (0.0, math.pi / 2, 0.0)))
     # R.x points down, so "above the face" is negative x in R.
-    return [_region(obj, interpretation, "top", "workspace", (-d1, 0, 0, -math.pi, 0, 0), (-d0, 0, 0, math.pi, 0, 0), ee, X_WR)]
+    return [_region(obj, interpretation, "top", "workspace", (-d1, 0, 0, -math.pi, 0, 0), (-d0, 0, 0, math.pi, 0, 0), ee, X_WR,
+                    approach=_approach(spec, 0, -1.0))]
 
 
 FACES = {"+x": (0, 1, math.pi), "-x": (0, -1, 0.0), "+y": (1, 1, -math.pi / 2), "-y": (1, -1, math.pi / 2)}
@@ -97,7 +111,8 @@ def side_faces(obj, spec, interpretation, ee):
         offset = [0.0, 0.0, 0.0]
         offset[axis] = sign * (hx, hy)[axis]
         X_WR = obj.pose.pose().compose(Pose(tuple(offset), (0.0, 0.0, yaw)))
-        out.append(_region(obj, interpretation, f"face {name}", "workspace", (d0, l0, -h, 0, 0, 0), (d1, l1, h, 0, 0, 0), ee, X_WR))
+        out.append(_region(obj, interpretation, f"face {name}", "workspace", (d0, l0, -h, 0, 0, 0), (d1, l1, h, 0, 0, 0), ee, X_WR,
+                           approach=_approach(spec, 0, -1.0)))
     return out
 
 
@@ -111,7 +126,8 @@ def side_around(obj, spec, interpretation, ee):
     X_SE = Pose((-(r - (d0 + d1) / 2), 0.0, 0.0), (0.0, 0.0, 0.0))
     lo_z, hi_z = -hz + 2 * hz * f0, -hz + 2 * hz * f1
     half_depth = (d1 - d0) / 2
-    return [_region(obj, interpretation, "side", "workspace", (-half_depth, 0, lo_z, 0, 0, -math.pi), (half_depth, 0, hi_z, 0, 0, math.pi), ee, X_WR, X_SE)]
+    return [_region(obj, interpretation, "side", "workspace", (-half_depth, 0, lo_z, 0, 0, -math.pi), (half_depth, 0, hi_z, 0, 0, math.pi), ee, X_WR, X_SE,
+                    approach=_approach(spec, 0, -1.0))]
 
 
 def surface(obj, spec, interpretation, ee):
@@ -120,7 +136,8 @@ def surface(obj, spec, interpretation, ee):
     m = spec["margin"]
     X_WR = obj.pose.pose().compose(Pose((0.0, 0.0, hz), (0.0, 0.0, 0.0)))
     c = spec["clearance"]
-    return [_region(obj, interpretation, "surface", "placement", (-(hx - m), -(hy - m), c, 0, 0, -math.pi), (hx - m, hy - m, c, 0, 0, math.pi), "", X_WR)]
+    return [_region(obj, interpretation, "surface", "placement", (-(hx - m), -(hy - m), c, 0, 0, -math.pi), (hx - m, hy - m, c, 0, 0, math.pi), "", X_WR,
+                    approach=_approach(spec, 2, 1.0))]
 
 
 def parking(obj, spec, interpretation, ee):

@@ -157,6 +157,8 @@ def plan_pick_and_place(
         results.append(pick)
         if not pick.solved:
             return finish(pick.status, f"pick: {pick.message}")
+        if time.perf_counter() >= deadline:  # grasped at the limit: no time to lift and place (timeout)
+            break
         obj = scene.object(pick.goal_region.object)
         q_grasp = pick.path[-1]
         X_WG = world.frame_pose(frame, q_grasp)
@@ -172,6 +174,8 @@ def plan_pick_and_place(
             excluded.append(obj.id)
             continue
         budget = min(deadline - time.perf_counter(), place_share * settings.time_limit)
+        if budget <= 0:  # the lift used up the time: a timeout, not a reason to try another object
+            break
         place = solve(carrying.space, carrying, source, lift.q_lift, replace(settings, time_limit=max(budget, 1e-3)),
                       rng, seed=seed, keep_tree=keep_tree)
         results.append(place)

@@ -37,6 +37,9 @@ class GoalRegion:
     X_WR: Pose = Pose()  # workspace/placement: the region's reference frame in world
     X_SE: Pose = Pose()  # workspace: end-effector frame relative to the sampled frame (TSR T_we)
     wrap: tuple[int, ...] = ()  # config: indices of angle coordinates
+    # workspace/placement: the pre-pose the motion comes from, as an offset of the target
+    # frame in its own axes (e.g. (-0.08, 0, 0): 8 cm back along a gripper's approach axis)
+    approach: tuple[float, float, float] = (0.0, 0.0, 0.0)
     label: str = ""  # e.g. "top grasp", "face +x", "forwards"
     attributes: dict = field(default_factory=dict, compare=False)
 
@@ -94,4 +97,5 @@ class GoalRegion:
             out["frame"] = self.frame
             out["X_WR"] = self.X_WR.to_json()
             out["X_SE"] = self.X_SE.to_json()
+            out["approach"] = list(self.approach)
         return out

@@ -29,6 +29,10 @@ from lazyground.regions import GoalRegion
 from lazyground.scene.typed_yaml import SceneError
 
 
+APPROACH_RESOLUTION = 0.01  # rad (or m): spacing of the collision checks along an approach segment
+APPROACH_SCALES = (1.0, 0.5, 0.25)  # fractions of a region's approach distance tried in turn
+
+
 @dataclass(frozen=True)
 class IKSettings:
     """How hard one goal-sampling attempt tries.
@@ -112,20 +116,46 @@ class IKGoalSource(RoundRobinGoalSource):
             self._options.SetOption(IpoptSolver.id(), "print_level", 0)
 
     # --- hooks -------------------------------------------------------------------------------
-    def target_pose_for(self, region: GoalRegion, v: np.ndarray) -> tuple[str, Pose]:
+    def target_pose_for(self, region: GoalRegion, v: np.ndarray, approach: bool = False) -> tuple[str, Pose]:
         """The robot frame to constrain and its target pose X_WT for a draw ``v`` of ``region``.
 
         Workspace: the region's end-effector frame at ``region.pose_in_world(v)``.
         Placement: the body carrying the world's attached object, placed so that
-        the object lands at ``region.pose_in_world(v)``. Override for other grasps.
+        the object lands at ``region.pose_in_world(v)``. With ``approach``, the
+        pre-pose: the target moved by ``region.approach`` in its own axes.
         """
         X_WT = region.pose_in_world(v)
+        if approach:
+            X_WT = X_WT.compose(Pose(tuple(region.approach)))
         if region.kind == "workspace":
             return region.frame, X_WT
         attached = getattr(self.world, "attached", None)
         if attached is None:
             raise ValueError(f"placement region {region.id} needs a world with an attached object")
         return attached.body, X_WT.compose(attached.X_BO.inverse())
+
+    def approach_from(self, region: GoalRegion, v: np.ndarray, q_full: np.ndarray, scale: float = 1.0) -> np.ndarray | None:
+        """The pre-pose configuration for a goal at ``q_full``, if its straight approach is free.
+
+        The pre-pose is ``scale`` times the region's approach away. It is solved
+        from ``q_full`` so it stays on the same IK branch; the joint-space segment
+        from it to the goal is collision-checked every APPROACH_RESOLUTION.
+        """
+        frame, X_pre = self.target_pose_for(region, v, approach=True)
+        if scale != 1.0:
+            X_goal = self.target_pose_for(region, v)[1].matrix()
+            X = X_pre.matrix()
+            X[:3, 3] = X_goal[:3, 3] + scale * (X[:3, 3] - X_goal[:3, 3])
+            X_pre = Pose.from_matrix(X)
+        pre_full = self.solve(frame, X_pre, q_full)
+        if pre_full is None:
+            return None
+        pre, q = pre_full[self._planned], q_full[self._planned]
+        if not self.world.space.within_bounds(pre):
+            return None
+        if not np.all(self.world.configs_free(self.world.space.discretize(pre, q, APPROACH_RESOLUTION))):
+            return None
+        return pre
 
     # --- one attempt -------------------------------------------------------------------------
     def attempt(self, j: int, rng: np.random.Generator, deadline: float) -> tuple[GoalSample | None, str]:
@@ -153,6 +183,13 @@ class IKGoalSource(RoundRobinGoalSource):
                 reason = "in collision"  # another restart may find a collision-free branch
                 continue
             self._last[j] = q_full
+            # Aim at a pre-pose when its straight approach is free: the full distance, then
+            # shorter ones; under a low shelf board only the goal itself may be left.
+            for scale in APPROACH_SCALES if any(region.approach) else ():
+                pre = self.approach_from(region, v, q_full, scale)
+                if pre is not None:
+                    extra = {"X_WG": X_WT, "v": v, "frame": frame, "approach_scale": scale}
+                    return GoalSample(q=pre, region=j, final=q, extra=extra), ""
             return GoalSample(q=q, region=j, extra={"X_WG": X_WT, "v": v, "frame": frame}), ""
         return None, reason
 

@@ -74,6 +74,12 @@ class GoalSample:
     penalties: int = 0
     weight: float = 1.0
     extra: dict = field(default_factory=dict)  # e.g. the end-effector pose it was solved for
+    final: np.ndarray | None = None  # where the path ends after the approach from q (None: at q)
+
+    @property
+    def end(self) -> np.ndarray:
+        """The configuration a path to this sample ends at."""
+        return self.q if self.final is None else self.final
 
 
 @dataclass

@@ -186,6 +186,8 @@ def solve(
                 selector.reward(gi)
                 if reached:
                     path = tree.path_to(node)
+                    if samples[gi].final is not None:  # the checked approach segment from the sample
+                        path = np.vstack([path, samples[gi].final])
                     bad = path_is_valid(space, checker, path, resolution / settings.validation_factor)
                     if bad < 0:
                         return result(PlanStatus.SOLVED, "", path, samples[gi])

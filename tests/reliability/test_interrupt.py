@@ -1,0 +1,95 @@
+"""Ctrl-C during a plan: status ``interrupted`` with partial statistics, CLI exit 130, one line.
+
+(``lazyground bench``'s Ctrl-C — finished runs kept, exit 130 — is tested in
+tests/bench/test_bench_cli.py::test_ctrl_c_keeps_finished_runs.)
+"""
+
+from __future__ import annotations
+
+import json
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+from lazyground.planning import PlannerSettings, PlanStatus, solve
+from tests.reliability.conftest import REPO, needs_drake, walled_lot
+from tests.unit.toy import SPACE, START, UNREACHABLE, WALLS, BoxWorld, goal_source
+
+
+class InterruptingWorld(BoxWorld):
+    """The toy world, pressing Ctrl-C after ``after`` collision checks."""
+
+    def __init__(self, boxes, after: int):
+        super().__init__(boxes)
+        self.after = after
+
+    def configs_free(self, qs):
+        if self.checks >= self.after:
+            raise KeyboardInterrupt
+        return super().configs_free(qs)
+
+
+def test_solve_returns_interrupted_with_partial_statistics():
+    world = InterruptingWorld(WALLS, after=3000)
+    settings = PlannerSettings(step_size=0.5, time_limit=60.0, goal_bias=0.1)
+    res = solve(SPACE, world, goal_source(world, [UNREACHABLE]), START, settings, np.random.default_rng(0), seed=0)
+    assert res.status is PlanStatus.INTERRUPTED and res.path is None
+    assert res.iterations > 10 and res.tree_size > 10 and res.goal_samples
+    assert res.time_s < 30 and res.seed == 0
+    assert res.region_stats[0].valid > 0
+
+
+def _popen(argv):
+    return subprocess.Popen(argv, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+def _interrupt(proc, after: float, within: float = 5.0):
+    time.sleep(after)
+    assert proc.poll() is None, proc.communicate()
+    proc.send_signal(signal.SIGINT)
+    t0 = time.perf_counter()
+    try:
+        out, err = proc.communicate(timeout=within)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    return out, err, time.perf_counter() - t0
+
+
+@needs_drake
+def test_cli_ctrl_c_exits_130_with_one_line(tmp_path):
+    scene = walled_lot(tmp_path)
+    proc = _popen([sys.executable, "-m", "lazyground", "plan", str(scene), "park", "--time-limit", "30"])
+    out, err, took = _interrupt(proc, after=2.0)
+    assert proc.returncode == 130, (out, err)
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("interrupted"), err
+    assert "Traceback" not in err and took < 5.0
+
+
+READY = (
+    "import sys\n"
+    "import lazyground.api, lazyground.drake.world, lazyground.report\n"
+    "from lazyground.cli import main\n"
+    "print('ready', file=sys.stderr, flush=True)\n"
+    "sys.exit(main(sys.argv[1:]))\n"
+)
+
+
+@needs_drake
+def test_cli_ctrl_c_during_planning_prints_partial_statistics(tmp_path):
+    """Imports done first (a line on stderr says so), so the signal lands inside the planner."""
+    scene = walled_lot(tmp_path)
+    proc = _popen([sys.executable, "-c", READY, "plan", str(scene), "park", "--time-limit", "30", "--json"])
+    assert proc.stderr.readline().strip() == "ready"
+    out, err, took = _interrupt(proc, after=1.5)
+    assert proc.returncode == 130, (out, err)
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("interrupted after "), err
+    doc = json.loads(out)
+    assert doc["status"] == "interrupted" and doc["path"] is None
+    assert doc["iterations"] > 0 and doc["tree_size"] > 1 and doc["goal_samples"] > 0
+    assert 0.5 < doc["time_s"] < 30 and took < 5.0
