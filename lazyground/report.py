@@ -29,6 +29,7 @@ def report_to_json(report: PlanReport) -> dict:
             "goal_region": res.goal_region.id if res.goal_region else None,
             "object": report.chosen_object,
             "goal_sample": res.goal.q.round(9).tolist() if res.goal is not None else None,
+            "goal_configuration": res.goal.end.round(9).tolist() if res.goal is not None else None,
         },
         "joint_names": list(report.joint_names),
         "path": res.path.round(9).tolist() if res.path is not None else None,

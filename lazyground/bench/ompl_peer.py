@@ -156,6 +156,8 @@ def run_peer(problem, spec) -> dict:
         path_ = pdef.getSolutionPath()
         path = np.array([space.to_numpy(path_.getState(i)) for i in range(path_.getStateCount())])
         reached = min(samples, key=lambda s: world.space.distance(s.q, path[-1]))
+        if reached.final is not None:  # the sampler's checked approach segment, as our planner appends it
+            path = np.vstack([path, reached.final])
         region = regions[reached.region]
         out.update(status="solved", interpretation=region.interpretation, region=region.id,
                    path_length=world.space.path_length(path), message="")

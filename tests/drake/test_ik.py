@@ -54,13 +54,18 @@ def _check_samples(source, world, samples, settings):
     assert samples, "no valid goal sample"
     for s in samples:
         region = source.regions[s.region]
-        q_full = world.full(s.q)
+        q_full = world.full(s.end)  # the goal configuration; s.q is the pre-pose the planner aims at
+        if s.final is not None:  # the pre-pose sits back along the approach, within IK tolerance
+            X_pre = source.frame_pose(region.frame, world.full(s.q))
+            back = np.linalg.norm(X_pre[:3, 3] - source.frame_pose(region.frame, q_full)[:3, 3])
+            assert abs(back - s.extra["approach_scale"] * np.linalg.norm(region.approach)) < 0.01
+            assert world.config_free(s.q)
         X = source.frame_pose(region.frame, q_full)
         dp, angle = source.pose_error(region.frame, q_full, s.extra["X_WG"])
         assert dp <= 1.1 * np.sqrt(3) * settings.position_tolerance and angle <= 1.1 * settings.orientation_tolerance
         v = region_coordinates(region, X)  # the solved pose lies in the region, within the IK tolerance
         assert region.contains(v, tol=0.01), (region.id, v)
-        assert world.space.within_bounds(s.q) and world.config_free(s.q)
+        assert world.space.within_bounds(s.end) and world.config_free(s.end)
 
 
 def test_ik_solutions_satisfy_their_regions(cans1, boxes3):
@@ -120,7 +125,7 @@ def test_pick_up_a_can_end_to_end(cans1):
     assert res.solved, res.message
     assert report.chosen_object in ("Can3", "Can4")  # Can1/Can2 sit deep in shelf 1
     assert path_is_valid(world.space, world, res.path, report.settings.step_size / 100) == -1
-    assert np.allclose(res.path[0], world.start) and np.allclose(res.path[-1], res.goal.q)
+    assert np.allclose(res.path[0], world.start) and np.allclose(res.path[-1], res.goal.end)
     region = res.goal_region
-    v = region_coordinates(region, IKGoalSource((region,), world).frame_pose(region.frame, world.full(res.goal.q)))
+    v = region_coordinates(region, IKGoalSource((region,), world).frame_pose(region.frame, world.full(res.goal.end)))
     assert region.contains(v, tol=0.01)

@@ -64,8 +64,8 @@ def blocked_tray_scene():
     text = KITCHEN.read_text()
     text = text.replace(
         "objects:\n",
-        "- {id: tray_cover, geometry: {box: [0.3, 0.3, 0.3]}, pose: {xyz: [0.45, -0.3, 1.05]}}\n"
-        "objects:\n- {id: tray, type: table, geometry: {box: [0.3, 0.3, 0.02]}, pose: {xyz: [0.45, -0.3, 0.89]}}\n",
+        "- {id: tray_cover, geometry: {box: [0.3, 0.3, 0.3]}, pose: {xyz: [-0.7, -0.9, 1.05]}}\n"
+        "objects:\n- {id: tray, type: table, geometry: {box: [0.3, 0.3, 0.02]}, pose: {xyz: [-0.7, -0.9, 0.89]}}\n",
         1,
     )
     return parse_scene(text, "kitchen+tray", KITCHEN.parent)
