@@ -54,9 +54,12 @@ def test_put_a_cup_on_the_table():
     assert {"steps", "picked", "grasp", "placement"} <= set(doc)
     assert len(doc["steps"]) == 2 and all(s["path"] for s in doc["steps"])
     assert doc["time_s"] >= sum(s["time_s"] for s in doc["steps"]) - 1e-6
-    # the second step starts where the lift-off ends, the first where the robot starts
-    assert np.allclose(doc["steps"][1]["path"][0], doc["lift"]["path"][-1]) if "lift" in doc else True
-    assert np.allclose(report.steps[0].result.path[0], report.steps[0].result.path[0])
+    # the pick starts at the scene's start, the lift at the grasp, the place where the lift ends
+    start = [scene.robot.start[n] for n in report.joint_names]
+    assert np.allclose(report.steps[0].result.path[0], start)
+    assert np.allclose(doc["lift"]["path"][0], report.steps[0].result.path[-1])
+    assert np.allclose(doc["steps"][1]["path"][0], doc["lift"]["path"][-1])
+    assert np.allclose(report.result.path[-1], report.steps[1].result.path[-1])
 
 
 def blocked_tray_scene():
