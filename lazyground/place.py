@@ -83,12 +83,16 @@ def lift_off(world: DrakeWorld, carrying: DrakeWorld, ik: IKGoalSource, frame: s
         path.append(q_full[world.planned])
         if h < MIN_LIFT - 1e-9 or not carrying.config_free(path[-1]):
             continue
-        dense = np.vstack([carrying.space.discretize(a, b, resolution) for a, b in zip(path[:-1], path[1:])])
-        free = carrying.configs_free(dense)
-        first = int(np.argmax(free))
-        if np.all(free[first:]) and np.all(world.configs_free(dense)):
+        if lift_is_clear(world, carrying, np.array(path), resolution):
             return Lift(np.array(path), h)
     return None
+
+
+def lift_is_clear(world: DrakeWorld, carrying: DrakeWorld, lift: np.ndarray, resolution: float) -> bool:
+    """The robot alone is free all along the lift; the carried object from its first free configuration on."""
+    dense = np.vstack([carrying.space.discretize(a, b, resolution) for a, b in zip(lift[:-1], lift[1:])])
+    free = carrying.configs_free(dense)
+    return bool(free[-1] and np.all(free[int(np.argmax(free)):]) and np.all(world.configs_free(dense)))
 
 
 def _combine(results: list[PlanResult], status: PlanStatus, path, goal, region, elapsed: float, message: str) -> PlanResult:
@@ -221,8 +225,6 @@ def validate_pick_and_place(report: PlanReport, scene: Scene, resolution: float)
     if path_is_valid(carrying.space, carrying, place.path, resolution) >= 0:
         problems.append("place path collides (with the carried object)")
     lift = np.array(report.extra["lift"]["path"])
-    dense = np.vstack([carrying.space.discretize(a, b, resolution) for a, b in zip(lift[:-1], lift[1:])])
-    free = carrying.configs_free(dense)
-    if not np.all(free[int(np.argmax(free)):]) or path_is_valid(world.space, world, lift, resolution) >= 0:
+    if not lift_is_clear(world, carrying, lift, resolution):
         problems.append("lift-off collides after leaving the support")
     return problems
