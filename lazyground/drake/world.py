@@ -140,7 +140,7 @@ class DrakeWorld:
         if visual:  # non-colliding objects (parking spots) are still drawn
             for obj in self.scene.objects:
                 if not obj.collides:
-                    plant.RegisterVisualGeometry(world, rigid_transform(_flat(obj)), drake_shape(_flat_geometry(obj)), obj.id, np.array(object_rgba(obj)))
+                    plant.RegisterVisualGeometry(world, rigid_transform(obj.pose.pose()), drake_shape(_flat_geometry(obj)), obj.id, np.array(object_rgba(obj)))
 
     def _attach(self, plant, attached: Attachment, visual: bool) -> None:
         body = plant.GetBodyByName(attached.body, self.robot)
@@ -294,12 +294,8 @@ def _on_ground(obj: SceneObject) -> Pose:
     return Pose((x, y, PARKED_CAR_SIZE[2] / 2), (0.0, 0.0, obj.pose.rpy[2]))
 
 
-def _flat(obj: SceneObject) -> Pose:
-    """Non-colliding markers (parking spots) are drawn as thin slabs on their pose."""
-    return obj.pose.pose()
-
-
 def _flat_geometry(obj: SceneObject) -> Geometry:
+    """Non-colliding markers (parking spots) are drawn as thin slabs on their pose."""
     if obj.geometry.box:
         x, y, _ = obj.geometry.box
         return Geometry(box=(x, y, 0.01))
