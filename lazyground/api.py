@@ -69,6 +69,7 @@ def planner_settings(scene: Scene, **overrides) -> PlannerSettings:
     spec = scene.planner
     base = PlannerSettings(
         strategy=spec.strategy,
+        algorithm=spec.algorithm,
         goal_bias=spec.goal_bias,
         step_size=spec.step_size,
         edge_resolution=spec.edge_resolution,

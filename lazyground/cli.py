@@ -29,6 +29,8 @@ class _Parser(argparse.ArgumentParser):
 
 def _add_plan_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--strategy", choices=["reward-penalty", "consecutive", "random"], help="goal-selection strategy")
+    p.add_argument("--algorithm", choices=["rrt", "bidirectional"],
+                   help="rrt: one tree (the paper's Algorithm 1); bidirectional: start tree + a goal tree per goal sample")
     p.add_argument("--goal-bias", type=float, help="probability of a goal-biased extension (0..1)")
     p.add_argument("--step-size", type=float, help="longest extension, in the space's metric")
     p.add_argument("--seed", type=int, help="random seed (default: the scene's)")
@@ -129,7 +131,7 @@ def cmd_plan(args) -> int:
     _import_drake()
     report = api.plan(
         scene, args.request, seed=args.seed, keep_tree=visual,
-        strategy=args.strategy, goal_bias=args.goal_bias, step_size=args.step_size, time_limit=args.time_limit,
+        strategy=args.strategy, algorithm=args.algorithm, goal_bias=args.goal_bias, step_size=args.step_size, time_limit=args.time_limit,
     )
     if args.json:
         print(json.dumps(report_to_json(report)))

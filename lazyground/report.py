@@ -20,6 +20,7 @@ def report_to_json(report: PlanReport) -> dict:
         "scene": report.scene,
         "seed": report.seed,
         "strategy": report.settings.strategy,
+        "algorithm": report.settings.algorithm,
         "goal_bias": report.settings.goal_bias,
         "action": report.grounding.action,
         "ambiguous": report.grounding.ambiguous,
@@ -64,7 +65,7 @@ def report_lines(report: PlanReport) -> list[str]:
     """A short human summary."""
     res = report.result
     g = report.grounding
-    lines = [f"request: {report.request!r} on scene {report.scene} (seed {report.seed}, {report.settings.strategy}, bias {report.settings.goal_bias:g})"]
+    lines = [f"request: {report.request!r} on scene {report.scene} (seed {report.seed}, {_planner_label(report.settings)})"]
     kinds = "ambiguous: " if g.ambiguous else ""
     lines.append(f"interpretations ({kinds}{len(g.interpretations)}): " + ", ".join(i.id for i in g.interpretations))
     for note in g.notes + report.notes:
@@ -83,3 +84,9 @@ def report_lines(report: PlanReport) -> list[str]:
         lines.append(f"time {report.time_s:.3f} s; {res.iterations} iterations, tree {res.tree_size}, {len(res.goal_samples)} goal samples")
     return lines
 
+
+
+def _planner_label(settings) -> str:
+    if settings.algorithm == "bidirectional":  # no goal bias in the two-tree planner
+        return f"{settings.strategy}, bidirectional"
+    return f"{settings.strategy}, bias {settings.goal_bias:g}"

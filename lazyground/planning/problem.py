@@ -42,6 +42,7 @@ class PlannerSettings:
     resample_count: int = 10
     validation_factor: float = 10.0  # returned paths are re-checked at edge_resolution / this
     goal_extension: str = "extend"  # "extend": one step (Algorithm 1); "connect": step until blocked
+    algorithm: str = "rrt"  # "rrt": Algorithm 1; "bidirectional": start tree + goal forest (planning/birrt.py)
 
     @property
     def resolution(self) -> float:

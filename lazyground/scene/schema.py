@@ -14,6 +14,7 @@ from lazyground.scene.typed_yaml import checked, in_range, non_negative, positiv
 
 OBJECT_TYPES_HINT = "can, box, cup, bottle, table, shelf, parking_spot, ..."
 STRATEGIES = ("reward-penalty", "consecutive", "random")
+ALGORITHM_NAMES = ("rrt", "bidirectional")
 
 
 @dataclass(frozen=True)
@@ -130,6 +131,7 @@ class PlannerSpec:
     """Planner defaults for this scene; the CLI and API may override each."""
 
     strategy: str = "reward-penalty"
+    algorithm: str = "rrt"  # "rrt" (Algorithm 1) or "bidirectional" (start tree + goal forest)
     goal_bias: float = checked(in_range(0.0, 1.0), default=0.05)
     step_size: float = checked(positive, default=0.5)
     edge_resolution: float | None = checked(positive, default=None)  # collision-check spacing; default step_size / 10
@@ -144,6 +146,8 @@ class PlannerSpec:
     def validate(self) -> str | None:
         if self.strategy not in STRATEGIES:
             return f"strategy: unknown strategy {self.strategy!r} (known: {', '.join(STRATEGIES)})"
+        if self.algorithm not in ALGORITHM_NAMES:
+            return f"algorithm: unknown algorithm {self.algorithm!r} (known: {', '.join(ALGORITHM_NAMES)})"
         return None
 
 
@@ -157,6 +161,7 @@ class Expectation:
     seeds: int = checked(positive, default=10)
     time_limit: float | None = checked(positive, default=None)
     strategy: str | None = None
+    algorithm: str | None = None
     goal_bias: float | None = None
     reachable: tuple[str, ...] | None = None  # objects a solution may reach; None = any
 

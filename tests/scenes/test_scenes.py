@@ -40,7 +40,7 @@ def test_scene_expectation(path, k):
     if expect.interpretations is not None:
         assert {i.id for i in g.interpretations} == set(expect.interpretations)
     world = DrakeWorld(scene)
-    overrides = {"time_limit": expect.time_limit, "strategy": expect.strategy, "goal_bias": expect.goal_bias}
+    overrides = {"time_limit": expect.time_limit, "strategy": expect.strategy, "algorithm": expect.algorithm, "goal_bias": expect.goal_bias}
     solved = 0
     for seed in range(expect.seeds):
         report = api.plan(scene, expect.request, seed=seed, world=world, **overrides)

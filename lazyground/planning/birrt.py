@@ -1,0 +1,124 @@
+"""A bidirectional variant of Algorithm 1 (beyond the paper).
+
+RRT-Connect (Kuffner and LaValle 2000) with a goal *forest*: every goal sample
+drawn is the root of its own goal subtree. The two sides take turns:
+
+* **start turn** — the start tree takes one step towards a uniform sample; the
+  goal forest then steps greedily towards the new node from its nearest node
+  (whichever goal sample that subtree grows from);
+* **goal turn** — the goal-selection strategy picks a goal sample (the top of
+  the reward-penalty max-heap, or round-robin, or at random), and *that*
+  sample's subtree takes one step towards a uniform sample: a free step is a
+  reward, a blocked one a penalty, and a weight falling below the threshold
+  draws more goal samples, which become new roots (paper Sec. III-B/C). The
+  start tree then steps greedily towards the new goal node.
+
+The trees meet when a greedy connection reaches the other tree's new node; the
+path is the start branch, the goal branch back to its root sample, and that
+sample's approach segment. ``goal_bias`` is not used (as in RRT-Connect): the
+connections are the pull towards the goals.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from lazyground.planning.problem import PlanResult, PlanStatus
+from lazyground.planning.search import Search
+from lazyground.planning.tree import Tree
+
+
+def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
+    space, rng = s.space, s.rng
+    ts = Tree(space)
+    ts.add_root(start)
+    tg = Tree(space, per_label=True)
+    s.trees = [ts, tg]
+    rooted = 0
+    start_turn = True
+    while s.time_left():
+        if not s.have_samples():
+            if s.goals.exhausted():
+                return s.no_goal()
+            continue
+        for gi in range(rooted, len(s.samples)):  # new goal samples become roots
+            tg.add_root(s.samples[gi].q, label=gi)
+        rooted = len(s.samples)
+        s.iterations += 1
+        q_rand = space.sample(rng)
+        if start_turn:
+            a = _extend(s, ts, ts.nearest(q_rand), q_rand)
+            if a >= 0:
+                b, reached = _connect(s, tg, ts.nodes[a])
+                if reached:
+                    found = _join(s, ts, a, tg, b)
+                    if found is not None:
+                        return found
+        else:
+            gi = s.select()
+            if gi is not None:
+                near = tg.nearest(q_rand, label=gi)
+                b = _extend(s, tg, near, q_rand) if near >= 0 else -1
+                if b < 0:
+                    if near >= 0:
+                        s.failed_from.append((1, near))
+                    s.penalize(gi)
+                else:
+                    s.reward(gi)
+                    a, reached = _connect(s, ts, tg.nodes[b])
+                    if reached:
+                        found = _join(s, ts, a, tg, b)
+                        if found is not None:
+                            return found
+        start_turn = not start_turn
+    return None
+
+
+def _extend(s: Search, tree: Tree, near: int, q_towards: np.ndarray) -> int:
+    """One step from node ``near`` towards q_towards: the new node, or -1 if blocked."""
+    q_near = tree.nodes[near]
+    q_new, _ = s.space.steer(q_near, q_towards, s.settings.step_size)
+    if not s.checker.edge_free(q_near, q_new, s.settings.resolution):
+        return -1
+    return tree.add(q_new, near)
+
+
+def _connect(s: Search, tree: Tree, q_target: np.ndarray) -> tuple[int, bool]:
+    """Greedy steps from the tree's nearest node towards q_target: (last node, reached)."""
+    node = tree.nearest(q_target)
+    if node < 0:
+        return -1, False
+    while s.time_left():
+        q_new, reached = s.space.steer(tree.nodes[node], q_target, s.settings.step_size)
+        if not s.checker.edge_free(tree.nodes[node], q_new, s.settings.resolution):
+            return node, False
+        node = tree.add(q_new, node)
+        if reached:
+            return node, True
+    return node, False
+
+
+def _join(s: Search, ts: Tree, a: int, tg: Tree, b: int) -> PlanResult | None:
+    """The path through start node a and goal node b (the same configuration), if it passes the fine re-check.
+
+    A segment that fails cuts the branch below it in whichever tree it lies;
+    a failing approach segment retires its goal sample.
+    """
+    gi = tg.labels[b]
+    start_side = ts.chain(a)[::-1]  # root .. a
+    goal_side = tg.chain(b)  # b .. root (the goal sample)
+    path = s.with_approach(
+        np.array([ts.nodes[i] for i in start_side] + [tg.nodes[j] for j in goal_side[1:]]), gi
+    )
+    bad = s.first_invalid_segment(path)
+    if bad < 0:
+        return s.result(PlanStatus.SOLVED, "", path, gi)
+    n_start = len(start_side) - 1  # segments on the start side
+    if bad < n_start:
+        ts.prune(start_side[bad + 1])
+    elif bad < n_start + len(goal_side) - 1:
+        tg.prune(goal_side[bad - n_start])
+    else:
+        tg.prune(goal_side[-1])
+        s.dead.add(gi)
+    return None

@@ -1,0 +1,159 @@
+"""One planning query's bookkeeping, shared by the tree planners.
+
+The clock and deadline, the goal samples drawn so far and the goal-selection
+strategy over them (reward, penalty, resampling on demand), the counters, the
+fine re-check of a candidate path, and the PlanResult.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from lazyground.planning.problem import (
+    GoalSample,
+    GoalSource,
+    PlannerSettings,
+    PlanResult,
+    PlanStatus,
+    ValidityChecker,
+)
+from lazyground.planning.space import ConfigSpace
+from lazyground.planning.strategies import StrategySettings, make_strategy
+from lazyground.planning.tree import Tree
+
+
+def path_is_valid(space: ConfigSpace, checker: ValidityChecker, path: np.ndarray, resolution: float) -> int:
+    """Index of the first invalid segment of ``path`` checked at ``resolution``, or -1."""
+    for k in range(len(path) - 1):
+        if not np.all(checker.configs_free(space.discretize(path[k], path[k + 1], resolution))):
+            return k
+    return -1
+
+
+class Search:
+    def __init__(
+        self,
+        space: ConfigSpace,
+        checker: ValidityChecker,
+        goals: GoalSource,
+        settings: PlannerSettings,
+        rng: np.random.Generator,
+        seed: int | None,
+        keep_tree: bool,
+    ):
+        self.space, self.checker, self.goals, self.settings, self.rng = space, checker, goals, settings, rng
+        self.seed, self.keep_tree = seed, keep_tree
+        self.t0 = time.perf_counter()
+        self.deadline = self.t0 + settings.time_limit
+        self._check_t0, self._sample_t0 = checker.check_time, goals.sample_time
+        self._sampling_checks = 0.0  # collision checks made by the goal sampler count as goal sampling
+        self.samples: list[GoalSample] = []
+        self.dead: set[int] = set()  # samples whose approach segment failed the fine re-check
+        self.selector = make_strategy(settings.strategy, StrategySettings(resample_threshold=settings.resample_threshold))
+        self.trees: list[Tree] = []  # the planner's trees, start tree first (for the result)
+        self.failed_from: list[tuple[int, int]] = []  # (tree, node) of failed goal-directed extensions
+        self.iterations = self.resamplings = self.rejected = 0
+
+    def time_left(self) -> bool:
+        return time.perf_counter() < self.deadline and self.iterations < self.settings.max_iterations
+
+    def draw(self, n: int) -> None:
+        """Draw up to n more goal samples and hand them to the strategy."""
+        c0 = self.checker.check_time
+        new = self.goals.draw(n, self.rng, self.deadline)
+        self._sampling_checks += self.checker.check_time - c0
+        first = len(self.samples)
+        self.samples.extend(new)
+        self.selector.add(list(range(first, len(self.samples))))
+
+    def have_samples(self) -> bool:
+        """Whether any goal sample exists yet; draws a batch when none does."""
+        if not self.samples:
+            self.draw(self.settings.initial_goal_samples)
+        return bool(self.samples)
+
+    def select(self) -> int | None:
+        """The strategy's goal sample (skipping dead ones), its attempt counted; None if all are dead."""
+        for _ in range(len(self.samples)):
+            gi = self.selector.select(self.rng)
+            if gi not in self.dead:
+                self.samples[gi].attempts += 1
+                return gi
+            self.penalize(gi)
+        self.draw(self.settings.resample_count)
+        return None
+
+    def reward(self, gi: int) -> None:
+        self.samples[gi].rewards += 1
+        self.selector.reward(gi)
+
+    def penalize(self, gi: int) -> None:
+        self.samples[gi].penalties += 1
+        if self.selector.penalize(gi):
+            self.resamplings += 1
+            self.draw(self.settings.resample_count)
+
+    def first_invalid_segment(self, path: np.ndarray) -> int:
+        """The fine re-check every returned path passes (-1: valid); counts rejections."""
+        bad = path_is_valid(self.space, self.checker, path, self.settings.resolution / self.settings.validation_factor)
+        self.rejected += bad >= 0
+        return bad
+
+    def with_approach(self, path: np.ndarray, gi: int) -> np.ndarray:
+        """The path with the sample's checked approach segment appended, if it has one."""
+        final = self.samples[gi].final
+        return path if final is None else np.vstack([path, final])
+
+    def result(self, status: PlanStatus, message: str = "", path=None, gi: int | None = None) -> PlanResult:
+        for i, sample in enumerate(self.samples):
+            sample.weight = self.selector.weight(i)
+        goal = self.samples[gi] if gi is not None else None
+        return PlanResult(
+            status=status,
+            seed=self.seed,
+            path=path,
+            goal=goal,
+            goal_region=self.goals.regions[goal.region] if goal is not None else None,
+            iterations=self.iterations,
+            tree_size=sum(len(t) for t in self.trees),
+            goal_samples=self.samples,
+            resamplings=self.resamplings,
+            time_s=time.perf_counter() - self.t0,
+            goal_sampling_s=self.goals.sample_time - self._sample_t0,
+            collision_s=self.checker.check_time - self._check_t0 - self._sampling_checks,
+            message=message,
+            regions=tuple(self.goals.regions),
+            region_stats=list(self.goals.stats),
+            tree=self._tree_arrays() if self.keep_tree else None,
+            failed_from=self._failed_from() if self.keep_tree else None,
+            path_length=self.space.path_length(path) if path is not None else 0.0,
+            invalid_paths_rejected=self.rejected,
+        )
+
+    def no_goal(self) -> PlanResult:
+        parts = []
+        for region, st in zip(self.goals.regions, self.goals.stats):
+            why = ", ".join(f"{k} x{v}" for k, v in sorted(st.failures.items())) or "not tried"
+            parts.append(f"{region.id}: {st.valid}/{st.attempts} valid ({why})")
+        return self.result(PlanStatus.NO_VALID_GOAL, "no valid goal configuration in any goal region: " + "; ".join(parts))
+
+    def _offsets(self) -> list[int]:
+        return list(np.cumsum([0] + [len(t) for t in self.trees[:-1]]))
+
+    def _tree_arrays(self):
+        """All trees as one node list; goal-tree nodes count as goal-directed (flag True)."""
+        if not self.trees:
+            return None
+        nodes, parents, flags = [], [], []
+        for k, (t, off) in enumerate(zip(self.trees, self._offsets())):
+            n, p, g = t.arrays()
+            nodes.append(n)
+            parents.append(np.where(p >= 0, p + off, -1))
+            flags.append(g | (k > 0))
+        return np.vstack(nodes), np.concatenate(parents), np.concatenate(flags)
+
+    def _failed_from(self) -> np.ndarray:
+        off = self._offsets() if self.trees else [0]
+        return np.array([off[t] + i for t, i in self.failed_from], int)

@@ -1,0 +1,92 @@
+"""A search tree (or forest) over configurations, with nearest-neighbour queries.
+
+The start tree has one root. The bidirectional planner's goal tree is a forest
+with one root per goal sample; every node carries the *label* of the goal
+sample its root is, and nearest-neighbour queries can be limited to one label
+(the subtree the goal-selection strategy chose).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from lazyground.planning.nn import NearestNeighbors
+from lazyground.planning.space import ConfigSpace
+
+
+class Tree:
+    def __init__(self, space: ConfigSpace, per_label: bool = False):
+        self.space = space
+        self.nodes: list[np.ndarray] = []
+        self.parents: list[int] = []
+        self.labels: list[int] = []
+        self.goal_biased: list[bool] = []
+        self.alive: list[bool] = []
+        self.nn = NearestNeighbors(space.embed_dim)
+        self._per_label = per_label
+        self._label_nn: dict[int, tuple[NearestNeighbors, list[int]]] = {}
+        self._local: list[int] = []  # index of each node in its label's index
+
+    def __len__(self) -> int:
+        return len(self.nodes)
+
+    def add_root(self, q: np.ndarray, label: int = -1) -> int:
+        return self._add(np.asarray(q, float), -1, label, False)
+
+    def add(self, q: np.ndarray, parent: int, goal_biased: bool = False) -> int:
+        return self._add(q, parent, self.labels[parent], goal_biased)
+
+    def _add(self, q: np.ndarray, parent: int, label: int, goal_biased: bool) -> int:
+        self.nodes.append(q)
+        self.parents.append(parent)
+        self.labels.append(label)
+        self.goal_biased.append(goal_biased)
+        self.alive.append(True)
+        x = self.space.embed(q)
+        i = self.nn.add(x)
+        if self._per_label:
+            nn, members = self._label_nn.setdefault(label, (NearestNeighbors(self.space.embed_dim, capacity=64), []))
+            self._local.append(nn.add(x))
+            members.append(i)
+        return i
+
+    def nearest(self, q: np.ndarray, label: int | None = None) -> int:
+        """The nearest live node (of one label's subtree if given), or -1 if there is none."""
+        x = self.space.embed(q)
+        if label is None:
+            i = self.nn.nearest(x) if len(self.nn) else -1
+        else:
+            nn, members = self._label_nn.get(label, (None, None))
+            i = members[nn.nearest(x)] if nn is not None else -1
+        return i if i >= 0 and self.alive[i] else -1
+
+    def chain(self, i: int) -> list[int]:
+        """Node indices from ``i`` up to its root."""
+        out = []
+        while i >= 0:
+            out.append(i)
+            i = self.parents[i]
+        return out
+
+    def path_to(self, i: int) -> np.ndarray:
+        """Configurations from the root to node ``i``."""
+        return np.array([self.nodes[j] for j in reversed(self.chain(i))])
+
+    def prune(self, i: int) -> None:
+        """Drop node i and its descendants from nearest-neighbour queries."""
+        dead = {i}
+        for j in range(i + 1, len(self.parents)):  # children always come after parents
+            if self.parents[j] in dead:
+                dead.add(j)
+        for j in dead:
+            self.alive[j] = False
+        self.nn.remove(sorted(dead))
+        if self._per_label:
+            by_label: dict[int, list[int]] = {}
+            for j in dead:
+                by_label.setdefault(self.labels[j], []).append(self._local[j])
+            for label, local in by_label.items():
+                self._label_nn[label][0].remove(sorted(local))
+
+    def arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return np.array(self.nodes), np.array(self.parents), np.array(self.goal_biased)

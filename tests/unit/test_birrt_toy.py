@@ -1,0 +1,94 @@
+"""The bidirectional variant (start tree + goal forest) on the 2-D toy world."""
+
+import numpy as np
+import pytest
+
+from lazyground.planning import PlannerSettings, PlanStatus, path_is_valid, solve
+from lazyground.planning.problem import GoalSample
+from tests.unit.toy import INVALID, REACHABLE, SPACE, START, UNREACHABLE, WALLS, BoxWorld, goal_source
+
+BI = PlannerSettings(step_size=0.5, time_limit=5.0, algorithm="bidirectional")
+
+
+def run(regions, seed, settings=BI, walls=WALLS):
+    world = BoxWorld(walls)
+    return world, solve(SPACE, world, goal_source(world, regions), START, settings, np.random.default_rng(seed), seed=seed)
+
+
+@pytest.mark.parametrize("strategy", ["reward-penalty", "consecutive", "random"])
+def test_reaches_the_only_reachable_grounding(strategy):
+    settings = PlannerSettings(step_size=0.5, time_limit=5.0, algorithm="bidirectional", strategy=strategy)
+    for seed in range(6):
+        world, res = run([UNREACHABLE, INVALID, REACHABLE], seed, settings)
+        assert res.solved, res.message
+        assert res.goal_region.id == "open"
+        assert REACHABLE.contains(res.path[-1]) and np.allclose(res.path[0], START)
+        assert np.allclose(res.path[-1], res.goal.q)
+        assert path_is_valid(SPACE, world, res.path, settings.resolution / 10) == -1
+        assert np.linalg.norm(np.diff(res.path, axis=0), axis=1).max() <= settings.step_size + 1e-9
+
+
+def test_the_pocket_goal_trees_are_penalised_and_more_samples_drawn():
+    # Only the enclosed pocket: its subtrees keep hitting the walls, so reward-penalty resamples.
+    settings = PlannerSettings(step_size=0.5, time_limit=0.5, algorithm="bidirectional",
+                               initial_goal_samples=4, resample_count=4)
+    world, res = run([UNREACHABLE], 0, settings)
+    assert res.status is PlanStatus.TIMEOUT
+    assert res.resamplings >= 1 and len(res.goal_samples) == 4 + 4 * res.resamplings
+    assert sum(s.penalties for s in res.goal_samples) > 0
+    assert sum(s.attempts for s in res.goal_samples) == sum(s.rewards + s.penalties for s in res.goal_samples)
+
+
+def test_keep_tree_returns_both_trees_start_first():
+    world = BoxWorld(WALLS)
+    res = solve(SPACE, world, goal_source(world, [REACHABLE]), START, BI, np.random.default_rng(2), keep_tree=True)
+    assert res.solved
+    nodes, parents, goal_side = res.tree
+    assert len(nodes) == res.tree_size and np.allclose(nodes[0], START) and parents[0] == -1
+    assert goal_side.any() and not goal_side[0]
+    roots = np.flatnonzero(parents == -1)
+    assert len(roots) == 1 + len(res.goal_samples)  # the start and one root per goal sample
+    assert all(parents[i] < i for i in range(len(parents)) if parents[i] >= 0)
+
+
+def test_same_seed_same_path():
+    _, a = run([UNREACHABLE, REACHABLE], 7)
+    _, b = run([UNREACHABLE, REACHABLE], 7)
+    assert a.solved and np.array_equal(a.path, b.path)
+
+
+def test_thin_obstacle_between_edge_checks_is_never_returned():
+    thin = [(4.0, 0.0, 4.001, 10.0)]
+    settings = PlannerSettings(step_size=2.0, edge_resolution=1.0, time_limit=0.5, algorithm="bidirectional",
+                               validation_factor=1000.0)
+    world = BoxWorld(thin)
+    res = solve(SPACE, world, goal_source(world, [REACHABLE]), START, settings, np.random.default_rng(0))
+    assert res.status is PlanStatus.TIMEOUT and res.invalid_paths_rejected >= 1
+
+
+class _BadApproach:
+    """A goal source whose samples end with an approach segment through a thin wall."""
+
+    def __init__(self, inner):
+        self.inner, self.regions, self.stats = inner, inner.regions, inner.stats
+
+    def draw(self, n, rng, deadline):
+        return [GoalSample(s.q, s.region, final=s.q + np.array([0.0, -1.5])) for s in self.inner.draw(n, rng, deadline)]
+
+    def exhausted(self):
+        return self.inner.exhausted()
+
+    @property
+    def sample_time(self):
+        return self.inner.sample_time
+
+
+@pytest.mark.parametrize("algorithm", ["rrt", "bidirectional"])
+def test_a_failing_approach_segment_retires_its_sample(algorithm):
+    # The approach from (8, 9) goes 1.5 down, through a thin wall at y = 8.2 the planner never sees.
+    walls = WALLS + [(7.0, 8.2, 9.0, 8.2001)]
+    world = BoxWorld(walls)
+    settings = PlannerSettings(step_size=0.5, time_limit=0.5, goal_bias=0.5, algorithm=algorithm, validation_factor=1000.0)
+    res = solve(SPACE, world, _BadApproach(goal_source(world, [REACHABLE])), START, settings, np.random.default_rng(1))
+    assert res.status is PlanStatus.TIMEOUT
+    assert res.invalid_paths_rejected >= 1
