@@ -22,7 +22,7 @@ import time
 from pathlib import Path
 
 from lazyground.bench import arms
-from lazyground.bench.runner import LAZYGROUND, RunSpec, execute, row_key, Progress
+from lazyground.bench.runner import ALGORITHMS, RunSpec, execute, row_key, Progress
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 SCENES_DIR = REPO_ROOT / "yaml_scenes"
@@ -31,7 +31,7 @@ TABLES = {
     1: dict(scenes=("parking_1", "parking_2"), strategies=ALL_STRATEGIES, biases=(0.05,), runs=1000,
             title="Table I: parking, computation time (s)"),
     2: dict(scenes=("fetch_cans_1", "fetch_cans_2", "fetch_boxes_3"), strategies=("consecutive", "reward-penalty"),
-            biases=(0.05, 0.5), runs=100, title="Table II: Fetch, computation time (s)",
+            biases=(0.05, 0.5), runs=100, title="Table II: Fetch, computation time (s)", algorithms=tuple(ALGORITHMS),
             requests={"fetch_cans_1": "pick up a can", "fetch_cans_2": "pick up a can", "fetch_boxes_3": "pick up a box"}),
 }
 EXIT_OK, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 2, 130
@@ -54,6 +54,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--scenes", help="comma list: scene files, names in yaml_scenes/, or arm:<dof>")
     p.add_argument("--strategies", help=f"comma list of {', '.join(ALL_STRATEGIES)}")
     p.add_argument("--biases", help="comma list of goal biases in [0, 1]")
+    p.add_argument("--algorithms", help=f"comma list of {', '.join(ALGORITHMS)} (default: rrt, the paper's; Table II: both)")
     p.add_argument("--runs", type=int, help="seeds per configuration (tables: 1000 / 100; otherwise 10)")
     p.add_argument("--time-limit", type=float, help="seconds per run (default: each scene's; arms 10)")
     p.add_argument("--request", help="the request (default: each scene's first expectation)")
@@ -112,7 +113,11 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
         notes.append(f"missing scenes (not in {SCENES_DIR.relative_to(REPO_ROOT)}/): {', '.join(missing)}")
     if not keys:
         raise BenchUsageError(f"no scene to run: {notes[0]}")
-    configs = [(LAZYGROUND, s, b) for b in biases for s in strategies]
+    algorithms = _csv_list(args.algorithms, preset.get("algorithms", ("rrt",)))
+    unknown = [a for a in algorithms if a not in ALGORITHMS]
+    if unknown:
+        raise BenchUsageError(f"unknown algorithm {unknown[0]!r} (known: {', '.join(ALGORITHMS)})")
+    configs = [(ALGORITHMS[a], s, b) for a in algorithms for b in biases for s in strategies]
     if args.peers:
         from lazyground.bench.ompl_peer import MISSING, ompl_available
 

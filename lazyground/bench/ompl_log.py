@@ -49,7 +49,9 @@ NONE_LABEL = "none"
 
 def planner_name(row: dict) -> str:
     """One OMPL "planner" per configuration; no spaces (OMPL uses the name as a table name)."""
-    base = "lazyground_" + row["strategy"] if row["planner"] == "lazyground" else row["planner"].replace("-", "_")
+    base = row["planner"].replace("-", "_")
+    if row["planner"].startswith("lazyground"):
+        base += "_" + row["strategy"]
     return base + (f"_bias{row['bias']}" if row["bias"] not in ("", None) else "")
 
 

@@ -21,6 +21,7 @@ import numpy as np
 from lazyground.bench import arms
 
 LAZYGROUND = "lazyground"
+ALGORITHMS = {"rrt": LAZYGROUND, "bidirectional": "lazyground-bidirectional"}  # algorithm -> planner column
 PEERS = ("ompl-RRT", "ompl-RRTConnect")
 
 FIELDS = (
@@ -35,7 +36,7 @@ class RunSpec:
     """One run: a scene (file path or ``arm:<dof>``), a planner configuration and a seed."""
 
     scene: str
-    planner: str  # "lazyground" or one of PEERS
+    planner: str  # one of ALGORITHMS' values (ours) or of PEERS
     strategy: str  # lazyground: a strategy name; peers: "goal-states"
     bias: float | None  # goal bias; None for RRTConnect (it has none)
     seed: int
@@ -130,7 +131,7 @@ def run(spec: RunSpec) -> dict:
             problem = Problem(problem.name, problem.scene, problem.world, spec.request)
         if problem.request is None and not problem.regions:
             raise ValueError(f"scene {problem.name} has no expect: request; give --request")
-        if spec.planner == LAZYGROUND:
+        if spec.planner in ALGORITHMS.values():
             row.update(_run_lazyground(problem, spec))
         else:
             from lazyground.bench.ompl_peer import run_peer
@@ -143,7 +144,8 @@ def run(spec: RunSpec) -> dict:
 
 
 def _run_lazyground(problem: Problem, spec: RunSpec) -> dict:
-    overrides = dict(strategy=spec.strategy, goal_bias=spec.bias, time_limit=spec.time_limit)
+    algorithm = next(a for a, name in ALGORITHMS.items() if name == spec.planner)
+    overrides = dict(strategy=spec.strategy, algorithm=algorithm, goal_bias=spec.bias, time_limit=spec.time_limit)
     if problem.regions:  # generated arm: C-space regions, no grounding
         from lazyground.api import planner_settings
         from lazyground.goals import ConfigGoalSource

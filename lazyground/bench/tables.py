@@ -57,6 +57,8 @@ def config_label(row: dict) -> str:
     """How a configuration is named in tables and plots."""
     if row["planner"] == "lazyground":
         return STRATEGY_LABEL.get(row["strategy"], row["strategy"])
+    if row["planner"] == "lazyground-bidirectional":
+        return STRATEGY_LABEL.get(row["strategy"], row["strategy"]) + " (bidirectional)"
     return row["planner"].replace("ompl-", "OMPL ")
 
 
@@ -91,11 +93,13 @@ def group(rows: list[dict]) -> dict[tuple, dict[str, list[dict]]]:
     for r in rows:
         out.setdefault((config_label(r), r["bias"]), {}).setdefault(r["scene"], []).append(r)
     order = list(STRATEGY_LABEL.values())
+    order += [f"{label} (bidirectional)" for label in order]
 
-    def rank(key):  # ours by bias then strategy as in the paper, then the peers
+    def rank(key):  # ours (one tree, then bidirectional) by bias then strategy as in the paper, then the peers
         label, bias = key
         b = float(bias) if bias not in ("", None) else 2.0
-        return (label not in order, b, order.index(label) if label in order else label)
+        ours = label in order
+        return (not ours, ours and "bidirectional" in label, b, order.index(label) if ours else label)
 
     return dict(sorted(out.items(), key=lambda kv: rank(kv[0])))
 

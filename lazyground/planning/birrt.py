@@ -6,17 +6,18 @@ drawn is the root of its own goal subtree. The two sides take turns:
 * **start turn** — the start tree takes one step towards a uniform sample; the
   goal forest then steps greedily towards the new node from its nearest node
   (whichever goal sample that subtree grows from);
-* **goal turn** — the goal-selection strategy picks a goal sample (the top of
-  the reward-penalty max-heap, or round-robin, or at random), and *that*
-  sample's subtree takes one step towards a uniform sample: a free step is a
-  reward, a blocked one a penalty, and a weight falling below the threshold
-  draws more goal samples, which become new roots (paper Sec. III-B/C). The
+* **goal turn** — with probability ``goal_bias`` the goal-selection strategy
+  picks a goal sample (the top of the reward-penalty max-heap, or round-robin,
+  or at random) and *that* sample's subtree takes one step towards a uniform
+  sample: a free step is a reward, a blocked one a penalty, and a weight
+  falling below the threshold draws more goal samples, which become new roots
+  (paper Sec. III-B/C). Otherwise the forest grows from its node nearest the
+  uniform sample, as in RRT-Connect, and nobody is credited. Either way the
   start tree then steps greedily towards the new goal node.
 
 The trees meet when a greedy connection reaches the other tree's new node; the
 path is the start branch, the goal branch back to its root sample, and that
-sample's approach segment. ``goal_bias`` is not used (as in RRT-Connect): the
-connections are the pull towards the goals.
+sample's approach segment.
 """
 
 from __future__ import annotations
@@ -55,21 +56,23 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
                     if found is not None:
                         return found
         else:
-            gi = s.select()
+            # goal turn: the strategy's goal tree grows (with probability goal_bias; credited), else the forest
+            gi = s.select() if rng.random() < s.settings.goal_bias else None
+            near = tg.nearest(q_rand, label=gi)
+            b = _extend(s, tg, near, q_rand) if near >= 0 else -1
             if gi is not None:
-                near = tg.nearest(q_rand, label=gi)
-                b = _extend(s, tg, near, q_rand) if near >= 0 else -1
                 if b < 0:
                     if near >= 0:
                         s.failed_from.append((1, near))
                     s.penalize(gi)
                 else:
                     s.reward(gi)
-                    a, reached = _connect(s, ts, tg.nodes[b])
-                    if reached:
-                        found = _join(s, ts, a, tg, b)
-                        if found is not None:
-                            return found
+            if b >= 0:
+                a, reached = _connect(s, ts, tg.nodes[b])
+                if reached:
+                    found = _join(s, ts, a, tg, b)
+                    if found is not None:
+                        return found
         start_turn = not start_turn
     return None
 

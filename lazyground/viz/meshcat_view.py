@@ -16,8 +16,9 @@ What is drawn (colours from :mod:`lazyground.viz.style`, as in the paper's Figs.
   *tracer* point: the end effector for arms, the base for mobile robots
   (with an arrow along its heading and, for the car, its footprint);
 * the tree's edges (dark blue) in the tracer's workspace, the nodes added by
-  goal-biased extensions (blue) and the origins of failed goal-biased
-  extensions (red), and the solution path (light blue).
+  goal-biased extensions (blue; with the bidirectional planner, every node of
+  the goal trees) and the origins of failed goal-biased extensions (red), and
+  the solution path (light blue).
 """
 
 from __future__ import annotations

@@ -156,7 +156,7 @@ class _View:
         nodes, _, goal_biased = self.res.tree
         xy = nodes[:, list(self.ix[:2])]
         gb = np.asarray(goal_biased, bool)
-        ax.scatter(xy[gb, 0], xy[gb, 1], s=9, color=GOAL_BIASED_RGBA, zorder=4, label="goal-biased extension")
+        ax.scatter(xy[gb, 0], xy[gb, 1], s=9, color=GOAL_BIASED_RGBA, zorder=4, label="goal-biased extension / goal tree")
         if self.res.failed_from is not None and len(self.res.failed_from):
             f = xy[np.unique(self.res.failed_from)]
             ax.scatter(f[:, 0], f[:, 1], s=22, marker="x", color=FAILED_RGBA, zorder=4, label="failed goal-biased extension from")

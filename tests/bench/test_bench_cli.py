@@ -58,6 +58,20 @@ def test_tiny_parking_run_writes_all_outputs(tmp_path, capsys):
     assert "Processing" not in capsys.readouterr().out
 
 
+def test_both_algorithms_are_rows_of_their_own(tmp_path):
+    out = tmp_path / "bench"
+    code = main(["bench", "--scenes", "parking_1", "--strategies", "reward-penalty", "--algorithms", "rrt,bidirectional",
+                 "--runs", "1", "--time-limit", "2", "--jobs", "1", "--out", str(out)])
+    assert code == 0
+    rows = _rows(out)
+    assert sorted(r["planner"] for r in rows) == ["lazyground", "lazyground-bidirectional"]
+    assert all(r["status"] in ("solved", "timeout") for r in rows)
+    table = (out / "table.md").read_text()
+    assert table.index("| Reward-Penalty | 5 |") < table.index("| Reward-Penalty (bidirectional) | 5 |")
+    exp = ompl_log.read_log(out / "ompl_parking_1.log")
+    assert set(exp.planners) == {"lazyground_reward-penalty_bias0.05", "lazyground_bidirectional_reward-penalty_bias0.05"}
+
+
 def test_ompl_statistics_script_reads_our_log(tmp_path):
     stats = pytest.importorskip("ompl._benchmark_statistics", reason="OMPL's own reader comes with the 'ompl' package")
     import sqlite3
@@ -81,8 +95,8 @@ def test_malformed_log_is_rejected(tmp_path):
 
 
 def _args(**kw):
-    base = dict(table=None, dof_sweep=False, scenes=None, strategies=None, biases=None, runs=None, time_limit=None,
-                request=None, peers=False, seed=0)
+    base = dict(table=None, dof_sweep=False, scenes=None, strategies=None, biases=None, algorithms=None, runs=None,
+                time_limit=None, request=None, peers=False, seed=0)
     base.update(kw)
     return Namespace(**base)
 
@@ -96,7 +110,8 @@ def test_table_two_names_missing_scenes():
             plan_specs(_args(table=2))
         return
     specs, notes, _ = plan_specs(_args(table=2, runs=1, time_limit=1.0))
-    assert len(specs) == len(present) * 4  # 2 strategies x 2 biases
+    assert len(specs) == len(present) * 8  # 2 algorithms x 2 strategies x 2 biases
+    assert {s.planner for s in specs} == {"lazyground", "lazyground-bidirectional"}
     missing = 3 - len(present)
     assert (len(notes) == 1) == bool(missing)
 
@@ -113,6 +128,8 @@ def test_peers_missing_is_said_clearly(monkeypatch):
 def test_bad_arguments_exit_2(tmp_path, capsys):
     assert main(["bench", "--strategies", "greedy", "--out", str(tmp_path)]) == 2
     assert "unknown strategy 'greedy'" in capsys.readouterr().err
+    assert main(["bench", "--algorithms", "prm", "--out", str(tmp_path)]) == 2
+    assert "unknown algorithm 'prm'" in capsys.readouterr().err
 
 
 def test_ctrl_c_keeps_finished_runs(tmp_path):

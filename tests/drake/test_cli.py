@@ -54,6 +54,15 @@ def test_plan_json_solves(capsys):
     assert doc["time_s"] >= doc["time_split_s"]["goal_sampling"] + doc["time_split_s"]["collision_checking"]
 
 
+def test_plan_bidirectional(capsys):
+    assert main(["plan", P1, "park", "--json", "--seed", "1", "--algorithm", "bidirectional"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["status"] == "solved" and doc["algorithm"] == "bidirectional"
+    assert doc["chosen"]["interpretation"] == f"park:{doc['chosen']['object']}"
+    assert main(["plan", P1, "park", "--seed", "1", "--algorithm", "bidirectional"]) == 0
+    assert "reward-penalty, bidirectional" in capsys.readouterr().out
+
+
 def test_plan_human_output(capsys):
     assert main(["plan", P1, "park", "--seed", "2"]) == 0
     out = capsys.readouterr().out
