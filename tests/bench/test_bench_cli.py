@@ -16,6 +16,7 @@ import pytest
 from lazyground.bench import ompl_log
 from lazyground.bench.cli import plan_specs
 from lazyground.cli import main
+from tests.reliability.test_interrupt import with_ctrl_c
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -136,7 +137,7 @@ def test_ctrl_c_keeps_finished_runs(tmp_path):
     out = tmp_path / "bench"
     cmd = [sys.executable, "-m", "lazyground", "bench", "--scenes", "parking_1", "--strategies", "reward-penalty",
            "--runs", "500", "--time-limit", "0.5", "--jobs", "1", "--out", str(out)]
-    proc = subprocess.Popen(cmd, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(cmd, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=with_ctrl_c)
     try:
         deadline = time.time() + 40
         while not ((out / "results.csv").is_file() and len(_rows(out)) >= 2):

@@ -42,8 +42,14 @@ def test_solve_returns_interrupted_with_partial_statistics():
     assert res.region_stats[0].valid > 0
 
 
+def with_ctrl_c() -> None:
+    """Give the child the default Ctrl-C: a shell running the tests in the background
+    (``pytest &``) hands its children SIGINT ignored, and Python keeps it ignored."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _popen(argv):
-    return subprocess.Popen(argv, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    return subprocess.Popen(argv, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=with_ctrl_c)
 
 
 def _interrupt(proc, after: float, within: float = 5.0):
