@@ -47,14 +47,11 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
         rooted = len(s.samples)
         s.iterations += 1
         q_rand = space.sample(rng)
+        reached = False
         if start_turn:
             a = _extend(s, ts, ts.nearest(q_rand), q_rand)
             if a >= 0:
                 b, reached = _connect(s, tg, ts.nodes[a])
-                if reached:
-                    found = _join(s, ts, a, tg, b)
-                    if found is not None:
-                        return found
         else:
             # goal turn: the strategy's goal tree grows (with probability goal_bias; credited), else the forest
             gi = s.select() if rng.random() < s.settings.goal_bias else None
@@ -69,10 +66,10 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
                     s.reward(gi)
             if b >= 0:
                 a, reached = _connect(s, ts, tg.nodes[b])
-                if reached:
-                    found = _join(s, ts, a, tg, b)
-                    if found is not None:
-                        return found
+        if reached:  # the connection reached the other tree's new node: a is b
+            found = _join(s, ts, a, tg, b)
+            if found is not None:
+                return found
         start_turn = not start_turn
     return None
 
