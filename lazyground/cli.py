@@ -14,6 +14,8 @@ import sys
 import traceback
 from pathlib import Path
 
+from lazyground.scene.schema import ALGORITHM_NAMES, STRATEGIES
+
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
 REPO_ROOT = Path(__file__).resolve().parents[1]
 
@@ -28,8 +30,8 @@ class _Parser(argparse.ArgumentParser):
 
 
 def _add_plan_options(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--strategy", choices=["reward-penalty", "consecutive", "random"], help="goal-selection strategy")
-    p.add_argument("--algorithm", choices=["rrt", "bidirectional"],
+    p.add_argument("--strategy", choices=STRATEGIES, help="goal-selection strategy")
+    p.add_argument("--algorithm", choices=ALGORITHM_NAMES,
                    help="rrt: one tree (the paper's Algorithm 1); bidirectional: start tree + a goal tree per goal sample")
     p.add_argument("--goal-bias", type=float, help="probability of a goal-biased extension (0..1)")
     p.add_argument("--step-size", type=float, help="longest extension, in the space's metric")

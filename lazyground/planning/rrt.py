@@ -106,8 +106,8 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
             node, q_new, reached = tree.add(q_next, node, True), q_next, r
         s.reward(gi)
         if reached:
-            chain = tree.chain(node)[::-1]
-            path = s.with_approach(tree.path_to(node), gi)
+            chain = tree.chain(node)[::-1]  # root .. node
+            path = s.with_approach(np.array([tree.nodes[i] for i in chain]), gi)
             bad = s.first_invalid_segment(path)
             if bad < 0:
                 return s.result(PlanStatus.SOLVED, "", path, gi)

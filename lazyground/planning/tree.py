@@ -68,10 +68,6 @@ class Tree:
             i = self.parents[i]
         return out
 
-    def path_to(self, i: int) -> np.ndarray:
-        """Configurations from the root to node ``i``."""
-        return np.array([self.nodes[j] for j in reversed(self.chain(i))])
-
     def prune(self, i: int) -> None:
         """Drop node i and its descendants from nearest-neighbour queries."""
         dead = {i}
