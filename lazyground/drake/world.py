@@ -248,14 +248,26 @@ class DrakeWorld:
         weighted metric counts an angle step w·|dθ|, never less than our chord,
         so its steps are at least as fine as ``resolution`` in our metric.
         """
+        return bool(self._edge(self.checker.CheckEdgeCollisionFree, a, b, resolution))
+
+    def edge_fraction(self, a: np.ndarray, b: np.ndarray, resolution: float) -> float:
+        """The largest t in [0, 1] with a → a + t (b - a) free at ``resolution`` (1: all free; 0: blocked at once).
+
+        Drake's ``MeasureEdgeCollisionFree``: the last free check before the first
+        collision, as OMPL's ``checkMotion(s1, s2, lastValid)``.
+        """
+        measure = self._edge(self.checker.MeasureEdgeCollisionFree, a, b, resolution)
+        return max(0.0, measure.alpha_or(0.0))
+
+    def _edge(self, check, a, b, resolution: float):
         if self.checker.edge_step_size() != resolution:
             self.checker.set_edge_step_size(resolution)
         t0 = time.perf_counter()
         a = np.asarray(a, float)
-        free = self.checker.CheckEdgeCollisionFree(self.full(a), self.full(a + self.space.difference(a, b)))
+        out = check(self.full(a), self.full(a + self.space.difference(a, b)))
         self._check_time += time.perf_counter() - t0
         self.checks += 1
-        return bool(free)
+        return out
 
     def explain(self, q: np.ndarray) -> str:
         """The colliding pairs at q, e.g. "car_body collides with wall_1"."""

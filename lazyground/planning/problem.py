@@ -41,7 +41,9 @@ class PlannerSettings:
     resample_threshold: float = 0.2
     resample_count: int = 10
     validation_factor: float = 10.0  # returned paths are re-checked at edge_resolution / this
-    goal_extension: str = "extend"  # "extend": one step (Algorithm 1); "connect": step until blocked
+    # "extend": one step, all or nothing (Algorithm 1); "partial": a blocked goal step keeps its free part
+    # (the authors' RRTGoalRegion, OMPL checkMotion's lastValid); "connect": step until blocked
+    goal_extension: str = "extend"
     algorithm: str = "rrt"  # "rrt": Algorithm 1; "bidirectional": start tree + goal forest (planning/birrt.py)
 
     @property
@@ -56,6 +58,9 @@ class ValidityChecker(Protocol):
     def configs_free(self, qs: np.ndarray) -> np.ndarray: ...
     def edge_free(self, a: np.ndarray, b: np.ndarray, resolution: float) -> bool:
         """Whether the motion a → b is free, checked no coarser than ``resolution``."""
+        ...
+    def edge_fraction(self, a: np.ndarray, b: np.ndarray, resolution: float) -> float:
+        """The largest t in [0, 1] such that a → a + t (b - a) is free at ``resolution``."""
         ...
     def explain(self, q: np.ndarray) -> str:
         """Why q is invalid, one line (e.g. the colliding pair)."""

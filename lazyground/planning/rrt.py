@@ -90,7 +90,15 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
         near = tree.nearest(q_towards)
         q_near = tree.nodes[near]
         q_new, reached = space.steer(q_near, q_towards, settings.step_size)
-        if not checker.edge_free(q_near, q_new, resolution):
+        if gi is not None and settings.goal_extension == "partial":
+            # the authors' RRTGoalRegion: a blocked goal step keeps its free part and counts as progress
+            t = checker.edge_fraction(q_near, q_new, resolution)
+            if t < 1.0:
+                reached = False
+                q_new = space.interpolate(q_near, q_new, t) if t > 0.0 else None
+        elif not checker.edge_free(q_near, q_new, resolution):
+            q_new = None
+        if q_new is None:
             if gi is not None:
                 s.failed_from.append((0, near))
                 s.penalize(gi)

@@ -113,3 +113,34 @@ def test_connect_extension_reaches_the_goal_and_stays_valid():
             assert path_is_valid(SPACE, world, res.path, settings.resolution / 10) == -1
             assert np.linalg.norm(np.diff(res.path, axis=0), axis=1).max() <= settings.step_size + 1e-9
     assert solved >= 4
+
+
+def test_partial_goal_step_keeps_its_free_part_and_is_rewarded():
+    # Start (1, 1), goal sample in the pocket around (8, 2): the 5-unit goal step meets the
+    # wall at x = 4. "partial" keeps the free part (the authors' RRTGoalRegion) and rewards
+    # the sample; the next goal step from that node is blocked at once and is penalised.
+    base = dict(step_size=5.0, edge_resolution=0.25, goal_bias=1.0, initial_goal_samples=1, goal_extension="partial")
+    world, one = run([UNREACHABLE], 0, PlannerSettings(**base, max_iterations=1))
+    assert one.tree_size == 2
+    sample = one.goal_samples[0]
+    assert (sample.attempts, sample.rewards, sample.penalties) == (1, 1, 0)
+    world, two = run([UNREACHABLE], 0, PlannerSettings(**base, max_iterations=2))
+    sample = two.goal_samples[0]
+    assert two.tree_size == 2 and (sample.attempts, sample.rewards, sample.penalties) == (2, 1, 1)
+    kept = solve(SPACE, BoxWorld(WALLS), goal_source(BoxWorld(WALLS), [UNREACHABLE]), START,
+                 PlannerSettings(**base, max_iterations=1), np.random.default_rng(0), keep_tree=True).tree[0][1]
+    assert 4.0 - 0.25 - 1e-9 <= kept[0] < 4.0  # the last free check before the wall
+    assert world.config_free(kept)
+
+
+def test_partial_extension_reaches_the_goal_and_stays_valid():
+    settings = PlannerSettings(step_size=0.5, time_limit=5.0, goal_bias=0.5, goal_extension="partial")
+    solved = 0
+    for seed in range(5):
+        world, res = run([UNREACHABLE, REACHABLE], seed, settings)
+        if res.solved:
+            solved += 1
+            assert res.goal_region.id == "open"
+            assert path_is_valid(SPACE, world, res.path, settings.resolution / 10) == -1
+            assert np.linalg.norm(np.diff(res.path, axis=0), axis=1).max() <= settings.step_size + 1e-9
+    assert solved >= 4

@@ -39,6 +39,14 @@ class BoxWorld:
     def edge_free(self, a, b, resolution) -> bool:
         return bool(np.all(self.configs_free(SPACE.discretize(a, b, resolution, skip_first=True))))
 
+    def edge_fraction(self, a, b, resolution) -> float:
+        qs = SPACE.discretize(a, b, resolution)
+        free = self.configs_free(qs)
+        if free.all():
+            return 1.0
+        first_bad = int(np.argmin(free))
+        return max(0, first_bad - 1) / (len(qs) - 1)
+
     def explain(self, q) -> str:
         return "point inside a box"
 
