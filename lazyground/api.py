@@ -65,7 +65,8 @@ class PlanReport:
 
 
 def planner_settings(scene: Scene, **overrides) -> PlannerSettings:
-    """The scene's planner defaults with non-None overrides applied."""
+    """The scene's planner defaults, then its ``per_algorithm`` settings for the algorithm
+    that will run, then the non-None ``overrides``."""
     spec = scene.planner
     base = PlannerSettings(
         strategy=spec.strategy,
@@ -78,11 +79,15 @@ def planner_settings(scene: Scene, **overrides) -> PlannerSettings:
         initial_goal_samples=spec.initial_goal_samples,
         resample_threshold=spec.resample_threshold,
         resample_count=spec.resample_count,
+        goal_extension=spec.goal_extension,
     )
     known = {f.name for f in fields(PlannerSettings)}
     unknown = set(overrides) - known
     if unknown:
         raise TypeError(f"unknown planner settings: {', '.join(sorted(unknown))}")
+    per = spec.per_algorithm.get(overrides.get("algorithm") or spec.algorithm)
+    if per is not None:
+        base = replace(base, **{f.name: getattr(per, f.name) for f in fields(per) if getattr(per, f.name) is not None})
     return replace(base, **{k: v for k, v in overrides.items() if v is not None})
 
 

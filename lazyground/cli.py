@@ -14,7 +14,7 @@ import sys
 import traceback
 from pathlib import Path
 
-from lazyground.scene.schema import ALGORITHM_NAMES, STRATEGIES
+from lazyground.scene.schema import ALGORITHM_NAMES, GOAL_EXTENSIONS, STRATEGIES
 
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
 REPO_ROOT = Path(__file__).resolve().parents[1]
@@ -35,6 +35,8 @@ def _add_plan_options(p: argparse.ArgumentParser) -> None:
                    help="rrt: one tree (the paper's Algorithm 1); bidirectional: start tree + a goal tree per goal sample")
     p.add_argument("--goal-bias", type=float, help="probability of a goal-biased extension (0..1)")
     p.add_argument("--step-size", type=float, help="longest extension, in the space's metric")
+    p.add_argument("--goal-extension", choices=GOAL_EXTENSIONS,
+                   help="one-tree planner's goal step: partial (keep the free part; the authors' planner), extend, connect")
     p.add_argument("--seed", type=int, help="random seed (default: the scene's)")
     p.add_argument("--time-limit", type=float, help="seconds")
 
@@ -134,6 +136,7 @@ def cmd_plan(args) -> int:
     report = api.plan(
         scene, args.request, seed=args.seed, keep_tree=visual,
         strategy=args.strategy, algorithm=args.algorithm, goal_bias=args.goal_bias, step_size=args.step_size, time_limit=args.time_limit,
+        goal_extension=args.goal_extension,
     )
     if args.json:
         print(json.dumps(report_to_json(report)))

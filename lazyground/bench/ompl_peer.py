@@ -113,11 +113,13 @@ def run_peer(problem, spec) -> dict:
     deadline = t0 + spec.time_limit
     world = problem.world
     regions, grounding_s = problem.ground()
+    # each peer runs with the scene's settings for its counterpart: RRT ~ our one tree, RRTConnect ~ two trees
+    counterpart = "rrt" if spec.planner == "ompl-RRT" else "bidirectional"
     if problem.regions:
-        settings = planner_settings(problem.scene, edge_resolution=arms.EDGE_RESOLUTION)
+        settings = planner_settings(problem.scene, edge_resolution=arms.EDGE_RESOLUTION, algorithm=counterpart)
         source = ConfigGoalSource(regions, world.space, world)
     else:
-        settings = planner_settings(problem.scene)
+        settings = planner_settings(problem.scene, algorithm=counterpart)
         source = make_goal_source(world, regions)
     rng = np.random.default_rng(spec.seed)
     samples = []

@@ -27,6 +27,13 @@ class PlanStatus(str, enum.Enum):
         return self.value
 
 
+GOAL_EXTENSIONS = ("partial", "extend", "connect")
+"""How the one-tree planner's goal-biased step goes: "partial" keeps the free part of a
+blocked step and rewards the goal sample if it moved at all (the authors' RRTGoalRegion in
+MoveIt, OMPL ``checkMotion``'s last valid state); "extend" is one step, all or nothing;
+"connect" repeats free steps towards the goal sample until blocked or there."""
+
+
 @dataclass(frozen=True)
 class PlannerSettings:
     """Plain settings of the reward-penalty RRT (defaults as in the authors' code)."""
@@ -41,10 +48,12 @@ class PlannerSettings:
     resample_threshold: float = 0.2
     resample_count: int = 10
     validation_factor: float = 10.0  # returned paths are re-checked at edge_resolution / this
-    # "extend": one step, all or nothing (Algorithm 1); "partial": a blocked goal step keeps its free part
-    # (the authors' RRTGoalRegion, OMPL checkMotion's lastValid); "connect": step until blocked
-    goal_extension: str = "extend"
+    goal_extension: str = "partial"  # one of GOAL_EXTENSIONS (the one-tree planner's goal-biased step)
     algorithm: str = "rrt"  # "rrt": Algorithm 1; "bidirectional": start tree + goal forest (planning/birrt.py)
+
+    def __post_init__(self):
+        if self.goal_extension not in GOAL_EXTENSIONS:
+            raise ValueError(f"unknown goal_extension {self.goal_extension!r} (known: {', '.join(GOAL_EXTENSIONS)})")
 
     @property
     def resolution(self) -> float:

@@ -10,6 +10,7 @@ import math
 from dataclasses import dataclass, field
 
 from lazyground.geometry import Pose
+from lazyground.planning.problem import GOAL_EXTENSIONS
 from lazyground.scene.typed_yaml import checked, in_range, non_negative, positive
 
 OBJECT_TYPES_HINT = "can, box, cup, bottle, table, shelf, parking_spot, ..."
@@ -127,8 +128,30 @@ class RobotSpec:
 
 
 @dataclass(frozen=True)
+class AlgorithmSpec:
+    """Settings that apply only when one algorithm runs; keys left out keep the scene's."""
+
+    step_size: float | None = checked(positive, default=None)
+    edge_resolution: float | None = checked(positive, default=None)
+    goal_extension: str | None = None
+
+    def validate(self) -> str | None:
+        return _goal_extension_problem(self.goal_extension)
+
+
+def _goal_extension_problem(name: str | None) -> str | None:
+    if name is not None and name not in GOAL_EXTENSIONS:
+        return f"goal_extension: unknown goal extension {name!r} (known: {', '.join(GOAL_EXTENSIONS)})"
+    return None
+
+
+@dataclass(frozen=True)
 class PlannerSpec:
-    """Planner defaults for this scene; the CLI and API may override each."""
+    """Planner defaults for this scene; the CLI and API may override each.
+
+    ``per_algorithm`` holds settings for one algorithm only, e.g. the one-tree
+    planner's longer step on the Fetch scenes: ``{rrt: {step_size: 2.65}}``.
+    """
 
     strategy: str = "reward-penalty"
     algorithm: str = "rrt"  # "rrt" (Algorithm 1) or "bidirectional" (start tree + goal forest)
@@ -142,13 +165,18 @@ class PlannerSpec:
     resample_threshold: float = checked(in_range(0.0, 1.0), default=0.2)
     resample_count: int = checked(positive, default=10)
     collision_padding: float = checked(non_negative, default=0.0)
+    goal_extension: str = "partial"
+    per_algorithm: dict[str, AlgorithmSpec] = field(default_factory=dict)
 
     def validate(self) -> str | None:
         if self.strategy not in STRATEGIES:
             return f"strategy: unknown strategy {self.strategy!r} (known: {', '.join(STRATEGIES)})"
         if self.algorithm not in ALGORITHM_NAMES:
             return f"algorithm: unknown algorithm {self.algorithm!r} (known: {', '.join(ALGORITHM_NAMES)})"
-        return None
+        for name in self.per_algorithm:
+            if name not in ALGORITHM_NAMES:
+                return f"per_algorithm.{name}: unknown algorithm (known: {', '.join(ALGORITHM_NAMES)})"
+        return _goal_extension_problem(self.goal_extension)
 
 
 @dataclass(frozen=True)

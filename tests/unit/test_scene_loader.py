@@ -94,3 +94,19 @@ def test_model_path_relative_to_scene(tmp_path):
     scene_file = tmp_path / "s.yaml"
     scene_file.write_text("name: x\nrobot: {model: m/r.urdf, start: {}}\n")
     assert load_scene(scene_file).robot.model == str((tmp_path / "m/r.urdf").resolve())
+
+
+def test_per_algorithm_settings_apply_only_to_their_algorithm():
+    from lazyground.api import planner_settings
+
+    text = "name: x\n" + CAR + (
+        "planner: {algorithm: bidirectional, step_size: 0.5, edge_resolution: 0.05, goal_extension: extend,\n"
+        "  per_algorithm: {rrt: {step_size: 2.65, goal_extension: partial}}}\n"
+    )
+    scene = parse_scene(text, "ok.yaml", ROOT)
+    two = planner_settings(scene)  # the scene's own algorithm: no per-algorithm settings for it
+    assert (two.algorithm, two.step_size, two.resolution, two.goal_extension) == ("bidirectional", 0.5, 0.05, "extend")
+    one = planner_settings(scene, algorithm="rrt")
+    assert (one.step_size, one.resolution, one.goal_extension) == (2.65, 0.05, "partial")
+    explicit = planner_settings(scene, algorithm="rrt", step_size=1.0, goal_extension="connect")
+    assert (explicit.step_size, explicit.goal_extension) == (1.0, "connect")  # the caller's word is last
