@@ -129,3 +129,21 @@ def test_pick_up_a_can_end_to_end(cans1):
     region = res.goal_region
     v = region_coordinates(region, IKGoalSource((region,), world).frame_pose(region.frame, world.full(res.goal.end)))
     assert region.contains(v, tol=0.01)
+
+
+def test_samples_of_one_region_are_not_copies_of_one_ik_branch(boxes3):
+    # Resampling only helps the planner if new samples can be new ways in: the samples of one
+    # region must spread over the region's IK branches, not sit on the last solution's.
+    scene, world = boxes3
+    regions = grounding.ground("pick up a box", scene).goal_regions
+    source = IKGoalSource(regions, world)
+    samples = source.draw(40, np.random.default_rng(0), time.perf_counter() + 60)
+    nearest = []
+    for j in {s.region for s in samples}:
+        q = np.array([s.q for s in samples if s.region == j])
+        if len(q) > 1:
+            d = np.linalg.norm(q[:, None] - q[None], axis=2)
+            np.fill_diagonal(d, np.inf)
+            nearest += list(d.min(axis=1))
+    assert len(nearest) >= 10
+    assert np.median(nearest) > 0.3  # rad; warm-started samples measured 0.02
