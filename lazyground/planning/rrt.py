@@ -73,6 +73,7 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
     tree.add_root(start)
     s.trees = [tree]
     resolution = settings.resolution
+    blocked: set[tuple[int, int]] = set()  # (node, goal sample) whose goal step was blocked at once
     while s.time_left():
         if not s.have_samples():  # nothing valid yet: keep sampling goals lazily until told it is hopeless
             if s.goals.exhausted():
@@ -90,7 +91,9 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
         near = tree.nearest(q_towards)
         q_near = tree.nodes[near]
         q_new, reached = space.steer(q_near, q_towards, settings.step_size)
-        if gi is not None and settings.goal_extension == "partial":
+        if gi is not None and (near, gi) in blocked:
+            q_new = None  # the same edge as before: its answer has not changed
+        elif gi is not None and settings.goal_extension == "partial":
             # the authors' RRTGoalRegion: a blocked goal step keeps its free part and counts as progress
             t = checker.edge_fraction(q_near, q_new, resolution)
             if t < 1.0:
@@ -100,6 +103,7 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
             q_new = None
         if q_new is None:
             if gi is not None:
+                blocked.add((near, gi))
                 s.failed_from.append((0, near))
                 s.penalize(gi)
             continue

@@ -144,3 +144,22 @@ def test_partial_extension_reaches_the_goal_and_stays_valid():
             assert path_is_valid(SPACE, world, res.path, settings.resolution / 10) == -1
             assert np.linalg.norm(np.diff(res.path, axis=0), axis=1).max() <= settings.step_size + 1e-9
     assert solved >= 4
+
+
+def test_a_goal_step_blocked_at_once_is_not_checked_again_from_the_same_node():
+    # Iteration 1 moves up to the wall (checked), iteration 2 is blocked at once (checked);
+    # iterations 3-5 repeat that same edge: penalised again without another check.
+    class Counting(BoxWorld):
+        calls = 0
+
+        def edge_fraction(self, a, b, resolution):
+            Counting.calls += 1
+            return super().edge_fraction(a, b, resolution)
+
+    world = Counting(WALLS)
+    settings = PlannerSettings(step_size=5.0, edge_resolution=0.25, goal_bias=1.0, initial_goal_samples=1,
+                               resample_count=1, max_iterations=5)
+    res = solve(SPACE, world, goal_source(world, [UNREACHABLE]), START, settings, np.random.default_rng(0))
+    sample = res.goal_samples[0]
+    assert (sample.attempts, sample.rewards, sample.penalties) == (5, 1, 4)
+    assert Counting.calls == 2 and res.tree_size == 2
