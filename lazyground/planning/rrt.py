@@ -73,7 +73,7 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
     tree.add_root(start)
     s.trees = [tree]
     resolution = settings.resolution
-    blocked: set[tuple[int, int]] = set()  # (node, goal sample) whose goal step was blocked at once
+    blocked: set[tuple[int, int]] = set()  # (node, goal sample): goal step blocked at once, or its path rejected
     while s.time_left():
         if not s.have_samples():  # nothing valid yet: keep sampling goals lazily until told it is hopeless
             if s.goals.exhausted():
@@ -125,6 +125,7 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
                 return s.result(PlanStatus.SOLVED, "", path, gi)
             if bad + 1 < len(chain):  # a thin obstacle slipped between edge checks: cut the branch
                 tree.prune(chain[bad + 1])
+                blocked.add((chain[bad], gi))  # and never step the same edge towards this sample again
             else:  # the sample's own approach segment
                 s.dead.add(gi)
     return None

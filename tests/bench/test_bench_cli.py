@@ -111,8 +111,10 @@ def test_table_two_names_missing_scenes():
             plan_specs(_args(table=2))
         return
     specs, notes, _ = plan_specs(_args(table=2, runs=1, time_limit=1.0))
-    assert len(specs) == len(present) * 8  # 2 algorithms x 2 strategies x 2 biases
-    assert {s.planner for s in specs} == {"lazyground", "lazyground-bidirectional"}
+    assert len(specs) == len(present) * 4  # the paper's layout: 2 strategies x 2 biases, Algorithm 1
+    assert {s.planner for s in specs} == {"lazyground"}
+    both, _, _ = plan_specs(_args(table=2, runs=1, time_limit=1.0, algorithms="rrt,bidirectional"))
+    assert len(both) == len(present) * 8 and {s.planner for s in both} == {"lazyground", "lazyground-bidirectional"}
     missing = 3 - len(present)
     assert (len(notes) == 1) == bool(missing)
 

@@ -163,3 +163,17 @@ def test_a_goal_step_blocked_at_once_is_not_checked_again_from_the_same_node():
     sample = res.goal_samples[0]
     assert (sample.attempts, sample.rewards, sample.penalties) == (5, 1, 4)
     assert Counting.calls == 2 and res.tree_size == 2
+
+
+def test_a_rejected_goal_edge_is_not_rebuilt_from_the_same_node():
+    # A wall thinner than the edge checks: the goal step from the start passes them, the fine
+    # re-check rejects the path and cuts the new node. The start is still the goal sample's
+    # nearest node, so the next goal step would be the very same edge: it must not be rebuilt
+    # and re-checked (a livelock measured on fetch_boxes_3: 288 rejections of one edge in 30 s).
+    thin = [(4.0, 0.0, 4.001, 10.0)]
+    settings = PlannerSettings(step_size=20.0, edge_resolution=1.0, validation_factor=1000.0, goal_bias=1.0,
+                               initial_goal_samples=1, resample_count=1, max_iterations=30)
+    world = BoxWorld(thin)
+    res = solve(SPACE, world, goal_source(world, [REACHABLE]), START, settings, np.random.default_rng(0))
+    assert res.status is PlanStatus.TIMEOUT
+    assert 1 <= res.invalid_paths_rejected <= len(res.goal_samples) < res.iterations
