@@ -61,9 +61,11 @@ def car_robot(x, y, heading, width, height):
 
 
 def planner(step=2.0, time_limit=10.0):
-    # 2 m extensions, collision-checked every 0.1 m (measured fastest of 1-4 m on both lots)
+    # 2 m extensions, collision-checked every 0.1 m (measured fastest of 1-4 m on both lots). Goal steps
+    # all or nothing, as Algorithm 1 reads: on parking_1 that beat keeping the free part of a blocked step
+    # (reward-penalty, 300 seeds: 0.037 s vs 0.046 s mean; parking_2 0.159 vs 0.162 s).
     return {"strategy": "reward-penalty", "goal_bias": 0.05, "step_size": step, "edge_resolution": 0.1,
-            "time_limit": time_limit, "seed": 0}
+            "time_limit": time_limit, "seed": 0, "goal_extension": "extend"}
 
 
 def parking_1() -> dict:

@@ -29,6 +29,8 @@ class ConfigSpace:
     _w2: np.ndarray = field(init=False, repr=False)
     _w2_lin: np.ndarray = field(init=False, repr=False)
     _w2_ang: np.ndarray = field(init=False, repr=False)
+    _w_lin: np.ndarray = field(init=False, repr=False)
+    _w_ang: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self):
         n = len(self.names)
@@ -48,6 +50,8 @@ class ConfigSpace:
         object.__setattr__(self, "_w2", weights**2)
         object.__setattr__(self, "_w2_lin", weights[~wrap] ** 2)
         object.__setattr__(self, "_w2_ang", weights[wrap] ** 2)
+        object.__setattr__(self, "_w_lin", weights[~wrap])
+        object.__setattr__(self, "_w_ang", weights[wrap])
 
     @property
     def dim(self) -> int:
@@ -63,10 +67,10 @@ class ConfigSpace:
     def embed(self, q: np.ndarray) -> np.ndarray:
         """Points whose Euclidean distance is the space's metric (rows or one vector)."""
         q = np.asarray(q, float)
-        lin = q[..., self._lin] * self.weights[self._lin]
+        lin = q[..., self._lin] * self._w_lin
         if not len(self._ang):
             return lin
-        a, w = q[..., self._ang], self.weights[self._ang]
+        a, w = q[..., self._ang], self._w_ang
         return np.concatenate([lin, w * np.cos(a), w * np.sin(a)], axis=-1)
 
     def difference(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -82,7 +86,10 @@ class ConfigSpace:
         An angle difference d weighted w contributes the chord (2 w sin(d/2))^2
         = 2 w^2 (1 - cos d), which needs no wrapping.
         """
-        d = np.subtract(b, a)
+        return self._length(np.subtract(b, a))
+
+    def _length(self, d: np.ndarray) -> float:
+        """The metric length of a difference vector (angles wrapped or not: the chord ignores turns)."""
         if not len(self._ang):
             return float(np.sqrt(np.dot(self._w2, d * d)))
         lin = d[self._lin]
@@ -104,10 +111,14 @@ class ConfigSpace:
 
     def steer(self, a: np.ndarray, b: np.ndarray, step: float) -> tuple[np.ndarray, bool]:
         """Move from a towards b by at most ``step``; returns (q, reached_b)."""
-        d = self.distance(a, b)
+        diff = self.difference(a, b)
+        d = self._length(diff)
         if d <= step:
             return np.array(b, float), True
-        return self.interpolate(a, b, step / d), False
+        q = np.asarray(a, float) + (step / d) * diff  # as interpolate(a, b, step / d), sharing the difference
+        if len(self._ang):
+            q[self._ang] = wrap_angle(q[self._ang])
+        return q, False
 
     def clip(self, q: np.ndarray) -> np.ndarray:
         return np.clip(q, self.lower, self.upper)

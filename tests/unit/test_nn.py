@@ -1,13 +1,17 @@
 """Nearest neighbours: exact against brute force across rebuild boundaries and removals."""
 
 import numpy as np
+import pytest
 
 from lazyground.planning.nn import NearestNeighbors
 
+PATHS = pytest.mark.parametrize("brute_limit", [0, 1024], ids=["k-d trees", "scan first"])
 
-def test_exact_nearest_through_growth():
+
+@PATHS
+def test_exact_nearest_through_growth(brute_limit):
     rng = np.random.default_rng(0)
-    nn = NearestNeighbors(4, capacity=8, buffer=16)
+    nn = NearestNeighbors(4, capacity=8, buffer=16, brute_limit=brute_limit)
     pts = rng.random((3000, 4))
     for i, p in enumerate(pts):
         if i:
@@ -19,9 +23,10 @@ def test_exact_nearest_through_growth():
     assert len(nn) == 3000
 
 
-def test_removed_points_are_never_returned():
+@PATHS
+def test_removed_points_are_never_returned(brute_limit):
     rng = np.random.default_rng(1)
-    nn = NearestNeighbors(2, buffer=8)
+    nn = NearestNeighbors(2, buffer=8, brute_limit=brute_limit)
     pts = rng.random((200, 2))
     for p in pts:
         nn.add(p)
