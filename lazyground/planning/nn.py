@@ -28,7 +28,7 @@ class NearestNeighbors:
     """
 
     def __init__(self, dim: int, capacity: int = 1024, buffer: int = 256, recent_fraction: float = 0.25,
-                 brute_limit: int = 1024):
+                 brute_limit: int = 1024, buffer_fraction: float = 1 / 64):
         self._points = np.empty((capacity, dim))
         self._sq = np.empty(capacity)  # squared norms of the points
         self._size = 0
@@ -36,7 +36,8 @@ class NearestNeighbors:
         self._main_end = 0  # points [0, _main_end) are in the main tree
         self._recent: cKDTree | None = None
         self._recent_end = 0  # points [_main_end, _recent_end) are in the recent tree
-        self._buffer = buffer
+        self._buffer = buffer  # at least this many inserts between rebuilds of the recent tree ...
+        self._buffer_fraction = buffer_fraction  # ... or this fraction of the points, whichever is more
         self._fraction = recent_fraction
         self._brute_limit = brute_limit
 
@@ -59,7 +60,9 @@ class NearestNeighbors:
         self._size += 1
         if self._size <= self._brute_limit:
             return self._size - 1
-        if self._size - self._recent_end >= self._buffer:
+        # The recent tree holds up to recent_fraction of the points; rebuilding it every n/64 inserts
+        # (not every 256) keeps its amortised cost flat as n grows, for a buffer scan of n/64 points.
+        if self._size - self._recent_end >= max(self._buffer, self._buffer_fraction * self._size):
             if self._size - self._main_end > self._fraction * self._main_end:
                 self._rebuild_main()
             else:
