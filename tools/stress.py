@@ -3,7 +3,7 @@
     python3 tools/stress.py                      # $LAZYGROUND_STRESS_RUNS runs (default 40)
     python3 tools/stress.py --runs 1000 --jobs 2 --out stress.json
 
-Every run varies the scene, seed, goal-selection strategy and goal bias
+Every run varies the scene, seed, planner, goal-selection strategy and goal bias
 (drawn from ``--seed``, so the list of runs is reproducible). Every solved
 path is re-checked at a tenth of the planner's edge resolution
 (``path_is_valid``); pick-and-place reports are re-checked with
@@ -33,6 +33,7 @@ if str(REPO) not in sys.path:
 
 STRATEGIES = ("reward-penalty", "consecutive", "random")
 BIASES = (0.05, 0.1, 0.2, 0.5)
+ALGORITHMS = ("rrt", "bidirectional")  # both planners on every scene, each with the scene's settings for it
 PARKING_LIMIT = 5.0  # s: parking solves in 1-2 s; the cap keeps a rare slow run short
 FETCH_LIMITS = {"pick": 2.0, "place": 3.0}  # s: short on purpose; timeouts are fine, invalid paths are not
 PARKING_SHARE = 0.85
@@ -51,6 +52,7 @@ class StressRun:
     strategy: str
     goal_bias: float
     time_limit: float
+    algorithm: str = "rrt"
 
 
 def bundled_scenes() -> tuple[list[tuple[str, str]], list[tuple[str, str]], list[str]]:
@@ -88,7 +90,7 @@ def plan_runs(n: int, seed: int = 0, parking_share: float = PARKING_SHARE) -> tu
         else:
             limit = FETCH_LIMITS["place" if request.split()[0] in ("put", "place", "set", "move") else "pick"]
         runs.append(StressRun(i, name, request, int(rng.integers(2**31)), STRATEGIES[i % len(STRATEGIES)],
-                              float(BIASES[rng.integers(len(BIASES))]), limit))
+                              float(BIASES[rng.integers(len(BIASES))]), limit, ALGORITHMS[(i // len(STRATEGIES)) % 2]))
     return runs, notes
 
 
@@ -137,7 +139,7 @@ def run_one(run: StressRun) -> dict:
     try:
         scene, world = _scene_and_world(run.scene)
         report = api.plan(scene, run.request, seed=run.seed, world=world, strategy=run.strategy,
-                          goal_bias=run.goal_bias, time_limit=run.time_limit)
+                          goal_bias=run.goal_bias, time_limit=run.time_limit, algorithm=run.algorithm)
         res = report.result
         out.update(status=res.status.value, time_s=round(report.time_s, 4),
                    overshoot=round(report.time_s / run.time_limit - 1.0, 4), rejected=res.invalid_paths_rejected)
@@ -208,7 +210,7 @@ def figures_lines(summary: dict, wall_s: float | None = None) -> list[str]:
     ]
     w = s["worst_overshoot"]
     if w is not None:
-        lines.append(f"  worst overshoot: run {w['index']} {w['scene']} ({w['request']!r}, seed {w['seed']}, {w['strategy']}, "
+        lines.append(f"  worst overshoot: run {w['index']} {w['scene']} ({w['request']!r}, seed {w['seed']}, {w['algorithm']}, {w['strategy']}, "
                      f"bias {w['goal_bias']:g}): {w['status']} after {w['time_s']:.3f} s of {w['time_limit']:g} s")
     for name, st in sorted(s["per_scene"].items()):
         lines.append(f"  {name}: {st['runs']} runs, {st['solved']} solved, {st['timeout']} timeouts")

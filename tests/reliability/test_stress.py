@@ -26,6 +26,7 @@ def test_run_list_is_seeded_and_mixed():
     b, _ = stress.plan_runs(60, seed=5)
     assert a == b
     assert {r.strategy for r in a} == set(stress.STRATEGIES)
+    assert {(r.scene.startswith("parking"), r.algorithm) for r in a} == {(p, alg) for p in (True, False) for alg in stress.ALGORITHMS}
     assert len({r.goal_bias for r in a}) > 1
     scenes = [r.scene for r in a]
     assert sum(s.startswith("parking") for s in scenes) > len(scenes) / 2
