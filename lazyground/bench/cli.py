@@ -223,7 +223,7 @@ def write_outputs(rows: list[dict], out: Path, title: str, notes: list[str], tot
     """table.md, boxplots.png, ompl_<scene>.log (and dof_sweep.png) from the finished rows."""
     from lazyground.bench import ompl_log, tables
 
-    md = [tables.markdown_table(rows, f"## {title}"), "## Where the time goes (solved runs, mean seconds)\n", tables.time_split_table(rows)]
+    md = [tables.markdown_table(rows, f"## {title}"), "## Where the time goes (every finished run, mean seconds)\n", tables.time_split_table(rows)]
     md += [f"Note: {n}\n" for n in notes]
     (out / "table.md").write_text("\n".join(md))
     print("\n".join(md))

@@ -76,15 +76,13 @@ class Stats:
     std: float
     median: float
     success: float  # fraction solved
-    other_share: float  # mean of other_s / time_s over solved runs (planner's own time share)
 
     @staticmethod
     def of(rows: list[dict]) -> "Stats":
         t = np.array([counted_time(r) for r in rows])
-        solved = [r for r in rows if r["status"] == "solved"]
-        share = [float(r["other_s"]) / float(r["time_s"]) for r in solved if float(r["time_s"]) > 0]
+        solved = sum(r["status"] == "solved" for r in rows)
         return Stats(len(rows), float(t.mean()), float(t.std(ddof=1)) if len(t) > 1 else 0.0, float(np.median(t)),
-                     len(solved) / len(rows), float(np.mean(share)) if share else float("nan"))
+                     solved / len(rows))
 
 
 def group(rows: list[dict]) -> dict[tuple, dict[str, list[dict]]]:
@@ -137,18 +135,24 @@ def markdown_table(rows: list[dict], title: str = "") -> str:
 
 
 def time_split_table(rows: list[dict]) -> str:
-    """Where the time goes (solved runs): mean seconds and shares of grounding, goal sampling, collision, the rest."""
-    rows = [r for r in rows if r["status"] == "solved"]
+    """Where the time goes, over every finished run (timeouts too: their time is planning time as well):
+    mean seconds of grounding, goal sampling, collision checking and the rest, and the rest's share of the
+    total time (the planner's own time)."""
+    rows = [r for r in rows if r["status"] != "interrupted"]
     if not rows:
-        return "(no solved runs)\n"
-    head = ["Scene", "Strategy", "Bias %", "runs", "time", "grounding", "goal sampling", "collision", "other", "other share"]
+        return "(no finished runs)\n"
+    head = ["Scene", "Strategy", "Bias %", "runs", "solved", "time", "grounding", "goal sampling", "collision", "other",
+            "other share"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    scenes = scenes_of(rows)
     for (label, bias), per_scene in group(rows).items():
-        for scene, rs in per_scene.items():
+        for scene in [s for s in scenes if s in per_scene]:
+            rs = per_scene[scene]
             m = {k: np.mean([float(r[k]) for r in rs]) for k in ("time_s", "grounding_s", "goal_sampling_s", "collision_s", "other_s")}
-            share = Stats.of(rs).other_share
+            share = m["other_s"] / m["time_s"] if m["time_s"] > 0 else float("nan")
+            solved = sum(r["status"] == "solved" for r in rs)
             b = f"{float(bias) * 100:g}" if bias not in ("", None) else "-"
-            lines.append(f"| {scene} | {label} | {b} | {len(rs)} | {m['time_s']:.3f} | {m['grounding_s']:.3f} | "
+            lines.append(f"| {scene} | {label} | {b} | {len(rs)} | {solved} | {m['time_s']:.3f} | {m['grounding_s']:.3f} | "
                          f"{m['goal_sampling_s']:.3f} | {m['collision_s']:.3f} | {m['other_s']:.3f} | {share * 100:.0f}% |")
     return "\n".join(lines) + "\n"
 

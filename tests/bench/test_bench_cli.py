@@ -157,3 +157,20 @@ def test_ctrl_c_keeps_finished_runs(tmp_path):
     assert all(r["status"] in ("solved", "timeout") for r in kept)
     assert "interrupted: kept" in err
     assert (out / "table.md").is_file()
+
+
+def test_time_split_counts_timeouts_and_keeps_scene_order():
+    from lazyground.bench.tables import time_split_table
+
+    def row(scene, status, time_s, other_s):
+        return {"scene": scene, "planner": "lazyground", "strategy": "reward-penalty", "bias": "0.05", "status": status,
+                "time_s": time_s, "grounding_s": 0.0, "goal_sampling_s": 0.0, "collision_s": time_s - other_s,
+                "other_s": other_s, "time_limit": 10.0}
+
+    rows = [row("b", "timeout", 10.0, 4.0), row("a", "solved", 1.0, 0.1), row("b", "solved", 2.0, 0.0),
+            row("a", "interrupted", 5.0, 5.0)]
+    lines = [l for l in time_split_table(rows).splitlines() if l.startswith("| a") or l.startswith("| b")]
+    assert [l.split(" | ")[0] for l in lines] == ["| b", "| a"]  # first appearance, as in the main table
+    b = lines[0].split(" | ")
+    assert b[3:6] == ["2", "1", "6.000"] and b[-1] == "33% |"  # (4 + 0) / (10 + 2): the timeout counts
+    assert lines[1].split(" | ")[3] == "1"  # the interrupted run is left out
