@@ -5,8 +5,10 @@ planar arm at 0.5 m height) with box links whose total length is ``REACH``, so
 every arm covers the same workspace and only the dimension changes. The scene
 is a ring of vertical posts around the arm (seeded, the same for every DOF).
 Goal regions are C-space boxes (no IK cost): ``GOALS`` of them, centred on
-seeded smooth arm shapes; a region whose centre is in collision is labelled
-"blocked" (its samples are nearly all invalid), the others "free". Which free
+seeded smooth arm shapes that are the same curves at every DOF (a DOF only
+changes how finely a shape is jointed, so the sweep compares dimensions, not
+layouts); a region whose centre is in collision is labelled "blocked" (its
+samples are nearly all invalid), the others "free". Which free
 regions the planner can actually reach is left to the planner to find out,
 as in the paper's scenes.
 
@@ -34,7 +36,8 @@ POSTS = 10
 POST_RADIUS = 0.05
 GOALS = 6
 GOAL_HALF_WIDTH = 0.05  # radians, per joint
-SCENE_SEED = 7
+SCENE_SEED = 7  # the posts
+GOAL_SEED = 8  # the goal shapes: the first seed whose centres are free or blocked alike at every DOF, a third blocked
 STEP_SIZE = 1.0  # radians, Euclidean over all joints
 EDGE_RESOLUTION = 0.05
 
@@ -119,13 +122,34 @@ def arm_scene(dof: int, folder=None, time_limit: float = 10.0) -> Scene:
     return Scene(name=f"arm_{dof}", robot=robot, description=f"{dof}-DOF planar arm among {POSTS} posts", obstacles=obstacles, planner=planner, source=f"<generated arm_{dof}>")
 
 
-def goal_centres(dof: int, seed: int = SCENE_SEED) -> np.ndarray:
-    """Seeded smooth arm shapes: a base angle and gently bent joints (total bend ~ constant in DOF)."""
-    rng = np.random.default_rng([seed, dof])
-    per_joint = min(0.8, 6.0 / dof)
-    q = rng.uniform(-per_joint, per_joint, size=(GOALS, dof))
-    q[:, 0] = np.linspace(-0.8 * math.pi, 0.8 * math.pi, GOALS) + rng.uniform(-0.2, 0.2, GOALS)
+def goal_centres(dof: int, seed: int = GOAL_SEED) -> np.ndarray:
+    """Seeded smooth arm shapes, the same curves at every DOF: a base angle and a seeded curvature profile
+    along the chain; each joint bends by the curvature integrated over the half links beside it, so ``dof``
+    only changes how finely one shape is jointed (and the sweep compares dimensions, not layouts)."""
+    rng = np.random.default_rng(seed)
+    base = np.linspace(-0.8 * math.pi, 0.8 * math.pi, GOALS) + rng.uniform(-0.2, 0.2, GOALS)
+    # curvature k(s) = a0 + a1 sin(pi s + p1) + a2 sin(2 pi s + p2) rad per chain length, s in [0, 1]; |k| <= 10.5 < TOTAL_BEND
+    a = rng.uniform(-3.5, 3.5, size=(GOALS, 3))
+    phase = rng.uniform(0.0, 2.0 * math.pi, size=(GOALS, 2))
+    joints = np.arange(1, dof) / dof  # joints 2..dof sit at s = 1/dof ... (dof-1)/dof along the chain
+    lo, hi = joints - 0.5 / dof, joints + 0.5 / dof  # each bends by the curvature of the half links beside it
+
+    def integral(k: int, s: np.ndarray) -> np.ndarray:
+        return (a[k, 0] * s - a[k, 1] * np.cos(math.pi * s + phase[k, 0]) / math.pi
+                - a[k, 2] * np.cos(2.0 * math.pi * s + phase[k, 1]) / (2.0 * math.pi))
+
+    q = np.empty((GOALS, dof))
+    for k in range(GOALS):  # link i then points along the curve's heading at its midpoint (the midpoint rule)
+        q[k, 0] = base[k] + integral(k, np.array(0.5 / dof)) - integral(k, np.array(0.0))
+        q[k, 1:] = integral(k, hi) - integral(k, lo)
     return q
+
+
+def tip_position(q: np.ndarray) -> np.ndarray:
+    """Planar forward kinematics of a generated arm: the chain's end point (x, y) relative to its base."""
+    dof = len(q)
+    heading = np.cumsum(q)
+    return (REACH / dof) * np.array([np.cos(heading).sum(), np.sin(heading).sum()])
 
 
 def goal_regions(dof: int, config_free) -> tuple[GoalRegion, ...]:

@@ -54,3 +54,22 @@ def test_generated_arm_urdf_and_regions():
     row = run(RunSpec(arms.arm_key(8), "lazyground", "reward-penalty", 0.05, 0, 5.0))
     assert row["status"] == "solved", row["message"]
     assert row["interpretation"].startswith("reach:goal_") and row["grounding_s"] == 0.0
+
+
+def test_goal_shapes_are_the_same_curves_at_every_dof():
+    """The DOF sweep compares dimensions, not layouts: every DOF gets the same goal shapes (tips within 5 cm),
+    inside its joint limits, free or blocked alike."""
+    from lazyground.drake.world import DrakeWorld
+
+    tips, labels = [], []
+    for dof in arms.DOFS:
+        centres = arms.goal_centres(dof)
+        assert np.all(np.abs(centres[:, 1:]) <= arms.joint_limit(dof))
+        assert np.all(np.abs(centres[:, 0]) + arms.GOAL_HALF_WIDTH <= arms.BASE_LIMIT)
+        tips.append(np.array([arms.tip_position(q) for q in centres]))
+        world = DrakeWorld(arms.arm_scene(dof), visual=False)
+        labels.append([r.label for r in arms.goal_regions(dof, world.config_free)])
+    for t in tips[1:]:
+        assert np.max(np.linalg.norm(t - tips[0], axis=1)) < 0.05
+    assert all(lab == labels[0] for lab in labels) and labels[0].count("blocked") == arms.GOALS // 3
+    assert not np.allclose(arms.goal_centres(8, seed=1), arms.goal_centres(8))  # the seed matters
