@@ -134,14 +134,13 @@ def goal_centres(dof: int, seed: int = GOAL_SEED) -> np.ndarray:
     joints = np.arange(1, dof) / dof  # joints 2..dof sit at s = 1/dof ... (dof-1)/dof along the chain
     lo, hi = joints - 0.5 / dof, joints + 0.5 / dof  # each bends by the curvature of the half links beside it
 
-    def integral(k: int, s: np.ndarray) -> np.ndarray:
-        return (a[k, 0] * s - a[k, 1] * np.cos(math.pi * s + phase[k, 0]) / math.pi
-                - a[k, 2] * np.cos(2.0 * math.pi * s + phase[k, 1]) / (2.0 * math.pi))
+    def integral(s):  # of every goal's curvature from 0 to s: one row per goal
+        return (a[:, :1] * s - a[:, 1:2] * np.cos(math.pi * s + phase[:, :1]) / math.pi
+                - a[:, 2:] * np.cos(2.0 * math.pi * s + phase[:, 1:]) / (2.0 * math.pi))
 
-    q = np.empty((GOALS, dof))
-    for k in range(GOALS):  # link i then points along the curve's heading at its midpoint (the midpoint rule)
-        q[k, 0] = base[k] + integral(k, np.array(0.5 / dof)) - integral(k, np.array(0.0))
-        q[k, 1:] = integral(k, hi) - integral(k, lo)
+    q = np.empty((GOALS, dof))  # link i then points along the curve's heading at its midpoint (the midpoint rule)
+    q[:, 0] = base + integral(0.5 / dof)[:, 0] - integral(0.0)[:, 0]
+    q[:, 1:] = integral(hi) - integral(lo)
     return q
 
 
