@@ -128,3 +128,7 @@ class GoalRegion:
     def drawing(self, scene) -> RegionDrawing:
         """What a viewer draws for this region in ``scene`` (a :class:`lazyground.scene.Scene`)."""
         raise NotImplementedError
+
+    def reached(self, q: np.ndarray, world, tol: float = 1e-6) -> bool:
+        """Whether planned configuration ``q`` of ``world`` (a DrakeWorld or any world the kind needs) is in the region."""
+        raise NotImplementedError

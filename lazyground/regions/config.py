@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 from lazyground.geometry import Pose
 from lazyground.regions.base import GoalRegion, RegionDrawing, register_region
 
@@ -23,3 +25,7 @@ class ConfigRegion(GoalRegion):
         hx, hy, hz = obj.geometry.half_extents()
         size = (2 * hx, 2 * hy, max(2 * hz, MIN_DRAWN_HEIGHT))
         return RegionDrawing(self.object, size, obj.pose.pose().compose(Pose((0.0, 0.0, size[2] / 2))))
+
+    def reached(self, q: np.ndarray, world=None, tol: float = 1e-6) -> bool:
+        """Whether ``q`` lies in the box (no world needed)."""
+        return self.contains(q, tol)

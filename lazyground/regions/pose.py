@@ -62,6 +62,18 @@ class PoseRegion(GoalRegion):
         """
         raise NotImplementedError
 
+    def constrained_pose(self, q: np.ndarray, world) -> Pose:
+        """World pose of what the region bounds (end effector, carried object) at planned ``q`` of ``world``.
+
+        Raises:
+            ValueError: the kind needs an attached object and the world carries none.
+        """
+        raise NotImplementedError
+
+    def reached(self, q: np.ndarray, world, tol: float = 1e-6) -> bool:
+        """Whether the pose bounded by the region, at ``q`` (forward kinematics in ``world``), is in the bounds within ``tol``."""
+        return self.contains(self.coordinates_of(self.constrained_pose(q, world).matrix()), tol)
+
     def _json_fields(self) -> dict:
         return {"frame": self.frame, "X_WR": self.X_WR.to_json(), "X_SE": self.X_SE.to_json(), "approach": list(self.approach)}
 
@@ -82,6 +94,9 @@ class WorkspaceRegion(PoseRegion):
     def robot_target(self, X_WT: Pose, attached) -> tuple[str, Pose]:
         return self.frame, X_WT
 
+    def constrained_pose(self, q: np.ndarray, world) -> Pose:
+        return world.frame_pose(self.frame, q)
+
 
 @register_region
 @dataclass(frozen=True)
@@ -94,3 +109,9 @@ class PlacementRegion(PoseRegion):
         if attached is None:
             raise ValueError(f"placement region {self.id} needs a world with an attached object")
         return attached.body, X_WT.compose(attached.X_BO.inverse())
+
+    def constrained_pose(self, q: np.ndarray, world) -> Pose:
+        attached = getattr(world, "attached", None)
+        if attached is None:
+            raise ValueError(f"placement region {self.id} needs a world with an attached object")
+        return world.frame_pose(attached.body, q).compose(attached.X_BO)

@@ -141,3 +141,35 @@ def test_an_occupant_override_is_checked_by_the_strict_loader():
     with pytest.raises(ValueError, match=r"objects\[0\]\.occupant\.box"):
         parse_scene(LOT.replace("occupant: {box: [3.0, 1.5, 1.2]}", "occupant: {box: [3.0, -1.5, 1.2]}").replace(
             "  - {id: spot_1", "  - {id: spot_0, type: parking_spot, occupied: true, occupant: {box: [3.0, -1.5, 1.2]}, geometry: {box: [5.0, 2.5, 0.05]}, pose: {xyz: [0, 20, 0]}}\n  - {id: spot_1", 1))
+
+
+class _StubWorld:
+    """Forward kinematics by table: frame -> pose, whatever q is; optionally carrying an object."""
+
+    def __init__(self, poses, attached=None):
+        self.poses, self.attached = poses, attached
+
+    def frame_pose(self, frame, q):
+        return self.poses[frame]
+
+
+@dataclass(frozen=True)
+class _Attached:
+    body: str
+    X_BO: Pose
+
+
+def test_reached_asks_each_kind_its_own_question():
+    c = ConfigRegion(id="c", interpretation="i", object="c", lower=(0, 0), upper=(1, 2))
+    assert c.reached(np.array([0.5, 1.5]), None) and not c.reached(np.array([1.5, 1.5]), None)
+    w = WorkspaceRegion(id="w", frame="ee", **_pose_fields())
+    v = w.sample(np.random.default_rng(4))
+    inside = w.pose_in_world(v)
+    assert w.reached(None, _StubWorld({"ee": inside}), tol=1e-6)
+    assert not w.reached(None, _StubWorld({"ee": inside.compose(Pose((0.0, 0.0, 0.05)))}), tol=0.01)
+    p = PlacementRegion(id="p", **_pose_fields())
+    X_BO = Pose((0.0, 0.0, 0.1), (0.0, 0.0, 0.4))
+    X_WB = p.pose_in_world(v).compose(X_BO.inverse())  # the hand where the object lands inside
+    assert p.reached(None, _StubWorld({"hand": X_WB}, _Attached("hand", X_BO)), tol=1e-6)
+    with pytest.raises(ValueError, match="attached"):
+        p.reached(None, _StubWorld({"hand": X_WB}))
