@@ -17,6 +17,7 @@ or an exception escaped. tests/reliability/test_stress.py runs this in CI.
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import os
 import sys
@@ -95,18 +96,14 @@ def plan_runs(n: int, seed: int = 0, parking_share: float = PARKING_SHARE) -> tu
     return runs, notes
 
 
-_CACHE: dict = {}
-
-
+@functools.lru_cache(maxsize=16)  # keyed by scene name; more than the bundled scenes
 def _scene_and_world(name: str):
     """Scenes and Drake worlds are built once per process."""
-    if name not in _CACHE:
-        from lazyground.drake.world import DrakeWorld
-        from lazyground.scene import load_scene
+    from lazyground.drake.world import DrakeWorld
+    from lazyground.scene import load_scene
 
-        scene = load_scene(REPO / "yaml_scenes" / f"{name}.yaml")
-        _CACHE[name] = (scene, DrakeWorld(scene, visual=False))
-    return _CACHE[name]
+    scene = load_scene(REPO / "yaml_scenes" / f"{name}.yaml")
+    return scene, DrakeWorld(scene, visual=False)
 
 
 def check_report(report, scene, world) -> list[str]:
