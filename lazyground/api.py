@@ -18,6 +18,7 @@ import numpy as np
 
 import grounding
 from grounding.model import Grounding, Interpretation
+from lazyground.goals import goal_source_for
 from lazyground.planning.problem import PlannerSettings, PlanResult, PlanStatus
 from lazyground.planning.rrt import solve
 from lazyground.scene import Scene, load_scene
@@ -92,15 +93,8 @@ def planner_settings(scene: Scene, **overrides) -> PlannerSettings:
 
 
 def make_goal_source(world, regions):
-    """The goal sampler for these regions: C-space boxes directly, workspace regions by IK."""
-    kinds = {r.kind for r in regions}
-    if kinds == {"config"}:
-        from lazyground.goals import ConfigGoalSource
-
-        return ConfigGoalSource(regions, world.space, world)
-    from lazyground.drake.ik import IKGoalSource
-
-    return IKGoalSource(regions, world)
+    """The goal sampler registered for these regions' kind (:func:`lazyground.goals.goal_source_for`)."""
+    return goal_source_for(regions, world)
 
 
 def plan(
