@@ -48,33 +48,38 @@ class Chain:
         """
         q = np.atleast_2d(q_chain)
         B = q.shape[0]
-        R = np.broadcast_to(np.eye(3), (B, 3, 3))
+        R = np.empty((B, 3, 3))
+        R[:] = np.eye(3)
         p = np.zeros((B, 3))
         origins = np.empty((B, self.n, 3))
         axes_W = np.empty((B, self.n, 3))
         c, s = np.cos(q), np.sin(q)
         for k in range(self.n):
-            p = p + R @ self.X_before[k, :3, 3]
+            p += R @ self.X_before[k, :3, 3]
             R = R @ self.X_before[k, :3, :3]
             origins[:, k] = p
             axes_W[:, k] = R[:, :, 2]
             if self.kinds[k] == PRISMATIC:
-                p = p + R[:, :, 2] * q[:, k, None]
-            else:  # R @ Rz(q)
-                x, y = R[:, :, 0], R[:, :, 1]
+                p += R[:, :, 2] * q[:, k, None]
+            else:  # R @ Rz(q): turn the first two columns
+                x = R[:, :, 0].copy()
                 ck, sk = c[:, k, None], s[:, k, None]
-                R = np.stack([x * ck + y * sk, y * ck - x * sk, R[:, :, 2]], axis=2)
-        p = p + R @ self.X_after[:3, 3]
+                R[:, :, 0] = x * ck + R[:, :, 1] * sk
+                R[:, :, 1] = R[:, :, 1] * ck - x * sk
+        p += R @ self.X_after[:3, 3]
         R = R @ self.X_after[:3, :3]
         X = np.zeros((B, 4, 4))
         X[:, :3, :3], X[:, :3, 3], X[:, 3, 3] = R, p, 1.0
         if not jacobian:
             return X
-        J = np.empty((B, 6, self.n))
+        J = np.zeros((B, 6, self.n))
         rev = self.kinds == REVOLUTE
-        J[:, :3] = (axes_W * rev[None, :, None]).transpose(0, 2, 1)
-        lin = np.where(rev[None, :, None], np.cross(axes_W, p[:, None, :] - origins), axes_W)
-        J[:, 3:] = lin.transpose(0, 2, 1)
+        a, r = axes_W, p[:, None, :] - origins  # axis and lever of every joint, in world
+        J[:, 0:3, rev] = a[:, rev].transpose(0, 2, 1)
+        cross = np.stack([a[..., 1] * r[..., 2] - a[..., 2] * r[..., 1],
+                          a[..., 2] * r[..., 0] - a[..., 0] * r[..., 2],
+                          a[..., 0] * r[..., 1] - a[..., 1] * r[..., 0]], axis=1)
+        J[:, 3:6] = np.where(rev, cross, a.transpose(0, 2, 1))
         return X, J
 
 
@@ -89,6 +94,23 @@ def _align_z(axis: np.ndarray) -> np.ndarray:
     return T
 
 
+def joints_to_world(plant, body) -> list:
+    """The joints from ``body`` up to the world, nearest first (welds included).
+
+    Raises:
+        ValueError: a body on the way hangs on no joint.
+    """
+    out = []
+    world = plant.world_body().index()
+    while body.index() != world:
+        joint = next((plant.get_joint(j) for j in plant.GetJointIndices() if plant.get_joint(j).child_body().index() == body.index()), None)
+        if joint is None:
+            raise ValueError(f"body {body.name()} is not connected to the world by joints")
+        out.append(joint)
+        body = joint.parent_body()
+    return out
+
+
 def chain_to_frame(plant, frame) -> Chain:
     """The chain from the world to ``frame`` (a plant Frame).
 
@@ -96,16 +118,7 @@ def chain_to_frame(plant, frame) -> Chain:
         ValueError: a joint on the way is neither revolute, prismatic nor welded
             (e.g. a floating or planar base), which this chain cannot express.
     """
-    joints = []
-    body = frame.body()
-    world = plant.world_body().index()
-    while body.index() != world:
-        joint = next((plant.get_joint(j) for j in plant.GetJointIndices() if plant.get_joint(j).child_body().index() == body.index()), None)
-        if joint is None:
-            raise ValueError(f"body {body.name()} is not connected to the world by joints")
-        joints.append(joint)
-        body = joint.parent_body()
-    joints.reverse()
+    joints = joints_to_world(plant, frame.body())[::-1]  # root first
     X_before, axes, kinds, index = [], [], [], []
     pending = np.eye(4)  # fixed transforms since the last moving joint
     for joint in joints:
