@@ -21,6 +21,7 @@ from grounding.model import Grounding, Interpretation
 from lazyground.planning.problem import PlannerSettings, PlanResult, PlanStatus
 from lazyground.planning.rrt import solve
 from lazyground.scene import Scene, load_scene
+from lazyground.settings import from_scene as settings_from_scene
 
 
 @dataclass(frozen=True)
@@ -65,30 +66,12 @@ class PlanReport:
 
 
 def planner_settings(scene: Scene, **overrides) -> PlannerSettings:
-    """The scene's planner defaults, then its ``per_algorithm`` settings for the algorithm
-    that will run, then the non-None ``overrides``."""
-    spec = scene.planner
-    base = PlannerSettings(
-        strategy=spec.strategy,
-        algorithm=spec.algorithm,
-        goal_bias=spec.goal_bias,
-        step_size=spec.step_size,
-        edge_resolution=spec.edge_resolution,
-        time_limit=spec.time_limit,
-        max_iterations=spec.max_iterations,
-        initial_goal_samples=spec.initial_goal_samples,
-        resample_threshold=spec.resample_threshold,
-        resample_count=spec.resample_count,
-        goal_extension=spec.goal_extension,
-    )
-    known = {f.name for f in fields(PlannerSettings)}
-    unknown = set(overrides) - known
-    if unknown:
-        raise TypeError(f"unknown planner settings: {', '.join(sorted(unknown))}")
-    per = spec.per_algorithm.get(overrides.get("algorithm") or spec.algorithm)
-    if per is not None:
-        base = replace(base, **{f.name: getattr(per, f.name) for f in fields(per) if getattr(per, f.name) is not None})
-    return replace(base, **{k: v for k, v in overrides.items() if v is not None})
+    """The settings a run on ``scene`` uses (see :func:`lazyground.settings.from_scene`).
+
+    Raises:
+        ValueError: an unknown setting, or a value out of its range / choices.
+    """
+    return settings_from_scene(scene.planner, **overrides)
 
 
 def make_goal_source(world, regions):
