@@ -161,11 +161,10 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
         q_grasp = pick.path[-1]
         X_WG = world.frame_pose(frame, q_grasp)
         grasp = Grasp(obj.id, pick.goal_region.id, pick.goal_region.label, frame, X_WG, X_WG.inverse().compose(obj.pose.pose()))
-        t_setup = time.perf_counter()
+        built = worlds.setup_s
         carrying = worlds.get(grasp)
-        regions = _placement_regions(places.get(obj.id, []), obj.geometry.half_extents()[2])
-        source = IKGoalSource(regions, carrying)
-        setup = time.perf_counter() - t_setup
+        setup = worlds.setup_s - built
+        source = IKGoalSource(_placement_regions(places.get(obj.id, []), obj.geometry.half_extents()[2]), carrying)
         lift = lift_off(world, carrying, source, frame, q_grasp, settings.resolution)
         if lift is None:
             notes.append(f"picked {obj.id} ({pick.goal_region.label}) but could not lift it clear; trying another object")
@@ -185,7 +184,7 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
             excluded.append(obj.id)
             continue
         X_WO = carrying.frame_pose(frame, place.path[-1]).compose(grasp.X_GO)
-        steps = (Step(f"pick {obj.id}", pick), Step(f"place {obj.id}", place, setup, grasp))
+        steps = (Step(f"pick {obj.id}", pick, setup_before), Step(f"place {obj.id}", place, setup, grasp))
         chosen = next(i for i in g.interpretations if i.objects == (obj.id,) and i.target == place.goal_region.object)
         region = replace(place.goal_region, interpretation=chosen.id)  # placement regions are shared by interpretations
         return finish(PlanStatus.SOLVED, "", steps=steps, lift=lift, region=region, goal=place.goal,

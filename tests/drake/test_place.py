@@ -100,3 +100,25 @@ def test_fallback_when_the_picked_cup_cannot_be_placed():
             fell_back += 1
             assert any("picked cup_red but could not place it" in n for n in report.notes)
     assert fell_back >= 1
+
+
+def test_place_plans_in_the_callers_world(monkeypatch):
+    """A world passed to api.plan is used for the pick (only the carrying world is built),
+    and set-up time is not planning time, as for pick and park."""
+    import lazyground.drake.world as drake_world
+
+    scene = load_scene(KITCHEN)
+    world = drake_world.DrakeWorld(scene)
+    built = []
+
+    class Counting(drake_world.DrakeWorld):
+        def __init__(self, *args, **kwargs):
+            built.append(kwargs.get("attached"))
+            super().__init__(*args, **kwargs)
+
+    monkeypatch.setattr(drake_world, "DrakeWorld", Counting)
+    report = solved_report(scene, "put a cup on the table", world=world)
+    assert built and all(a is not None for a in built)  # never the robot's own world again
+    assert report.steps[1].grasp.object_id == report.chosen_object
+    assert report.steps[0].setup_s == 0.0 and 0.0 < report.steps[1].setup_s <= report.setup_s
+    assert report.time_s == pytest.approx(report.grounding_s + report.result.time_s)
