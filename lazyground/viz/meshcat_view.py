@@ -34,7 +34,6 @@ from pydrake.perception import BaseField, Fields, PointCloud
 
 from grounding.regions import END_EFFECTOR
 from lazyground.drake.world import PARKED_CAR_SIZE, Attachment, DrakeWorld, rigid_transform
-from lazyground.geometry import Pose
 from lazyground.viz.style import FAILED_RGBA, GOAL_BIASED_RGBA, PATH_RGBA, REGION_RGBA, TREE_RGBA, weight_rgba
 from lazyground.viz.trace import resample_path, tree_edges
 
