@@ -2,7 +2,9 @@
 
 Usage: PYTHONPATH=. python3 tools/goal_tolerance_report.py [SAMPLES_PER_SETTING]
 """
-import sys, time
+import sys
+import time
+
 import numpy as np
 import grounding
 from lazyground.drake.ik import IKGoalSource, IKSettings, region_coordinates
