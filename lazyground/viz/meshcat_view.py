@@ -45,6 +45,7 @@ FPS = 30
 STEP_SECONDS = 4.0  # animation length of one planned step
 PAUSE_SECONDS = 0.5  # hold at the end of a step
 ROOT = "/lazyground"
+CAMERA_DISTANCE = 1.75  # x the drawn extent's radius; the page's side panel leaves the view ~70 % of the width
 TREE_SHOWN_MAX = 1000  # nodes: a larger parking tree starts hidden in the HTML replay
 TREE_SHOWN_MAX_ARM = 60  # an arm's tree is drawn at the gripper, around the objects: hidden sooner
 EXTERNAL_SCRIPT = re.compile(r"<script[^>]*\bsrc\s*=\s*[\"']?(https?:)?//", re.IGNORECASE)
@@ -211,7 +212,7 @@ class _StepView:
             self.meshcat.SetLine(f"{path}/path", dense, 4.0, Rgba(*PATH_RGBA))
             # browsers draw WebGL lines one pixel wide whatever the width: a tube makes the path stand out
             draw_tube(self.meshcat, f"{path}/path_tube", dense[:, ::4] if dense.shape[1] > 4 else dense,
-                      0.25 * self.scale, Rgba(*PATH_RGBA))
+                      0.5 * self.scale, Rgba(*PATH_RGBA))
 
     def animate(self, t0: float) -> float:
         """Record the robot along the path from time ``t0``; returns the end time."""
@@ -321,7 +322,7 @@ def _set_camera(meshcat: Meshcat, views: list[_StepView]) -> None:
         direction = np.array([0.0, -0.7, 1.6])
     target = (lo + hi) / 2
     radius = max(float(np.linalg.norm(hi - lo)) / 2, 0.6)
-    camera = target + 1.4 * radius * direction / np.linalg.norm(direction)
+    camera = target + CAMERA_DISTANCE * radius * direction / np.linalg.norm(direction)
     meshcat.SetCameraPose(camera, target)
 
 

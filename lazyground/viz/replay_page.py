@@ -18,6 +18,7 @@ from lazyground.viz.style import FAILED_RGBA, GOAL_BIASED_RGBA, PATH_RGBA, REGIO
 
 PANEL_ID = "lazyground-panel"
 TOGGLE_ID = "lazyground-tree-toggle"
+PANEL_WIDTH = 300  # px
 
 
 @dataclass(frozen=True)
@@ -103,9 +104,11 @@ def panel_html(report, layout: Layout) -> str:
   <h4>Legend</h4><ul class="legend small">{_legend(layout)}</ul>
 </div>
 <style>
-  #{PANEL_ID} {{ position: fixed; top: 8px; left: 8px; max-width: 340px; max-height: calc(100vh - 32px); overflow: auto;
-    background: rgba(255, 255, 255, 0.92); color: #111; font: 13px/1.35 sans-serif; padding: 8px 10px;
-    border-radius: 6px; box-shadow: 0 1px 4px rgba(0, 0, 0, 0.3); z-index: 10; }}
+  /* a side panel, not an overlay on the robot: the 3-D view takes the rest of the window */
+  #meshcat-pane {{ position: absolute; left: {PANEL_WIDTH}px; top: 0; width: calc(100vw - {PANEL_WIDTH}px) !important; }}
+  #{PANEL_ID} {{ position: fixed; top: 0; left: 0; width: {PANEL_WIDTH - 20}px; height: calc(100vh - 16px); overflow: auto;
+    background: #fafafa; color: #111; font: 13px/1.35 sans-serif; padding: 8px 10px;
+    border-right: 1px solid #bbb; z-index: 10; }}
   #{PANEL_ID} h4 {{ margin: 8px 0 2px; font-size: 12px; }}
   #{PANEL_ID} ul, #{PANEL_ID} ol {{ margin: 0; padding-left: 18px; }}
   #{PANEL_ID} .legend {{ list-style: none; padding-left: 0; }}
