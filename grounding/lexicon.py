@@ -114,7 +114,9 @@ class Lexicon:
             known = sorted({w for key, e in self.phrases.items() if e.cat != "id" and only in (None, e.cat)
                             for w in key if not w.isdigit() and w != word})
             swapped = [w for w in known if sorted(w) == sorted(word)]  # "pikc", "cna": two letters swapped
-            close = close or (swapped + [w for w in difflib.get_close_matches(word, known, n=3, cutoff=0.75) if w not in swapped])[:3]
+            near = [w for w in difflib.get_close_matches(word, known, n=3, cutoff=0.75)
+                    if w not in swapped and abs(len(w) - len(word)) <= 2]  # a typo, not a longer or shorter word
+            close = close or (swapped + near)[:3]
         out = f"; did you mean {' or '.join(repr(w) for w in close)}?" if close else ""
         return out + self.ids_with(word)
 
