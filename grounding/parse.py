@@ -131,7 +131,7 @@ def _splice_put_it(toks: list[Token]) -> list[Token]:
 
 def _refuse_unsupported(toks: list[Token], lexicon: Lexicon, parking: bool) -> None:
     for i, t in enumerate(toks):
-        if t.cat == "multiple" and t.text.isdigit() and toks[i - 1].cat == "noun":  # "can 7": an id, not a count
+        if t.cat == "multiple" and t.text.isdigit() and i > 0 and toks[i - 1].cat == "noun":  # "can 7": an id, not a count
             said = f"{toks[i - 1].text} {t.text}"
             raise GroundingError(f"no {said!r} in this scene{lexicon.ids_with(toks[i - 1].text)}")
         if t.cat == "negation":
@@ -224,7 +224,6 @@ class _Cursor:
         text = " ".join(x.text for x in self.toks[start + (det is not None):self.i])
         return replace(np, text=text, determiner=det.value if det else "", determiner_word=det.text if det else "",
                        modifiers=tuple(mods))
-
 
     def _distance(self) -> Modifier:
         """ "nearest [to] the table" after a noun: the superlative and the object it measures from."""

@@ -189,9 +189,8 @@ class Resolver:
         """Distance of each object from the robot's base, or from the nearest object ``landmark`` names."""
         if landmark is None:
             return {o.id: spatial.distance_to_point(o, spatial.robot_position(self.scene)) for o in objs}
-        marks = [m for m in self.choice((landmark,), None)]
-        return {o.id: min(spatial.distance_between(o, m) for m in marks if m.id != o.id) if any(m.id != o.id for m in marks)
-                else math.inf for o in objs}
+        marks = self.choice((landmark,), None)
+        return {o.id: min((spatial.distance_between(o, m) for m in marks if m.id != o.id), default=math.inf) for o in objs}
 
     def name(self, object_id: str) -> str:
         """Words that name an object in a request: "the table", "the middle shelf", else its id."""
