@@ -26,8 +26,8 @@ class _ArrowHandle(Line2D):
     """A legend proxy drawn by :class:`_ArrowHandler`."""
 
 
-def parking_handles(has_tree: bool, has_failed: bool, has_path: bool, has_occupied: bool) -> list:
-    """Legend proxies for what the parking figure shows, in reading order."""
+def parking_handles(has_tree: bool, has_failed: bool, has_path: bool, has_occupied: bool, outlines: bool = True) -> list:
+    """Legend proxies for what the parking figure shows, in reading order (``outlines``: car outlines along the path)."""
     handles = [
         Patch(fc="none", ec="black", ls="--", label="start (car outline)"),
         Patch(fc=OBSTACLE_RGBA, ec="none", label="obstacle"),
@@ -43,7 +43,8 @@ def parking_handles(has_tree: bool, has_failed: bool, has_path: bool, has_occupi
         handles.append(Line2D([], [], ls="none", marker="x", ms=4, color=FAILED_RGBA, label="failed goal-biased extension from"))
     if has_path:
         handles.append(Line2D([], [], color=PATH_RGBA, lw=2.5, label="path"))
-        handles.append(Patch(fc="none", ec=PATH_RGBA, label="car outline along the path"))
+        if outlines:
+            handles.append(Patch(fc="none", ec=PATH_RGBA, label="car outline along the path"))
         handles.append(Patch(fc=CAR_RGBA, ec="black", label="car at the goal"))
     return handles
 
