@@ -6,9 +6,8 @@ What is drawn (colours from :mod:`lazyground.viz.style`, as in the paper's Figs.
   ``DrakeWorld``), the robot animated along the path in a Meshcat recording;
   a pick-and-place report animates its ``steps`` one after the other, each in
   its own world, only the current one visible: the pick, then the lift-off and
-  the place with the object riding on the gripper (``lazyground.place`` puts
-  ``picked``, ``grasp.X_GO`` and ``lift.path`` in the report's ``extra``; a
-  step may instead carry its own ``Attachment`` as ``extra["attached"]``);
+  the place with the object riding on the gripper (each step's ``grasp`` says
+  what it carries; the outcome's ``lift`` leads into the place step);
 * the goal regions, translucent green: the object's box for configuration
   regions (a parking spot), the region's box in its frame for workspace and
   placement regions;
@@ -35,7 +34,6 @@ from pydrake.perception import BaseField, Fields, PointCloud
 
 from grounding.regions import END_EFFECTOR
 from lazyground.drake.world import PARKED_CAR_SIZE, Attachment, DrakeWorld, rigid_transform
-from lazyground.geometry import Pose
 from lazyground.viz.replay_page import Layout, decorate
 from lazyground.viz.shapes import draw_tube
 from lazyground.viz.style import FAILED_RGBA, GOAL_BIASED_RGBA, PATH_RGBA, REGION_RGBA, TREE_RGBA, weight_rgba
@@ -112,7 +110,7 @@ def draw_layout(report, scene, meshcat: Meshcat) -> Layout:
     meshcat.PublishRecording()
     if not views[0].tracer.arm:  # a 10 m grid at the origin only clutters a parking lot
         meshcat.SetProperty("/Grid", "visible", False)
-    _set_camera(meshcat, views)
+    _set_camera(meshcat, views, report)
     trees = tuple(f"{ROOT}/step{k}/tree" for k, v in enumerate(views) if v.report.result.tree is not None)
     return Layout(t, tuple(windows), trees, nodes, hide_tree and bool(trees), views[0].tracer.arm)
 
@@ -129,19 +127,16 @@ class _Segment:
 def _segments(report, scene) -> list[_Segment]:
     """The steps to replay: one for a plain plan; pick, then lift and place (carrying) for pick and place."""
     if not report.steps:
-        return [_Segment(report, report.extra.get("attached"), report.result.path)]
-    out = [_Segment(report.steps[0], None, report.steps[0].result.path)]
-    carried = None
-    if "picked" in report.extra:  # lazyground.place: the grasp and the lift-off are in the parent's extra
-        X_GO = report.extra["grasp"]["X_GO"]
-        frame = scene.robot.end_effector or END_EFFECTOR
-        carried = Attachment(scene.object(report.extra["picked"]), frame, Pose(tuple(X_GO["xyz"]), tuple(X_GO["rpy"])))
-    for step in report.steps[1:]:
+        return [_Segment(report, None, report.result.path)]
+    out = []
+    lift = report.outcome.lift
+    for k, step in enumerate(report.steps):
+        g = step.grasp
+        carried = Attachment(scene.object(g.object_id), g.frame, g.X_GO) if g is not None else None
         motion = step.result.path
-        lift = report.extra.get("lift", {}).get("path")
-        if motion is not None and lift is not None and step is report.steps[1]:
-            motion = np.vstack([np.asarray(lift, float), motion[1:]])
-        out.append(_Segment(step, step.extra.get("attached", carried), motion))
+        if k == 1 and motion is not None and lift is not None:  # the lift-off leads into the place step
+            motion = np.vstack([lift.path, motion[1:]])
+        out.append(_Segment(step, carried, motion))
     return out
 
 
@@ -276,9 +271,8 @@ def step_label(report, k: int, n: int) -> str:
     """What step ``k`` of ``n`` does, for the page: "1. pick Can3", "2. place Can3 on table", or the chosen goal."""
     if n == 1:
         return report.chosen.id if report.chosen is not None else report.request
-    step = report.steps[k]
-    target = report.extra.get("placement", {}).get("target") if k == n - 1 else None
-    return f"{k + 1}. {step.request}" + (f" on {target}" if target else "")
+    placement = report.outcome.placement if k == n - 1 else None
+    return f"{k + 1}. {report.steps[k].label}" + (f" on {placement.target}" if placement is not None else "")
 
 
 def _tracer(world: DrakeWorld, scene) -> _Tracer:
@@ -291,7 +285,7 @@ def _tracer(world: DrakeWorld, scene) -> _Tracer:
     return _Tracer(base, np.array([0.0, 0.0, 0.1]), arm=False)
 
 
-def _set_camera(meshcat: Meshcat, views: list[_StepView]) -> None:
+def _set_camera(meshcat: Meshcat, views: list[_StepView], report) -> None:
     """A car's lot from the south and above (tree and samples in view); an arm from behind its shoulder,
     framing the robot, its path and the chosen object (every interpretation's object when nothing was reached)."""
     pts = [v.points(np.atleast_2d(v.start)) for v in views]
@@ -301,7 +295,7 @@ def _set_camera(meshcat: Meshcat, views: list[_StepView]) -> None:
             if v.motion is not None:
                 pts.append(v.points(v.motion))
             chosen = [res.goal_region.object] if res.goal_region is not None else \
-                [o for i in v.report.grounding.interpretations for o in i.objects]
+                [o for i in report.grounding.interpretations for o in i.objects]
             pts.append(np.array([v.scene.object(o).pose.xyz for o in chosen], float).T.reshape(3, -1))
             continue
         if res.tree is not None:

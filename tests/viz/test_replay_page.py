@@ -64,6 +64,7 @@ def test_pick_and_place_steps_are_labelled(tmp_path):
     from lazyground.drake.world import DrakeWorld
     from lazyground.geometry import Pose
     from lazyground.scene import load_scene
+    from lazyground.tasks import Grasp, Outcome, Placement, Step
 
     path = tmp_path / "fetch_can_viz.yaml"
     path.write_text(textwrap.dedent(FETCH_SCENE))
@@ -74,10 +75,11 @@ def test_pick_and_place_steps_are_labelled(tmp_path):
     q1 = q0 + np.array([0.1, -1.0, -0.8, 0.0, -0.5, 0.0, -0.5, 0.0])
     q2 = q1 + np.array([0.0, 0.4, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
     pick, place = _step(world, g, q0, q1, g.goal_regions), _step(world, g, q1, q2, g.goal_regions)
-    report = replace(pick, steps=(replace(pick, request="pick can1"), replace(place, request="place can1")), extra={
-        "picked": "can1", "grasp": {"X_GO": Pose((0.0, 0.0, 0.0), (0.0, 0.0, 0.0)).to_json()},
-        "placement": {"target": "table"},
-    })
+    r0 = g.goal_regions[0]
+    grasp = Grasp("can1", r0.id, r0.label, "gripper_link", Pose(), Pose())
+    steps = (Step("pick can1", pick.result), Step("place can1", place.result, grasp=grasp))
+    outcome = Outcome(pick.result, steps, world.space.names, placement=Placement("table/top", "table", Pose()))
+    report = replace(pick, outcome=outcome)
     out = tmp_path / "pp.html"
     meshcat_view.write_html(report, scene, out)
     text = " ".join(_panel(out.read_text()).split())
