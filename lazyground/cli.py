@@ -15,7 +15,7 @@ import sys
 import traceback
 from pathlib import Path
 
-from lazyground.entry import work_begins
+from lazyground.interrupt import work_begins
 from lazyground.settings import add_cli_options, cli_values
 
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130

@@ -43,7 +43,8 @@ PLAN = ["plan", "yaml_scenes/parking_1.yaml", "park", "--time-limit", "30"]
 
 
 @needs_drake
-@pytest.mark.parametrize("target", ["lazyground.cli", "numpy", "yaml", "lazyground.api", "pydrake.multibody.plant", "pydrake.planning"])
+@pytest.mark.parametrize("target", ["lazyground.cli", "lazyground.settings", "numpy", "yaml", "lazyground.report",
+                                    "pydrake.multibody.plant", "pydrake.planning"])
 def test_ctrl_c_during_imports_is_one_line_and_exit_130(target):
     proc = _run(target, PLAN)
     lines = proc.stderr.strip().splitlines()
@@ -56,6 +57,6 @@ def test_the_child_really_presses_ctrl_c():
     """Without the entry point's handler the same child dies with a traceback: the test above can fail."""
     child = CHILD.replace('runpy.run_module("lazyground", run_name="__main__")', "import lazyground.cli")
     env = dict(os.environ, PYTHONPATH=str(REPO))
-    proc = subprocess.run([sys.executable, "-c", child, "numpy"], cwd=REPO, capture_output=True, text=True,
+    proc = subprocess.run([sys.executable, "-c", child, "lazyground.settings"], cwd=REPO, capture_output=True, text=True,
                           timeout=120, env=env, preexec_fn=with_ctrl_c)
     assert proc.returncode != 0 and "KeyboardInterrupt" in proc.stderr
