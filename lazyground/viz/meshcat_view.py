@@ -289,6 +289,7 @@ def _set_camera(meshcat: Meshcat, views: list[_StepView], report) -> None:
     """A car's lot from the south and above (tree and samples in view); an arm from behind its shoulder,
     framing the robot, its path and the chosen object (every interpretation's object when nothing was reached)."""
     pts = [v.points(np.atleast_2d(v.start)) for v in views]
+    focus = []  # the objects the arm goes for: the camera looks from their side
     for v in views:
         res = v.report.result
         if v.tracer.arm:  # the robot, its path and the object(s) it goes for; an arm's tree would zoom out too far
@@ -296,7 +297,8 @@ def _set_camera(meshcat: Meshcat, views: list[_StepView], report) -> None:
                 pts.append(v.points(v.motion))
             chosen = [res.goal_region.object] if res.goal_region is not None else \
                 [o for i in report.grounding.interpretations for o in i.objects]
-            pts.append(np.array([v.scene.object(o).pose.xyz for o in chosen], float).T.reshape(3, -1))
+            focus.append(np.array([v.scene.object(o).pose.xyz for o in chosen], float).T.reshape(3, -1))
+            pts.append(focus[-1])
             continue
         if res.tree is not None:
             pts.append(v.points(res.tree[0]))
@@ -311,11 +313,14 @@ def _set_camera(meshcat: Meshcat, views: list[_StepView], report) -> None:
         lo, hi = np.minimum(lo, p_WB), np.maximum(hi, p_WB)  # include the robot's base
         yaw = base.rpy[2] if base else 0.0
         c, s = np.cos(yaw), np.sin(yaw)
-        direction = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]]) @ np.array([-1.0, 0.9, 0.9])
+        R_WB = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+        # from behind the shoulder on the side where the work is, so the torso does not hide the arm
+        side = 1.0 if (R_WB.T @ (focus[0].mean(axis=1) - p_WB))[1] >= 0 else -1.0
+        direction = R_WB @ np.array([-0.8, side * 1.0, 1.0])
     else:
         direction = np.array([0.0, -0.7, 1.6])
     target = (lo + hi) / 2
-    radius = max(float(np.linalg.norm(hi - lo)) / 2, 0.6)
+    radius = max(float(np.linalg.norm(hi - lo)) / 2, 1.0 if views[0].tracer.arm else 0.6)  # an arm's own size
     camera = target + CAMERA_DISTANCE * radius * direction / np.linalg.norm(direction)
     meshcat.SetCameraPose(camera, target)
 

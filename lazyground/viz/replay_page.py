@@ -97,7 +97,7 @@ def panel_html(report, layout: Layout) -> str:
   <div class="req">&ldquo;{html.escape(report.request)}&rdquo; <span class="dim">on {html.escape(report.scene)}</span></div>
   <div class="status {'ok' if report.result.solved else 'bad'}">{_status(report)}</div>
   <h4>Interpretations ({len(report.grounding.interpretations)})</h4><ul class="interps">{_interpretations(report)}</ul>
-  {f'<h4>Steps</h4><ol class="steps">{steps}</ol>' if len(layout.windows) > 1 else ''}
+  {f'<h4>Steps</h4><ul class="steps">{steps}</ul>' if len(layout.windows) > 1 else ''}
   <div class="dim small">{_times(report)}</div>
   {f'<ul class="notes small">{notes}</ul>' if notes else ''}
   {button}
