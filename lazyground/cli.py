@@ -10,11 +10,13 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import signal
 import sys
 import traceback
 from pathlib import Path
 
-from lazyground.scene.schema import ALGORITHM_NAMES, GOAL_EXTENSIONS, STRATEGIES
+from lazyground.interrupt import work_begins
+from lazyground.settings import add_cli_options, cli_values
 
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
 REPO_ROOT = Path(__file__).resolve().parents[1]
@@ -29,18 +31,6 @@ class _Parser(argparse.ArgumentParser):
         raise UsageError(message)
 
 
-def _add_plan_options(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--strategy", choices=STRATEGIES, help="goal-selection strategy")
-    p.add_argument("--algorithm", choices=ALGORITHM_NAMES,
-                   help="rrt: one tree (the paper's Algorithm 1); bidirectional: start tree + a goal tree per goal sample")
-    p.add_argument("--goal-bias", type=float, help="probability of a goal-biased extension (0..1)")
-    p.add_argument("--step-size", type=float, help="longest extension, in the space's metric")
-    p.add_argument("--goal-extension", choices=GOAL_EXTENSIONS,
-                   help="one-tree planner's goal step: partial (keep the free part; the authors' planner), extend, connect")
-    p.add_argument("--seed", type=int, help="random seed (default: the scene's)")
-    p.add_argument("--time-limit", type=float, help="seconds")
-
-
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="lazyground", description="Ground ambiguous requests lazily inside a motion planner.")
     parser.add_argument("--debug", action="store_true", help="show tracebacks")
@@ -49,7 +39,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("plan", help="ground a request and plan to whichever interpretation is reachable")
     p.add_argument("scene")
     p.add_argument("request")
-    _add_plan_options(p)
+    add_cli_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--html", metavar="FILE", help="write a self-contained HTML replay (Meshcat)")
     p.add_argument("--meshcat", action="store_true", help="show the result in a live Meshcat until Ctrl-C")
@@ -103,8 +93,6 @@ def cmd_ground(args) -> int:
 def _import_drake() -> None:
     """Import the Drake side with Ctrl-C held back until done: pydrake logs a stack trace and
     fails to import when interrupted midway. A Ctrl-C pressed meanwhile is raised right after."""
-    import signal
-
     pressed = []
     old = signal.signal(signal.SIGINT, lambda *_: pressed.append(True))
     try:
@@ -119,25 +107,22 @@ def _import_drake() -> None:
 
 def cmd_plan(args) -> int:
     from lazyground import api
+    from lazyground.outputs import output_problem
     from lazyground.report import report_lines, report_to_json
     from lazyground.scene import load_scene
 
     scene = load_scene(args.scene)
-    for name in ("goal_bias",):
-        v = getattr(args, name)
-        if v is not None and not 0.0 <= v <= 1.0:
-            raise UsageError(f"--goal-bias must be in [0, 1], got {v:g}")
-    for name in ("step_size", "time_limit"):
-        v = getattr(args, name)
-        if v is not None and not v > 0:
-            raise UsageError(f"--{name.replace('_', '-')} must be > 0, got {v:g}")
+    try:
+        overrides = cli_values(args)
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
+    problem = output_problem(scene, args.html, args.plot, args.animate)
+    if problem:
+        raise UsageError(problem)
     visual = bool(args.html or args.meshcat or args.plot or args.animate)
     _import_drake()
-    report = api.plan(
-        scene, args.request, seed=args.seed, keep_tree=visual,
-        strategy=args.strategy, algorithm=args.algorithm, goal_bias=args.goal_bias, step_size=args.step_size, time_limit=args.time_limit,
-        goal_extension=args.goal_extension,
-    )
+    work_begins()
+    report = api.plan(scene, args.request, keep_tree=visual, **overrides)
     if args.json:
         print(json.dumps(report_to_json(report)))
     else:
@@ -175,6 +160,7 @@ def _write_visuals(report, scene, args) -> None:
 def cmd_demo(args) -> int:
     from lazyground.viz.demo import run_demo
 
+    work_begins()
     return run_demo(Path(args.out), seed=args.seed)
 
 
@@ -190,6 +176,7 @@ def cmd_import_moveit(args) -> int:
 def cmd_bench(args) -> int:
     from lazyground.bench.cli import main as bench_main
 
+    work_begins()
     return bench_main(args.bench_args)
 
 
@@ -203,6 +190,8 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:  # Ctrl-C while the imports below were still running
         print("interrupted", file=sys.stderr)
         code = EXIT_INTERRUPTED
+    if as_program:  # the work is done: a Ctrl-C during interpreter shutdown must not turn the exit code into -2
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
     if code == EXIT_INTERRUPTED and as_program:
         # CPython exits by SIGINT (status -2, not 130) when the Ctrl-C landed in code an
         # extension module ran through PyRun_* (pydrake's imports), even once handled.
