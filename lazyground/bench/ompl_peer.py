@@ -130,7 +130,7 @@ def run_peer(problem, spec) -> dict:
     if not samples:
         return dict(fields, status="no_valid_goal", time_s=time.perf_counter() - t0, collision_s=0.0,
                     other_s=0.0, message="no valid goal sample")
-    check0 = world.check_time  # the sampler's own checks count as goal sampling, as in our planner
+    check0, checks0 = world.check_time, world.checks  # the sampler's own checks count as goal sampling, as in ours
 
     space = _Space(world.space)
     si = ob.SpaceInformation(space.ompl)
@@ -154,7 +154,8 @@ def run_peer(problem, spec) -> dict:
     solved = pdef.hasExactSolution()
     data = ob.PlannerData(si)
     planner.getPlannerData(data)
-    out = dict(fields, time_s=time_s, collision_s=world.check_time - check0, tree_size=data.numVertices(), message=str(status))
+    out = dict(fields, time_s=time_s, collision_s=world.check_time - check0,
+               collision_checks=world.checks - checks0, tree_size=data.numVertices(), message=str(status))
     if solved:
         path_ = pdef.getSolutionPath()
         path = np.array([space.to_numpy(path_.getState(i)) for i in range(path_.getStateCount())])

@@ -29,7 +29,7 @@ PEERS = ("ompl-RRT", "ompl-RRTConnect")
 FIELDS = (
     "scene", "planner", "strategy", "bias", "seed", "status", "time_s", "grounding_s", "goal_sampling_s",
     "collision_s", "other_s", "iterations", "tree_size", "goal_samples", "resamplings", "interpretation",
-    "region", "path_length", "time_limit", "message",
+    "region", "path_length", "time_limit", "message", "collision_checks",
 )
 
 
@@ -181,6 +181,7 @@ def result_fields(result, grounding_s: float, interpretation: str, region: str) 
         region=region,
         path_length=result.path_length,
         message=result.message,
+        collision_checks=result.collision_checks,
     )
 
 

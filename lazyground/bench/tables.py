@@ -141,7 +141,7 @@ def time_split_table(rows: list[dict]) -> str:
     if not rows:
         return "(no finished runs)\n"
     head = ["Scene", "Strategy", "Bias %", "runs", "solved", "time", "grounding", "goal sampling", "collision", "other",
-            "other share"]
+            "other share", "checks", "µs/check"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     scenes = scenes_of(rows)
     for (label, bias), per_scene in group(rows).items():
@@ -152,8 +152,19 @@ def time_split_table(rows: list[dict]) -> str:
             solved = sum(r["status"] == "solved" for r in rs)
             b = f"{float(bias) * 100:g}" if bias not in ("", None) else "-"
             lines.append(f"| {scene} | {label} | {b} | {len(rs)} | {solved} | {m['time_s']:.3f} | {m['grounding_s']:.3f} | "
-                         f"{m['goal_sampling_s']:.3f} | {m['collision_s']:.3f} | {m['other_s']:.3f} | {share * 100:.0f}% |")
+                         f"{m['goal_sampling_s']:.3f} | {m['collision_s']:.3f} | {m['other_s']:.3f} | {share * 100:.0f}% | "
+                         f"{_checks_cells(rs)} |")
     return "\n".join(lines) + "\n"
+
+
+def _checks_cells(rows: list[dict]) -> str:
+    """Mean collision checks per run and mean microseconds per check ("-" for rows without counts, e.g. old CSVs)."""
+    counted = [r for r in rows if str(r.get("collision_checks", "")).strip() not in ("", "0")]
+    if not counted:
+        return "- | -"
+    checks = np.array([float(r["collision_checks"]) for r in counted])
+    seconds = np.array([float(r["collision_s"]) for r in counted])
+    return f"{checks.mean():.0f} | {seconds.sum() / checks.sum() * 1e6:.0f}"
 
 
 # --- plots ----------------------------------------------------------------------------------

@@ -44,6 +44,10 @@ class ValidityChecker(Protocol):
         ...
     @property
     def check_time(self) -> float: ...
+    @property
+    def checks(self) -> int:
+        """Config and edge checks made so far (an edge check counts once)."""
+        ...
 
 
 @dataclass
@@ -118,6 +122,7 @@ class PlanResult:
     failed_from: np.ndarray | None = None  # nodes from which a goal-biased extension failed
     path_length: float = 0.0
     invalid_paths_rejected: int = 0
+    collision_checks: int = 0  # the planner's config and edge checks (an edge check counts once), not the goal sampler's
 
     @property
     def solved(self) -> bool:

@@ -24,12 +24,32 @@ from lazyground.planning.strategies import StrategySettings, make_strategy
 from lazyground.planning.tree import Tree
 
 
-def path_is_valid(space: ConfigSpace, checker: ValidityChecker, path: np.ndarray, resolution: float) -> int:
-    """Index of the first invalid segment of ``path`` checked at ``resolution``, or -1."""
-    for k in range(len(path) - 1):
-        if not np.all(checker.configs_free(space.discretize(path[k], path[k + 1], resolution))):
-            return k
-    return -1
+def path_is_valid(space: ConfigSpace, checker: ValidityChecker, path: np.ndarray, resolution: float,
+                  segments: list[int] | None = None) -> int:
+    """Index of the first invalid segment of ``path`` checked at ``resolution``, or -1.
+
+    The segments' configurations go to the checker in one batch (one call into
+    Drake instead of one per segment); a vertex shared by two checked segments
+    is checked once. ``segments`` restricts the check to those segment indices
+    (ascending; default all).
+    """
+    todo = range(len(path) - 1) if segments is None else segments
+    chunks, owner, prev = [], [], None
+    for k in todo:
+        qs = space.discretize(path[k], path[k + 1], resolution, skip_first=prev == k - 1)
+        chunks.append(qs)
+        owner.append(np.full(len(qs), k))
+        prev = k
+    if not chunks:
+        return -1
+    free = np.asarray(checker.configs_free(np.vstack(chunks)), bool)
+    blocked = np.flatnonzero(~free)
+    return int(np.concatenate(owner)[blocked[0]]) if len(blocked) else -1
+
+
+def _checks(checker: ValidityChecker) -> int:
+    """The checker's check count (0 for a checker that does not count)."""
+    return int(getattr(checker, "checks", 0))
 
 
 class Search:
@@ -49,8 +69,10 @@ class Search:
         self.deadline = self.t0 + settings.time_limit
         self._check_t0, self._sample_t0 = checker.check_time, goals.sample_time
         self._sampling_checks = 0.0  # collision checks made by the goal sampler count as goal sampling
+        self._checks0, self._sampling_count = _checks(checker), 0
         self.samples: list[GoalSample] = []
         self.dead: set[int] = set()  # samples whose approach segment failed the fine re-check
+        self._verified: set[bytes] = set()  # segments (endpoint bytes) that passed the fine re-check
         self.selector = make_strategy(settings.strategy, StrategySettings(resample_threshold=settings.resample_threshold))
         self.trees: list[Tree] = []  # the planner's trees, start tree first (for the result)
         self.failed_from: list[tuple[int, int]] = []  # (tree, node) of failed goal-directed extensions
@@ -61,9 +83,10 @@ class Search:
 
     def draw(self, n: int) -> None:
         """Draw up to n more goal samples and hand them to the strategy."""
-        c0 = self.checker.check_time
+        c0, n0 = self.checker.check_time, _checks(self.checker)
         new = self.goals.draw(n, self.rng, self.deadline)
         self._sampling_checks += self.checker.check_time - c0
+        self._sampling_count += _checks(self.checker) - n0
         first = len(self.samples)
         self.samples.extend(new)
         self.selector.add(list(range(first, len(self.samples))))
@@ -102,8 +125,16 @@ class Search:
             self.draw(self.settings.resample_count)
 
     def first_invalid_segment(self, path: np.ndarray) -> int:
-        """The fine re-check every returned path passes (-1: valid); counts rejections."""
-        bad = path_is_valid(self.space, self.checker, path, self.settings.resolution / self.settings.validation_factor)
+        """The fine re-check every returned path passes (-1: valid); counts rejections.
+
+        A segment that passed an earlier re-check in this query is not checked again
+        (a rejected join leaves most of its segments valid, and the next candidate
+        path usually shares them).
+        """
+        keys = [path[k].tobytes() + path[k + 1].tobytes() for k in range(len(path) - 1)]
+        todo = [k for k, key in enumerate(keys) if key not in self._verified]
+        bad = path_is_valid(self.space, self.checker, path, self.settings.resolution / self.settings.validation_factor, todo)
+        self._verified.update(keys[k] for k in todo if bad < 0 or k < bad)
         self.rejected += bad >= 0
         return bad
 
@@ -136,6 +167,7 @@ class Search:
             failed_from=self._failed_from() if self.keep_tree else None,
             path_length=self.space.path_length(path) if path is not None else 0.0,
             invalid_paths_rejected=self.rejected,
+            collision_checks=_checks(self.checker) - self._checks0 - self._sampling_count,
         )
 
     def no_goal(self) -> PlanResult:

@@ -172,5 +172,16 @@ def test_time_split_counts_timeouts_and_keeps_scene_order():
     lines = [l for l in time_split_table(rows).splitlines() if l.startswith("| a") or l.startswith("| b")]
     assert [l.split(" | ")[0] for l in lines] == ["| b", "| a"]  # first appearance, as in the main table
     b = lines[0].split(" | ")
-    assert b[3:6] == ["2", "1", "6.000"] and b[-1] == "33% |"  # (4 + 0) / (10 + 2): the timeout counts
+    assert b[3:6] == ["2", "1", "6.000"] and b[10] == "33%"  # (4 + 0) / (10 + 2): the timeout counts
+    assert b[-2:] == ["-", "- |"]  # rows without check counts (an older CSV) show none
     assert lines[1].split(" | ")[3] == "1"  # the interrupted run is left out
+
+
+def test_time_split_shows_checks_per_run_and_time_per_check():
+    from lazyground.bench.tables import time_split_table
+
+    rows = [{"scene": "a", "planner": "lazyground", "strategy": "consecutive", "bias": "0.5", "status": "solved",
+             "time_s": 1.0, "grounding_s": 0.0, "goal_sampling_s": 0.0, "collision_s": c_s, "other_s": 0.0,
+             "time_limit": 10.0, "collision_checks": n} for c_s, n in ((0.3, 1000), (0.1, 3000))]
+    cells = [l for l in time_split_table(rows).splitlines() if l.startswith("| a")][0].split(" | ")
+    assert cells[-2:] == ["2000", "100 |"]  # mean checks; (0.3 + 0.1) s / 4000 checks = 100 µs
