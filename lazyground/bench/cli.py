@@ -49,7 +49,7 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    p = _Parser(prog="lazyground bench", description="Benchmark goal-selection strategies (and OMPL peers).")
+    p = _Parser(prog="lazyground bench", description="Benchmark goal-selection strategies (and OMPL / sscbirrt peers).")
     p.add_argument("--table", type=int, choices=sorted(TABLES), help="the paper's Table I (parking) or II (Fetch)")
     p.add_argument("--dof-sweep", action="store_true", help=f"generated planar arms of {', '.join(map(str, arms.DOFS))} DOF")
     p.add_argument("--nn-scaling", action="store_true", help="time per iteration from 1,000 to 100,000 tree nodes")
@@ -60,7 +60,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--runs", type=int, help="seeds per configuration (tables: 1000 / 100; otherwise 10)")
     p.add_argument("--time-limit", type=float, help="seconds per run (default: each scene's; arms 10)")
     p.add_argument("--request", help="the request (default: each scene's first expectation)")
-    p.add_argument("--peers", action="store_true", help="also run OMPL RRT and RRTConnect (pip install .[bench])")
+    p.add_argument("--peers", action="store_true", help="also run OMPL RRT and RRTConnect and sscbirrt's CBiRRT (pip install .[bench])")
     p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="worker processes (default: cores)")
     p.add_argument("--cluster", metavar="ADDRESS", help="run on this Dask scheduler instead (pip install .[cluster])")
     p.add_argument("--seed", type=int, default=0, help="first seed (runs use seed, seed+1, ...)")
@@ -122,12 +122,16 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
     algorithms = _checked("algorithms", "algorithm", _csv_list(args.algorithms, preset.get("algorithms", (Algorithm.RRT,))))
     configs = [(ALGORITHMS[a], s, b) for a in algorithms for b in biases for s in strategies]
     if args.peers:
-        from lazyground.bench.ompl_peer import MISSING, ompl_available
+        from lazyground.bench import ompl_peer, sscbirrt_peer
 
-        if ompl_available():
+        if ompl_peer.ompl_available():
             configs += [("ompl-RRT", "goal-states", b) for b in biases] + [("ompl-RRTConnect", "goal-states", None)]
         else:
-            notes.append(MISSING)
+            notes.append(ompl_peer.MISSING)
+        if sscbirrt_peer.sscbirrt_available():
+            configs.append((sscbirrt_peer.PLANNER, "goal-states", None))
+        else:
+            notes.append(sscbirrt_peer.MISSING)
     specs = []
     for i in range(runs):  # seeds outermost: an interrupted run still covers every configuration
         for key in keys:

@@ -29,7 +29,6 @@ the goal samples are (they come from our seeded generator).
 from __future__ import annotations
 
 import gc
-import time
 
 import numpy as np
 
@@ -104,33 +103,16 @@ def run_peer(problem, spec) -> dict:
     from ompl import base as ob
     from ompl import geometric as og
 
-    from lazyground.api import make_goal_source, planner_settings
+    from lazyground.bench.peer_setup import peer_setup
     from lazyground.settings import Algorithm
-    from lazyground.bench import arms
-    from lazyground.goals import ConfigGoalSource
 
     _quiet()
-    t0 = time.perf_counter()
-    deadline = t0 + spec.time_limit
-    world = problem.world
-    regions, grounding_s = problem.ground()
     # each peer runs with the scene's settings for its counterpart: RRT ~ our one tree, RRTConnect ~ two trees
     counterpart = Algorithm.RRT if spec.planner == "ompl-RRT" else Algorithm.BIDIRECTIONAL
-    if problem.regions:
-        settings = planner_settings(problem.scene, edge_resolution=arms.EDGE_RESOLUTION, algorithm=counterpart)
-        source = ConfigGoalSource(regions, world.space, world)
-    else:
-        settings = planner_settings(problem.scene, algorithm=counterpart)
-        source = make_goal_source(world, regions)
-    rng = np.random.default_rng(spec.seed)
-    samples = []
-    while not samples and not source.exhausted() and time.perf_counter() < deadline:
-        samples = source.draw(settings.initial_goal_samples, rng, deadline)
-    fields = dict(grounding_s=grounding_s, goal_sampling_s=source.sample_time, goal_samples=len(samples), resamplings=0)
-    if not samples:
-        return dict(fields, status="no_valid_goal", time_s=time.perf_counter() - t0, collision_s=0.0,
-                    other_s=0.0, message="no valid goal sample")
-    check0, checks0 = world.check_time, world.checks  # the sampler's own checks count as goal sampling, as in ours
+    setup = peer_setup(problem, spec, counterpart)
+    if not setup.samples:
+        return setup.no_goal()
+    world, settings = setup.world, setup.settings
 
     space = _Space(world.space)
     si = ob.SpaceInformation(space.ompl)
@@ -140,7 +122,7 @@ def run_peer(problem, spec) -> dict:
     pdef = ob.ProblemDefinition(si)
     pdef.addStartState(space.to_ompl(world.start))
     goal = ob.GoalStates(si)
-    for s in samples:
+    for s in setup.samples:
         goal.addState(space.to_ompl(s.q))
     pdef.setGoal(goal)
     planner = og.RRT(si) if spec.planner == "ompl-RRT" else og.RRTConnect(si)
@@ -149,25 +131,16 @@ def run_peer(problem, spec) -> dict:
         planner.setGoalBias(float(spec.bias))
     planner.setProblemDefinition(pdef)
     planner.setup()
-    status = planner.solve(max(1e-3, deadline - time.perf_counter()))
-    time_s = time.perf_counter() - t0
-    solved = pdef.hasExactSolution()
-    data = ob.PlannerData(si)
-    planner.getPlannerData(data)
-    out = dict(fields, time_s=time_s, collision_s=world.check_time - check0,
-               collision_checks=world.checks - checks0, tree_size=data.numVertices(), message=str(status))
-    if solved:
+    status = planner.solve(setup.time_left())
+    path = None
+    if pdef.hasExactSolution():
         path_ = pdef.getSolutionPath()
         path = np.array([space.to_numpy(path_.getState(i)) for i in range(path_.getStateCount())])
-        reached = min(samples, key=lambda s: world.space.distance(s.q, path[-1]))
-        if reached.final is not None:  # the sampler's checked approach segment, as our planner appends it
-            path = np.vstack([path, reached.final])
-        region = regions[reached.region]
-        out.update(status="solved", interpretation=region.interpretation, region=region.id,
-                   path_length=world.space.path_length(path), message="")
-    else:
+    data = ob.PlannerData(si)
+    planner.getPlannerData(data)
+    out = setup.finish(path, str(status), tree_size=data.numVertices())
+    if path is None:
         out["status"] = "invalid_start" if "Invalid start" in str(status) else "timeout"
-    out["other_s"] = max(0.0, time_s - out["goal_sampling_s"] - out["collision_s"] - grounding_s)
     del planner, pdef, goal, si, data  # free OMPL objects now, not at interpreter exit
     gc.collect()
     return out

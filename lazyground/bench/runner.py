@@ -24,7 +24,8 @@ from lazyground.settings import Algorithm
 
 LAZYGROUND = "lazyground"
 ALGORITHMS = {Algorithm.RRT: LAZYGROUND, Algorithm.BIDIRECTIONAL: "lazyground-bidirectional"}  # algorithm -> planner column
-PEERS = ("ompl-RRT", "ompl-RRTConnect")
+SSCBIRRT = "sscbirrt-CBiRRT"  # lazyground.bench.sscbirrt_peer.PLANNER (kept here: no import of the peer module)
+PEERS = ("ompl-RRT", "ompl-RRTConnect", SSCBIRRT)
 
 FIELDS = (
     "scene", "planner", "strategy", "bias", "seed", "status", "time_s", "grounding_s", "goal_sampling_s",
@@ -133,6 +134,10 @@ def run(spec: RunSpec) -> dict:
             raise ValueError(f"scene {problem.name} has no expect: request; give --request")
         if spec.planner in ALGORITHMS.values():
             row.update(_run_lazyground(problem, spec))
+        elif spec.planner == SSCBIRRT:
+            from lazyground.bench.sscbirrt_peer import run_peer
+
+            row.update(run_peer(problem, spec))
         else:
             from lazyground.bench.ompl_peer import run_peer
 

@@ -121,10 +121,13 @@ def test_table_two_names_missing_scenes():
 
 def test_peers_missing_is_said_clearly(monkeypatch):
     import lazyground.bench.ompl_peer as peer
+    import lazyground.bench.sscbirrt_peer as ssc
 
     monkeypatch.setattr(peer, "ompl_available", lambda: False)
+    monkeypatch.setattr(ssc, "sscbirrt_available", lambda: False)
     specs, notes, _ = plan_specs(_args(scenes="parking_1", runs=1, peers=True, time_limit=1.0))
-    assert notes == ["OMPL peers skipped: the 'ompl' package is not installed (pip install .[bench])"]
+    assert notes == ["OMPL peers skipped: the 'ompl' package is not installed (pip install .[bench])",
+                     "sscbirrt peer skipped: the 'sscbirrt' package is not installed (pip install .[bench])"]
     assert {s.planner for s in specs} == {"lazyground"}
 
 
