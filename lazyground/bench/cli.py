@@ -230,6 +230,10 @@ def write_outputs(rows: list[dict], out: Path, title: str, notes: list[str], tot
     from lazyground.bench import ompl_log, tables
 
     md = [tables.markdown_table(rows, f"## {title}"), "## Where the time goes (every finished run, mean seconds)\n", tables.time_split_table(rows)]
+    if len({r["strategy"] for r in rows if r["planner"].startswith("lazyground")}) > 1:
+        from lazyground.bench.compare import strategy_table
+
+        md += ["## Strategies against consecutive (Mann-Whitney U, two-sided)\n", strategy_table(rows)]
     md += [f"Note: {n}\n" for n in notes]
     (out / "table.md").write_text("\n".join(md))
     print("\n".join(md))

@@ -188,3 +188,22 @@ def test_time_split_shows_checks_per_run_and_time_per_check():
              "time_limit": 10.0, "collision_checks": n} for c_s, n in ((0.3, 1000), (0.1, 3000))]
     cells = [l for l in time_split_table(rows).splitlines() if l.startswith("| a")][0].split(" | ")
     assert cells[-2:] == ["2000", "100 |"]  # mean checks; (0.3 + 0.1) s / 4000 checks = 100 µs
+
+
+def test_strategy_table_compares_with_consecutive_by_mann_whitney():
+    from lazyground.bench.compare import strategy_table
+
+    def row(strategy, seed, time_s, iterations, status="solved"):
+        return {"scene": "s", "planner": "lazyground-bidirectional", "strategy": strategy, "bias": "0.5", "seed": seed,
+                "status": status, "time_s": time_s, "time_limit": 10.0, "iterations": iterations, "resamplings": 1}
+
+    rows = [row("consecutive", i, 1.0 + i, 100 + i) for i in range(6)]
+    rows += [row("reward-penalty", i, 20.0 + i, 1000 + i, "timeout" if i == 0 else "solved") for i in range(6)]
+    lines = {l.split(" | ")[3]: l.split(" | ") for l in strategy_table(rows).splitlines()[2:]}
+    assert set(lines) == {"Consecutive", "Reward-Penalty"}
+    assert lines["Consecutive"][-2:] == ["", " |"]  # the baseline is not compared with itself
+    rp = lines["Reward-Penalty"]
+    assert rp[4:6] == ["6", "5"]  # runs, solved
+    assert float(rp[6]) == pytest.approx((10.0 + sum(20.0 + i for i in range(1, 6))) / 6, abs=1e-3)  # timeout at the limit
+    # all of one sample above all of the other: the exact two-sided p-value for 6 vs 6 is 2 / C(12, 6)
+    assert float(rp[-2]) == pytest.approx(2 / 924, rel=1e-3) and float(rp[-1].rstrip(" |")) == pytest.approx(2 / 924, rel=1e-3)
