@@ -206,4 +206,4 @@ def test_strategy_table_compares_with_consecutive_by_mann_whitney():
     assert rp[4:6] == ["6", "5"]  # runs, solved
     assert float(rp[6]) == pytest.approx((10.0 + sum(20.0 + i for i in range(1, 6))) / 6, abs=1e-3)  # timeout at the limit
     # all of one sample above all of the other: the exact two-sided p-value for 6 vs 6 is 2 / C(12, 6)
-    assert float(rp[-2]) == pytest.approx(2 / 924, rel=1e-3) and float(rp[-1].rstrip(" |")) == pytest.approx(2 / 924, rel=1e-3)
+    assert float(rp[-2]) == pytest.approx(2 / 924, rel=3e-3) and float(rp[-1].rstrip(" |")) == pytest.approx(2 / 924, rel=3e-3)
