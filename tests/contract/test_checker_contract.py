@@ -52,19 +52,32 @@ def test_a_blocked_edge_measures_less_than_one_and_its_prefix_is_free(w):
             assert np.all(w.checker.configs_free(w.space.discretize(a, prefix, w.resolution)))
 
 
+def _short_obstacle_crossings(w, rng, lines: int = 60, keep: int = 10) -> list[tuple[np.ndarray, np.ndarray, float]]:
+    """Edges (a, b, run) with free ends and a colliding middle of length ``run`` just above the resolution,
+    the shortest ``keep`` found by sampling finely along seeded random lines."""
+    fine, found = w.resolution / FINE, []
+    for _ in range(lines):
+        a = w.space.sample(rng)
+        b, _ = w.space.steer(a, w.space.sample(rng), 4 * w.step_size)
+        qs = w.space.discretize(a, b, fine)
+        free = w.checker.configs_free(qs)
+        edges = np.flatnonzero(np.diff(free.astype(int)))  # k: free[k] != free[k + 1]
+        for k0, k1 in zip(edges[:-1], edges[1:]):
+            if free[k0] and not free[k0 + 1]:  # a colliding run qs[k0 + 1 .. k1] between free qs[k0], qs[k1 + 1]
+                run = w.space.distance(qs[k0 + 1], qs[k1])
+                if run > 1.2 * w.resolution:
+                    found.append((qs[k0], qs[k1 + 1], run))
+    assert found, f"{w.name}: no obstacle crossing found"
+    return sorted(found, key=lambda e: e[2])[:keep]
+
+
 def test_edges_are_checked_no_coarser_than_asked(w):
-    # An edge whose only colliding configurations sit between coarse checkpoints: the coarse
-    # check may miss them, but a check at the fine resolution must not.
-    rng = np.random.default_rng(4)
-    q = colliding_config(w, rng)
-    for _ in range(200):  # a free neighbour of q, one planner step away
-        a, _ = w.space.steer(q, w.space.sample(rng), w.step_size)
-        if w.checker.config_free(a):
-            break
-    else:
-        pytest.fail("no free neighbour of a colliding configuration")
-    b = w.space.interpolate(a, q, 2.0)  # q is the edge's midpoint
-    assert not w.checker.edge_free(a, b, w.resolution / FINE)
+    # A colliding stretch longer than the resolution between two free ends: checks no more than
+    # `resolution` apart must land in it, however the checker places them.
+    for a, b, run in _short_obstacle_crossings(w, np.random.default_rng(4)):
+        assert w.checker.config_free(a) and w.checker.config_free(b)
+        assert not w.checker.edge_free(a, b, w.resolution), f"missed a {run:.3g} long collision"
+        assert w.checker.edge_fraction(a, b, w.resolution) < 1.0
 
 
 def test_explain_names_a_colliding_pair_in_one_line(w):
