@@ -15,15 +15,29 @@ from dataclasses import replace
 import pytest
 
 
+def bound_ik_by_counts(patch: pytest.MonkeyPatch | None = None) -> None:
+    """Make IK goal sources built without settings use no time budget (idempotent).
+
+    Args:
+        patch: records the change so it can be undone; None sets it for the process
+            (worker processes of a test).
+    """
+    from lazyground.drake import ik
+
+    bound = replace(ik.DEFAULT_IK_SETTINGS, attempt_budget=None)
+    if patch is None:
+        ik.DEFAULT_IK_SETTINGS = bound
+    else:
+        patch.setattr(ik, "DEFAULT_IK_SETTINGS", bound)
+
+
 @pytest.fixture(autouse=True, scope="session")
 def iteration_bound_ik():
     """IK attempts bounded by counts only (see the module docstring); a no-op without pydrake."""
     if importlib.util.find_spec("pydrake") is None:
         yield
         return
-    from lazyground.drake import ik
-
     patch = pytest.MonkeyPatch()
-    patch.setattr(ik, "DEFAULT_IK_SETTINGS", replace(ik.DEFAULT_IK_SETTINGS, attempt_budget=None))
+    bound_ik_by_counts(patch)
     yield
     patch.undo()

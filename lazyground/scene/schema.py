@@ -187,7 +187,8 @@ class Expectation:
     interpretations: tuple[str, ...] | None = None  # exact set of interpretation ids
     success_rate: float = checked(in_range(0.0, 1.0), default=0.9)
     seeds: int = checked(positive, default=10)
-    time_limit: float | None = checked(positive, default=None)
+    time_limit: float | None = checked(positive, default=None)  # with max_iterations: a backstop only
+    max_iterations: int | None = checked(positive, default=None)  # per planning run: outcomes by seed, not by load
     strategy: str | None = None
     algorithm: str | None = None
     goal_bias: float | None = None

@@ -122,7 +122,7 @@ def test_placement_regions_need_an_attached_object(cans1):
 
 def test_pick_up_a_can_end_to_end(cans1):
     scene, world = cans1
-    report = api.plan(scene, "pick up a can", seed=3, world=world, time_limit=40.0)
+    report = api.plan(scene, "pick up a can", seed=3, world=world, time_limit=1e6, max_iterations=12_000)  # seed 3: 301
     res = report.result
     assert res.solved, res.message
     assert report.chosen_object in ("Can3", "Can4")  # Can1/Can2 sit deep in shelf 1
