@@ -14,6 +14,7 @@ from lazyground.cli import main  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 P1 = str(ROOT / "yaml_scenes/parking_1.yaml")
+BY_SEED = ["--time-limit", "1000"]  # parking_1 solves every seed in a few hundred iterations: the seed decides, not the clock
 
 LOT = textwrap.dedent(
     """\
@@ -41,7 +42,7 @@ def lot(tmp_path, x=3.0, extra=""):
 
 
 def test_plan_json_solves(capsys):
-    assert main(["plan", P1, "park", "--json", "--seed", "1"]) == 0
+    assert main(["plan", P1, "park", "--json", "--seed", "1"] + BY_SEED) == 0
     doc = json.loads(capsys.readouterr().out)
     for key in ("status", "request", "interpretations", "chosen", "joint_names", "path", "time_s", "iterations",
                 "tree_size", "goal_samples", "resamplings", "seed"):
@@ -55,16 +56,16 @@ def test_plan_json_solves(capsys):
 
 
 def test_plan_bidirectional(capsys):
-    assert main(["plan", P1, "park", "--json", "--seed", "1", "--algorithm", "bidirectional"]) == 0
+    assert main(["plan", P1, "park", "--json", "--seed", "1", "--algorithm", "bidirectional"] + BY_SEED) == 0
     doc = json.loads(capsys.readouterr().out)
     assert doc["status"] == "solved" and doc["algorithm"] == "bidirectional"
     assert doc["chosen"]["interpretation"] == f"park:{doc['chosen']['object']}"
-    assert main(["plan", P1, "park", "--seed", "1", "--algorithm", "bidirectional"]) == 0
+    assert main(["plan", P1, "park", "--seed", "1", "--algorithm", "bidirectional"] + BY_SEED) == 0
     assert "reward-penalty, bidirectional" in capsys.readouterr().out
 
 
 def test_plan_human_output(capsys):
-    assert main(["plan", P1, "park", "--seed", "2"]) == 0
+    assert main(["plan", P1, "park", "--seed", "2"] + BY_SEED) == 0
     out = capsys.readouterr().out
     assert "reached: park:spot_" in out and "iterations" in out
 
