@@ -187,12 +187,14 @@ class Expectation:
     interpretations: tuple[str, ...] | None = None  # exact set of interpretation ids
     success_rate: float = checked(in_range(0.0, 1.0), default=0.9)
     seeds: int = checked(positive, default=10)
-    time_limit: float | None = checked(positive, default=None)  # with max_iterations: a backstop only
-    max_iterations: int | None = checked(positive, default=None)  # per planning run: outcomes by seed, not by load
+    time_limit: float | None = checked(positive, default=None)
     strategy: str | None = None
     algorithm: str | None = None
     goal_bias: float | None = None
     reachable: tuple[str, ...] | None = None  # objects a solution may reach; None = any
+    # per planning run: the outcome of a seed then depends on nothing else, not on the machine's load
+    # (time_limit becomes a backstop); tests/scenes requires it in every bundled scene
+    max_iterations: int | None = checked(positive, default=None)
 
 
 @dataclass(frozen=True)
