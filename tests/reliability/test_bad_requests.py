@@ -3,7 +3,7 @@
 Each entry is run as ``lazyground.cli.main(["plan", scene, request])``. The
 request must be refused by grounding (or by the argument parser) before any
 Drake world is built or the planner is started: ``grounding.ground`` is
-wrapped to record what it did and ``lazyground.api.solve`` is replaced by a
+wrapped to record what it did and ``lazyground.tasks.run`` is replaced by a
 function that fails the test.
 """
 
@@ -64,7 +64,7 @@ def test_bad_request(case, monkeypatch, capsys):
         raise AssertionError("planning started for a request that should have been refused")
 
     monkeypatch.setattr(grounding, "ground", recording_ground)
-    monkeypatch.setattr(api, "solve", no_planning)
+    monkeypatch.setattr(api.tasks, "run", no_planning)  # every task starts here
     monkeypatch.setattr(api, "make_goal_source", no_planning)
     if HAS_DRAKE:  # refused before any Drake work: the refusal is cheap (asserted by what runs, not by the clock)
         monkeypatch.setattr("lazyground.drake.world.DrakeWorld", no_planning)
