@@ -27,6 +27,7 @@ from lazyground.goals import RoundRobinGoalSource, register_goal_source
 from lazyground.planning.problem import GoalSample
 from lazyground.regions import PlacementRegion, PoseRegion, WorkspaceRegion
 from lazyground.scene.typed_yaml import SceneError
+from lazyground.tolerance import ORIENTATION_TOLERANCE, POSITION_TOLERANCE, accepted_error
 
 
 APPROACH_RESOLUTION = 0.01  # rad (or m): spacing of the collision checks along an approach segment
@@ -47,8 +48,8 @@ class IKSettings:
     reward-penalty at bias 0.5: 1 of 6 seeds within 30 s warm, 4 of 6 random).
     """
 
-    position_tolerance: float = 0.002  # m, half-width of the box around the target point
-    orientation_tolerance: float = 0.01  # rad, angle between target and solved orientation
+    position_tolerance: float = POSITION_TOLERANCE  # m, half-width of the box around the target point
+    orientation_tolerance: float = ORIENTATION_TOLERANCE  # rad, angle between target and solved orientation
     restarts: int = 3
     attempt_budget: float | None = 0.25  # s per attempt (also bounded by the planner's deadline); None: no
     # clock, an attempt is bounded by restarts x major_iterations only (tests: outcomes independent of load)
@@ -224,8 +225,8 @@ class IKGoalSource(RoundRobinGoalSource):
         ok = bool(np.all(np.isfinite(q_sol)))
         if ok:  # judge the answer by forward kinematics, not by the solver's status
             dp, angle = self.pose_error(frame, q_sol, X_WT)
-            # the solver meets constraints to its feasibility tolerance: allow 10 % slack
-            ok = dp <= 1.1 * s.position_tolerance * np.sqrt(3) and angle <= 1.1 * s.orientation_tolerance
+            max_dp, max_angle = accepted_error(s.position_tolerance, s.orientation_tolerance)
+            ok = dp <= max_dp and angle <= max_angle
         dt = time.perf_counter() - t0
         for c in (self.counters, counters):
             if c is not None:
