@@ -20,11 +20,12 @@ from typing import Callable, Iterable, Iterator
 import numpy as np
 
 from lazyground.bench import arms
+from lazyground.bench.sscbirrt_peer import PLANNER
 from lazyground.settings import Algorithm
 
 LAZYGROUND = "lazyground"
 ALGORITHMS = {Algorithm.RRT: LAZYGROUND, Algorithm.BIDIRECTIONAL: "lazyground-bidirectional"}  # algorithm -> planner column
-SSCBIRRT = "sscbirrt-CBiRRT"  # lazyground.bench.sscbirrt_peer.PLANNER (kept here: no import of the peer module)
+SSCBIRRT = PLANNER  # sscbirrt's CBiRRT (the module imports sscbirrt only when a run needs it)
 PEERS = ("ompl-RRT", "ompl-RRTConnect", SSCBIRRT)
 
 FIELDS = (

@@ -29,8 +29,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from lazyground.bench.runner import SSCBIRRT as PLANNER  # the planner column  # noqa: F401
-
+PLANNER = "sscbirrt-CBiRRT"  # the planner column of the bench CSV
 INVALID_PATH = "invalid_path"  # a run whose returned path collides between its edge checks (counted unsolved)
 MISSING = "sscbirrt peer skipped: the 'sscbirrt' package is not installed (pip install .[bench])"
 
