@@ -1,0 +1,85 @@
+"""A smooth curve through a path, collision-checked densely (the curve, not its waypoints).
+
+A clamped cubic B-spline whose control polygon is the path itself with two extra points
+on every segment, a fraction ``blend`` of the segment in from its ends: the curve starts
+and ends at the path's ends, runs on the path's segments away from the corners and rounds
+each corner inside the triangle the corner spans (a B-spline lies in the convex hull of
+each four consecutive control points). Less blending hugs the corners closer; the caller
+tries decreasing blends until one curve is free. Wrapping coordinates are unwrapped first
+so the curve turns the short way.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.interpolate import BSpline
+
+from lazyground.planning.problem import ValidityChecker
+from lazyground.planning.space import ConfigSpace
+
+DEGREE = 3
+
+
+def unwrap_path(space: ConfigSpace, path: np.ndarray) -> np.ndarray:
+    """The path with wrapping coordinates made continuous (each step the shorter arc)."""
+    path = np.asarray(path, float)
+    if not space.wrap.any() or len(path) < 2:
+        return path.copy()
+    steps = np.array([space.difference(a, b) for a, b in zip(path[:-1], path[1:])])
+    return np.vstack([path[:1], path[0] + np.cumsum(steps, axis=0)])
+
+
+@dataclass(frozen=True)
+class Curve:
+    """q(u) for u in [0, 1], with derivatives; ``control`` are the B-spline's control points."""
+
+    control: np.ndarray
+    blend: float
+
+    def spline(self, derivative: int = 0) -> BSpline:
+        n = len(self.control)
+        inner = np.linspace(0.0, 1.0, n - DEGREE + 1)
+        knots = np.concatenate([np.zeros(DEGREE), inner, np.ones(DEGREE)])
+        s = BSpline(knots, self.control, DEGREE)
+        return s.derivative(derivative) if derivative else s
+
+    def __call__(self, u) -> np.ndarray:
+        return self.spline()(np.asarray(u, float))
+
+
+def blended_curve(path: np.ndarray, blend: float) -> Curve:
+    """The B-spline through an (unwrapped) path with corners rounded by ``blend`` in (0, 0.5]."""
+    path = np.asarray(path, float)
+    control = [path[0]]
+    for a, b in zip(path[:-1], path[1:]):
+        d = b - a
+        control.extend([a + blend * d, b - blend * d, b])
+    return Curve(np.array(control), blend)
+
+
+def dense_samples(space: ConfigSpace, curve: Curve, resolution: float, max_rounds: int = 8) -> tuple[np.ndarray, np.ndarray]:
+    """Parameters u and points q(u) along the curve, consecutive points at most ``resolution`` apart.
+
+    Raises:
+        RuntimeError: the spacing did not converge (a degenerate curve).
+    """
+    polygon = sum(space.distance(a, b) for a, b in zip(curve.control[:-1], curve.control[1:]))
+    u = np.linspace(0.0, 1.0, max(2, int(np.ceil(polygon / resolution)) + 1))
+    f = curve.spline()
+    for _ in range(max_rounds):
+        q = f(u)
+        gaps = np.array([space.distance(a, b) for a, b in zip(q[:-1], q[1:])])
+        if gaps.max(initial=0.0) <= resolution:
+            return u, q
+        extra = np.maximum(1, np.ceil(gaps / resolution * 1.2).astype(int))
+        u = np.concatenate([np.linspace(u[k], u[k + 1], m, endpoint=False) for k, m in enumerate(extra)] + [u[-1:]])
+    raise RuntimeError("dense curve sampling did not converge")
+
+
+def curve_is_free(space: ConfigSpace, checker: ValidityChecker, curve: Curve, resolution: float) -> bool:
+    """Whether every point of the curve sampled at most ``resolution`` apart is free."""
+    _, q = dense_samples(space, curve, resolution)
+    wrapped = space.interpolate(q, q, 0.0) if space.wrap.any() else q  # the checker sees the planner's angles
+    return bool(np.all(checker.configs_free(wrapped)))
