@@ -18,6 +18,7 @@ import numpy as np
 
 import grounding
 from grounding.model import Grounding, Interpretation
+from lazyground.motion.pipeline import Motion, MotionSettings, motion_for_world
 from lazyground.planning.problem import PlannerSettings, PlanResult, PlanStatus
 from lazyground.planning.rrt import solve
 from lazyground.scene import Scene, load_scene
@@ -39,6 +40,7 @@ class PlanReport:
     steps: tuple["PlanReport", ...] = ()  # pick and place: the pick and the place step
     notes: tuple[str, ...] = ()
     extra: dict = field(default_factory=dict)
+    motion: "Motion | None" = None  # the shortened path's timed trajectory (lazyground.motion); result.path is shortened
 
     @property
     def status(self) -> PlanStatus:
@@ -110,6 +112,7 @@ def plan(
     seed: int | None = None,
     keep_tree: bool = False,
     world=None,
+    motion: MotionSettings | None = MotionSettings(),
     **overrides,
 ) -> PlanReport:
     """Ground ``request`` in ``scene`` and plan to whichever interpretation is reachable.
@@ -120,6 +123,7 @@ def plan(
         seed: the random seed (default: the scene's); recorded in the report.
         keep_tree: keep the search tree in the result (for visualisation).
         world: a prebuilt DrakeWorld for this scene (saves set-up time in loops).
+        motion: shortcutting and timing after the solve (None: keep the raw path, no trajectory).
         **overrides: PlannerSettings fields (strategy, goal_bias, step_size, time_limit, ...).
 
     Raises:
@@ -136,7 +140,7 @@ def plan(
     if g.action == "place":
         from lazyground.place import plan_pick_and_place
 
-        return plan_pick_and_place(scene, g, settings, seed, grounding_s, keep_tree=keep_tree)
+        return plan_pick_and_place(scene, g, settings, seed, grounding_s, keep_tree=keep_tree, motion=motion)
     t1 = time.perf_counter()
     if world is None:
         from lazyground.drake.world import DrakeWorld
@@ -146,6 +150,9 @@ def plan(
     rng = np.random.default_rng(seed)
     source = make_goal_source(world, g.goal_regions)
     result = solve(world.space, world, source, world.start, settings, rng, seed=seed, keep_tree=keep_tree)
+    trajectory = None
+    if motion is not None:
+        result, trajectory = motion_for_world(world, result, settings, motion, rng)
     return PlanReport(
         request=request,
         scene=scene.name,
@@ -156,4 +163,6 @@ def plan(
         joint_names=world.space.names,
         grounding_s=grounding_s,
         setup_s=setup_s,
+        notes=(trajectory.note,) if trajectory is not None and trajectory.note else (),
+        motion=trajectory,
     )

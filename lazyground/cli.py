@@ -14,6 +14,7 @@ import sys
 import traceback
 from pathlib import Path
 
+from lazyground.motion import cli_options as motion_options
 from lazyground.scene.schema import ALGORITHM_NAMES, GOAL_EXTENSIONS, STRATEGIES
 
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
@@ -57,6 +58,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--plot", metavar="FILE", help="parking scenes: write a top-down PNG")
     p.add_argument("--animate", metavar="FILE", help="parking scenes: write a top-down GIF")
     p.add_argument("--debug", action="store_true", help="show tracebacks")
+    motion_options.add_arguments(p)
 
     g = sub.add_parser("ground", help="print the interpretations of a request and their goal regions")
     g.add_argument("scene")
@@ -131,12 +133,16 @@ def cmd_plan(args) -> int:
         v = getattr(args, name)
         if v is not None and not v > 0:
             raise UsageError(f"--{name.replace('_', '-')} must be > 0, got {v:g}")
+    try:
+        motion = motion_options.settings_from_args(args)
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
     visual = bool(args.html or args.meshcat or args.plot or args.animate)
     _import_drake()
     report = api.plan(
         scene, args.request, seed=args.seed, keep_tree=visual,
         strategy=args.strategy, algorithm=args.algorithm, goal_bias=args.goal_bias, step_size=args.step_size, time_limit=args.time_limit,
-        goal_extension=args.goal_extension,
+        goal_extension=args.goal_extension, motion=motion,
     )
     if args.json:
         print(json.dumps(report_to_json(report)))
@@ -148,6 +154,8 @@ def cmd_plan(args) -> int:
               f"{len(res.goal_samples)} goal samples", file=sys.stderr)
         return EXIT_INTERRUPTED
     _write_visuals(report, scene, args)
+    if res.solved:
+        motion_options.write_outputs(report, args, sys.stderr if args.json else sys.stdout)
     return EXIT_OK if res.solved else EXIT_FAILED
 
 

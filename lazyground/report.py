@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 from lazyground.api import PlanReport
+from lazyground.motion.export import motion_line, motion_to_json, trajectory_to_json
+from lazyground.motion.steps import report_trajectory
 
 
 def _r(x: float, nd: int = 6) -> float:
@@ -55,9 +57,13 @@ def report_to_json(report: PlanReport) -> dict:
         "regions": {r.id: st.to_json() for r, st in zip(res.regions, res.region_stats)},
         "notes": list(report.grounding.notes) + list(report.notes),
     }
+    if report.motion is not None:
+        out.update(motion_to_json(report.motion))
     if report.steps:
         out["steps"] = [report_to_json(s) for s in report.steps]
         out.update(report.extra)
+        joined = report_trajectory(report)
+        out["trajectory"] = trajectory_to_json(joined) if joined is not None else None
     return out
 
 
@@ -79,6 +85,7 @@ def report_lines(report: PlanReport) -> list[str]:
             f"(goal sampling {res.goal_sampling_s:.3f}, collision {res.collision_s:.3f}); "
             f"{res.iterations} iterations, tree {res.tree_size}, {len(res.goal_samples)} goal samples, {res.resamplings} resamplings"
         )
+        lines.extend(motion_line(s.motion) for s in (report, *report.steps) if s.motion is not None)
     else:
         lines.append(f"status: {res.status.value}: {res.message}")
         lines.append(f"time {report.time_s:.3f} s; {res.iterations} iterations, tree {res.tree_size}, {len(res.goal_samples)} goal samples")

@@ -22,6 +22,12 @@ from lazyground.planning.space import ConfigSpace
 DEGREE = 3
 
 
+def segment_lengths(space: ConfigSpace, q: np.ndarray) -> np.ndarray:
+    """The metric distance between consecutive rows of q (vectorised ``space.distance``)."""
+    e = space.embed(np.asarray(q, float))
+    return np.linalg.norm(np.diff(e, axis=0), axis=1)
+
+
 def unwrap_path(space: ConfigSpace, path: np.ndarray) -> np.ndarray:
     """The path with wrapping coordinates made continuous (each step the shorter arc)."""
     path = np.asarray(path, float)
@@ -33,16 +39,38 @@ def unwrap_path(space: ConfigSpace, path: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Curve:
-    """q(u) for u in [0, 1], with derivatives; ``control`` are the B-spline's control points."""
+    """q(u) for u in [0, 1], with derivatives; ``control`` are the B-spline's control points.
+
+    ``breaks`` are the distinct knots (the spline is clamped at 0 and 1): by default the
+    control polygon's chord lengths averaged (de Boor), so u runs roughly with arc length
+    and |dq/du| stays of one size (uniform knots gave short segments near-zero speeds,
+    where TOPP-RA failed).
+    """
 
     control: np.ndarray
     blend: float
+    breaks: np.ndarray = None
+
+    def __post_init__(self):
+        if self.breaks is None:
+            c = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(self.control, axis=0), axis=1))])
+            c = c / c[-1] if c[-1] > 0 else np.linspace(0.0, 1.0, len(c))
+            n = len(self.control)
+            inner = [np.mean(c[j : j + DEGREE]) for j in range(1, n - DEGREE)]
+            object.__setattr__(self, "breaks", np.array([0.0, *inner, 1.0]))
+
+    @property
+    def knots(self) -> np.ndarray:
+        return np.concatenate([np.zeros(DEGREE), self.breaks, np.ones(DEGREE)])
+
+    def grid(self, per_span: int) -> np.ndarray:
+        """``per_span`` points in every knot span, both ends included, increasing."""
+        b = self.breaks
+        inner = (b[:-1, None] + np.diff(b)[:, None] * (np.arange(per_span - 1) / (per_span - 1))).ravel()
+        return np.append(inner, 1.0)
 
     def spline(self, derivative: int = 0) -> BSpline:
-        n = len(self.control)
-        inner = np.linspace(0.0, 1.0, n - DEGREE + 1)
-        knots = np.concatenate([np.zeros(DEGREE), inner, np.ones(DEGREE)])
-        s = BSpline(knots, self.control, DEGREE)
+        s = BSpline(self.knots, self.control, DEGREE)
         return s.derivative(derivative) if derivative else s
 
     def __call__(self, u) -> np.ndarray:
@@ -65,12 +93,12 @@ def dense_samples(space: ConfigSpace, curve: Curve, resolution: float, max_round
     Raises:
         RuntimeError: the spacing did not converge (a degenerate curve).
     """
-    polygon = sum(space.distance(a, b) for a, b in zip(curve.control[:-1], curve.control[1:]))
+    polygon = float(segment_lengths(space, curve.control).sum())
     u = np.linspace(0.0, 1.0, max(2, int(np.ceil(polygon / resolution)) + 1))
     f = curve.spline()
     for _ in range(max_rounds):
         q = f(u)
-        gaps = np.array([space.distance(a, b) for a, b in zip(q[:-1], q[1:])])
+        gaps = segment_lengths(space, q)
         if gaps.max(initial=0.0) <= resolution:
             return u, q
         extra = np.maximum(1, np.ceil(gaps / resolution * 1.2).astype(int))

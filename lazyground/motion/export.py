@@ -19,9 +19,10 @@ from pathlib import Path
 import numpy as np
 import yaml
 
+from lazyground.motion.cli_options import FORMATS
 from lazyground.motion.trajectory import Trajectory
 
-FORMATS = (".csv", ".json")
+
 
 
 def trajectory_to_json(traj: Trajectory) -> dict:
@@ -38,6 +39,7 @@ def trajectory_to_json(traj: Trajectory) -> dict:
         "velocity_limits": traj.limits.velocity.round(9).tolist(),
         "acceleration_limits": traj.limits.acceleration.round(9).tolist(),
         "curve": traj.curve,
+        "events": [{"t": round(t, 9), "event": e} for t, e in traj.events],
         "trajectory": {
             "t": traj.t.round(9).tolist(),
             "q": traj.q.round(9).tolist(),
@@ -116,3 +118,26 @@ def read_ros_trajectory(path: str | Path) -> dict[str, np.ndarray]:
     except (KeyError, TypeError, ValueError) as exc:
         raise ValueError(f"{path}: not a trajectory_msgs/JointTrajectory: {exc}") from None
     return {"joint_names": names, "t": t, "q": q, "qd": qd, "qdd": qdd}
+
+
+def motion_to_json(motion) -> dict:
+    """The keys a plan report's JSON gains from its :class:`~lazyground.motion.pipeline.Motion`."""
+    sc = motion.shortcut
+    out = {
+        "raw_path": sc.raw_path.round(9).tolist(),
+        "raw_path_length": round(sc.raw_length, 6),
+        "shortcut": {"status": sc.status.value, "iterations": sc.iterations, "accepted": sc.accepted,
+                     "time_s": round(motion.shortcut_s, 6)},
+        "timing_s": round(motion.timing_s, 6),
+        "trajectory": trajectory_to_json(motion.trajectory) if motion.trajectory is not None else None,
+    }
+    return out
+
+
+def motion_line(motion) -> str:
+    """One human line: lengths, duration, cost."""
+    sc, tr = motion.shortcut, motion.trajectory
+    line = f"motion: path length {sc.raw_length:.3f} -> {sc.length:.3f} ({sc.status.value}, {len(sc.raw_path)} -> {len(sc.path)} waypoints)"
+    if tr is not None:
+        line += f"; trajectory {tr.duration:.2f} s ({tr.curve}{', limits bind' if tr.limits_bind else ''})"
+    return line + f"; shortcut {motion.shortcut_s:.3f} s, timing {motion.timing_s:.3f} s"

@@ -67,6 +67,7 @@ class Trajectory:
     limits: Limits  # the limits it was timed under (already scaled by speed)
     curve: str  # how it was shaped, e.g. "blend 0.3" or "stops at waypoints", per piece joined by " + "
     time_s: float = 0.0  # computing it
+    events: tuple[tuple[float, str], ...] = ()  # (t, what) while at rest, e.g. (4.2, "close gripper")
 
     @property
     def duration(self) -> float:
@@ -113,24 +114,52 @@ def time_path(
     cuts = sorted({0, len(q) - 1, *(k for k in stops if 0 < k < len(q) - 1)})
     parts, labels, dt = [], [], 1.0 / settings.sample_rate
     for a, b in zip(cuts[:-1], cuts[1:]):
-        curve, label = _free_curve(space, checker, q[a : b + 1], fine_resolution, settings.blends)
+        timed, label = _smooth_piece(space, checker, q[a : b + 1], fine_resolution, settings.blends, scaled, dt)
+        if timed is None:  # stop at every waypoint: straight segments are exactly the checked path
+            timed = [_time_curve(_straight(q[k], q[k + 1]), scaled, dt) for k in range(a, b) if np.any(q[k] != q[k + 1])]
+        parts.extend(timed)
         labels.append(label)
-        if curve is None:  # stop at every waypoint: straight segments are as valid as the path
-            parts.extend(_time_curve(blended_curve(q[k : k + 2], 0.5), scaled, dt) for k in range(a, b))
-        else:
-            parts.append(_time_curve(curve, scaled, dt))
-    t, qs, qd, qdd = _sample(parts, q[0], dt)
+    if not parts:  # start == goal
+        parts = [_Rest(q[0])]
+    t, qs, qd, qdd = _sample(parts, dt)
     return Trajectory(space.names, tuple(bool(w) for w in space.wrap), t, qs, qd, qdd, scaled, " + ".join(labels), time.perf_counter() - t0)
 
 
-def _free_curve(space, checker, piece: np.ndarray, resolution: float, blends) -> tuple[Curve | None, str]:
+STRAIGHT = 1.0 / 3.0  # a blend that spaces a straight segment's control points evenly (constant dq/du)
+
+
+def _straight(a: np.ndarray, b: np.ndarray) -> Curve:
+    return blended_curve(np.array([a, b]), STRAIGHT)
+
+
+def _smooth_piece(space, checker, piece: np.ndarray, resolution: float, blends, limits: Limits, dt: float):
+    """The first blend whose curve is free and timeable, as ([timed], label); (None, label) when none is."""
     if len(piece) == 2:
-        return blended_curve(piece, 0.5), "straight"
+        return ([_time_curve(_straight(*piece), limits, dt)] if np.any(piece[0] != piece[1]) else []), "straight"
     for blend in blends:
-        curve = blended_curve(piece, blend)
-        if curve_is_free(space, checker, curve, resolution):
-            return curve, f"blend {blend:g}"
+        curve = blended_curve(_merge_close(space, piece, resolution), blend)
+        if not curve_is_free(space, checker, curve, resolution):
+            continue
+        try:
+            return [_time_curve(curve, limits, dt)], f"blend {blend:g}"
+        except RuntimeError:  # TOPP-RA failed on this curve (numerics): less blending, or stops
+            continue
     return None, "stops at waypoints"
+
+
+def _merge_close(space: ConfigSpace, piece: np.ndarray, resolution: float) -> np.ndarray:
+    """Drop interior waypoints closer than ``resolution`` to the previous kept one.
+
+    Near-duplicate waypoints make corners with near-zero dq/du; the curve is checked
+    densely anyway, so dropping them only changes which curve is checked.
+    """
+    keep = [0]
+    for k in range(1, len(piece) - 1):
+        if space.distance(piece[keep[-1]], piece[k]) >= resolution:
+            keep.append(k)
+    if len(keep) > 1 and space.distance(piece[keep[-1]], piece[-1]) < resolution:
+        keep.pop()
+    return piece[keep + [len(piece) - 1]]
 
 
 @dataclass(frozen=True)
@@ -155,22 +184,18 @@ class _Timed:
         return self.curve.spline()(u), d1 * ud[:, None], d2 * (ud**2)[:, None] + d1 * udd[:, None]
 
 
-# TOPP-RA's grid: its solve costs ~1 ms per grid point; a coarser grid overshoots the
-# acceleration limit more between grid points, which the uniform slow-down then removes
-# (measured on a blended corner: 196 points, 6% overshoot; 57 points, 14%).
-GRID_MAX_ERR = 0.02
-GRID_MAX_SEGMENT = 0.05
-GRID_MIN_POINTS = 40
+# TOPP-RA's grid: a few points in every knot span of the B-spline (curvature changes
+# within a span, and a grid coarser than the spans overshot the acceleration limit 3-16x
+# between grid points on Fetch paths); its solve costs ~1 ms per grid point.
+GRID_PER_SPAN = 4
 
 
 def _time_curve(curve: Curve, limits: Limits, dt: float) -> _Timed:
     """TOPP-RA on the curve, then the uniform slow-down that makes dense samples respect the limits."""
-    from pydrake.multibody.optimization import CalcGridPointsOptions, Toppra
+    from pydrake.multibody.optimization import Toppra
 
     path = _drake_bspline(curve)
-    options = CalcGridPointsOptions()
-    options.max_err, options.max_seg_length, options.min_points = GRID_MAX_ERR, GRID_MAX_SEGMENT, GRID_MIN_POINTS
-    grid = Toppra.CalcGridPoints(path, options)
+    grid = curve.grid(GRID_PER_SPAN)
     toppra = Toppra(path, _point_plant(len(limits.velocity)), grid)
     toppra.AddJointVelocityLimit(-limits.velocity, limits.velocity)
     toppra.AddJointAccelerationLimit(-limits.acceleration, limits.acceleration)
@@ -188,13 +213,12 @@ def _time_curve(curve: Curve, limits: Limits, dt: float) -> _Timed:
 
 
 def _drake_bspline(curve: Curve):
-    from pydrake.math import BsplineBasis, KnotVectorType
+    from pydrake.math import BsplineBasis
     from pydrake.trajectories import BsplineTrajectory
 
     from lazyground.motion.curve import DEGREE
 
-    n = len(curve.control)
-    basis = BsplineBasis(DEGREE + 1, n, KnotVectorType.kClampedUniform, 0.0, 1.0)
+    basis = BsplineBasis(DEGREE + 1, list(curve.knots))
     return BsplineTrajectory(basis, [c.reshape(-1, 1) for c in curve.control])
 
 
@@ -219,13 +243,26 @@ def _point_plant(dim: int):
     return plant
 
 
-def _sample(parts: list[_Timed], q0: np.ndarray, dt: float):
+@dataclass(frozen=True)
+class _Rest:
+    """Standing still at q (a path whose start is its goal)."""
+
+    q: np.ndarray
+    duration: float = 0.0
+
+    def evaluate(self, t: np.ndarray):
+        zero = np.zeros((len(t), len(self.q)))
+        return self.q + zero, zero, zero.copy()
+
+
+def _sample(parts: list, dt: float):
     """The pieces played one after another, sampled every dt and at the end."""
     total = sum(p.duration for p in parts)
     t = np.arange(0.0, total, dt)
     if not len(t) or total - t[-1] > 1e-9:
         t = np.append(t, total)
-    q, qd, qdd = (np.empty((len(t), len(q0))) for _ in range(3))
+    dim = len(parts[0].evaluate(np.zeros(1))[0][0])
+    q, qd, qdd = (np.empty((len(t), dim)) for _ in range(3))
     ends = np.cumsum([p.duration for p in parts])
     which = np.minimum(np.searchsorted(ends, t, side="left"), len(parts) - 1)
     starts = ends - [p.duration for p in parts]

@@ -1,0 +1,125 @@
+"""After a solve: shorten the path, then time it (what ``api.plan`` runs by default)."""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from lazyground.motion.shortcut import ShortcutResult, ShortcutSettings, shortcut_path
+from lazyground.motion.trajectory import Limits, TimingSettings, Trajectory, time_path
+from lazyground.planning.problem import PlannerSettings, PlanResult, ValidityChecker
+from lazyground.planning.space import ConfigSpace
+
+
+@dataclass(frozen=True)
+class MotionSettings:
+    """Shortcutting and timing after every solve.
+
+    ``shortcut=False`` keeps the raw path; ``timing=False`` skips the trajectory;
+    ``speed`` in (0, 1] scales velocity limits by s and acceleration limits by s^2.
+    """
+
+    shortcut: bool = True
+    shortcut_iterations: int = 100
+    shortcut_time: float = 1.0  # s; the shortcut's time budget
+    timing: bool = True
+    speed: float = 1.0
+    sample_rate: float = 100.0  # Hz
+
+    def __post_init__(self):
+        self.shortcut_settings(), self.timing_settings()  # validate once, here
+
+    def shortcut_settings(self) -> ShortcutSettings:
+        return ShortcutSettings(enabled=self.shortcut, max_iterations=self.shortcut_iterations, time_budget=self.shortcut_time)
+
+    def timing_settings(self) -> TimingSettings:
+        return TimingSettings(speed=self.speed, sample_rate=self.sample_rate)
+
+
+@dataclass(frozen=True)
+class Motion:
+    """The shortened path and its timed trajectory (None when timing is off or impossible)."""
+
+    shortcut: ShortcutResult
+    trajectory: Trajectory | None
+    shortcut_s: float
+    timing_s: float
+    note: str = ""  # why there is no trajectory
+
+    @property
+    def raw_path(self) -> np.ndarray:
+        return self.shortcut.raw_path
+
+    @property
+    def raw_length(self) -> float:
+        return self.shortcut.raw_length
+
+    @property
+    def time_s(self) -> float:
+        return self.shortcut_s + self.timing_s
+
+
+def make_motion(
+    space: ConfigSpace,
+    checker: ValidityChecker,
+    result: PlanResult,
+    planner: PlannerSettings,
+    settings: MotionSettings,
+    limits: Limits | None,
+    rng: np.random.Generator,
+) -> Motion:
+    """Shorten and time a solved result's path.
+
+    Args:
+        space: the planner's configuration space.
+        checker: the planner's validity checker.
+        result: a solved PlanResult (its goal's ``final`` marks a straight approach to keep).
+        planner: the settings it was planned with (resolution, validation factor).
+        settings: what to do.
+        limits: velocity/acceleration limits; None: no trajectory.
+        rng: the plan's generator (continues its stream, so the motion follows from the seed).
+
+    Returns:
+        The Motion; its ``shortcut.path`` passed the fine re-check.
+    """
+    approach = result.goal is not None and result.goal.final is not None
+    short = shortcut_path(space, checker, result.path, planner.resolution, planner.validation_factor,
+                          settings.shortcut_settings(), rng, keep_last_segment=approach)
+    if not settings.timing or limits is None:
+        return Motion(short, None, short.time_s, 0.0, "" if not settings.timing else "no limits for timing")
+    t0 = time.perf_counter()
+    stops = (len(short.path) - 2,) if approach else ()
+    traj = time_path(space, checker, short.path, limits, planner.resolution / planner.validation_factor,
+                     settings.timing_settings(), stops=stops)
+    return Motion(short, traj, short.time_s, time.perf_counter() - t0)
+
+
+def with_motion(result: PlanResult, motion: Motion) -> PlanResult:
+    """The result with the shortened path as its path (the raw one stays in ``motion``)."""
+    return replace(result, path=motion.shortcut.path, path_length=motion.shortcut.length)
+
+
+def motion_for_world(world, result: PlanResult, planner: PlannerSettings, settings: MotionSettings,
+                     rng: np.random.Generator) -> tuple[PlanResult, Motion | None]:
+    """The API's hook: shorten and time a result planned in a DrakeWorld.
+
+    Returns:
+        (the result with the shortened path, its Motion); (result, None) when it is not solved.
+        A robot without limits gets a Motion without trajectory and a note saying why.
+    """
+    if not result.solved or result.path is None:
+        return result, None
+    from lazyground.motion.limits import world_limits
+    from lazyground.scene.typed_yaml import SceneError
+
+    try:
+        limits = world_limits(world) if settings.timing else None
+        note = ""
+    except SceneError as exc:
+        limits, note = None, f"no trajectory: {exc}"
+    motion = make_motion(world.space, world, result, planner, settings, limits, rng)
+    if note:
+        motion = replace(motion, note=note)
+    return with_motion(result, motion), motion
