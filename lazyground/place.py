@@ -123,8 +123,10 @@ def plan_pick_and_place(
     grounding_s: float,
     keep_tree: bool = False,
     place_share: float = PLACE_SHARE,
+    motion=None,
 ) -> PlanReport:
-    """Plan "put X on Y": a grasp of any X, then a placement on any Y, with fallback."""
+    """Plan "put X on Y": a grasp of any X, then a placement on any Y, with fallback; then, unless
+    ``motion`` is None, shorten and time each step (lazyground.motion.steps)."""
     t0 = time.perf_counter()
     deadline = t0 + settings.time_limit
     rng = np.random.default_rng(seed)
@@ -137,8 +139,8 @@ def plan_pick_and_place(
     results: list[PlanResult] = []
     steps: tuple[PlanReport, ...] = ()
 
-    def step_report(request: str, result: PlanResult, setup: float) -> PlanReport:
-        return PlanReport(request, scene.name, seed, settings, g, result, world.space.names, 0.0, setup)
+    def step_report(request: str, result: PlanResult, setup: float, step_motion=None) -> PlanReport:
+        return PlanReport(request, scene.name, seed, settings, g, result, world.space.names, 0.0, setup, motion=step_motion)
 
     def finish(status: PlanStatus, message: str, extra: dict | None = None, path=None, goal=None, region=None) -> PlanReport:
         elapsed = time.perf_counter() - t0
@@ -192,7 +194,13 @@ def plan_pick_and_place(
             continue
         q_final = place.path[-1]
         X_WO = carrying.frame_pose(frame, q_final).compose(X_GO)
-        steps = (step_report(f"pick {obj.id}", pick, 0.0), step_report(f"place {obj.id}", place, setup))
+        pick_motion = place_motion = None
+        if motion is not None:
+            from lazyground.motion.steps import pick_and_place_motions
+
+            pick, pick_motion, place, place_motion = pick_and_place_motions(world, carrying, pick, lift.path, place, settings, motion, rng)
+            results[-2:] = [pick, place]  # the shortened steps (the combined result sums their lengths)
+        steps = (step_report(f"pick {obj.id}", pick, 0.0, pick_motion), step_report(f"place {obj.id}", place, setup, place_motion))
         extra = {
             "picked": obj.id,
             "grasp": {"region": pick.goal_region.id, "label": pick.goal_region.label, "X_WG": X_WG.to_json(), "X_GO": X_GO.to_json()},

@@ -136,3 +136,36 @@ def test_cli_rejects_bad_motion_options(args, capsys):
     assert main(["plan", str(ROOT / "yaml_scenes/parking_1.yaml"), "park", *args]) == 2
     err = capsys.readouterr().err.strip()
     assert err.startswith("error:") and "\n" not in err
+
+
+def test_pick_and_place_times_each_step_with_the_gripper_events_between():
+    from lazyground.drake.world import Attachment
+    from lazyground.geometry import Pose
+    from lazyground.motion.steps import report_trajectory
+
+    scene = load_scene(ROOT / "yaml_scenes/kitchen_put_cup_on_table.yaml")
+    report = next(r for r in (api.plan(scene, "put a cup on the table", seed=s, motion=MOTION) for s in range(3)) if r.result.solved)
+    pick, place = report.steps
+    world = DrakeWorld(scene, visual=False)
+    fine = report.settings.resolution / report.settings.validation_factor
+    assert_valid_trajectory(world, pick)
+    tp = place.motion.trajectory
+    # the place step starts with the lift at the grasp and ends at the placement
+    assert np.allclose(tp.q[0], pick.motion.trajectory.q[-1]) and np.allclose(tp.q[-1], place.result.path[-1])
+    X_GO = Pose(tuple(report.extra["grasp"]["X_GO"]["xyz"]), tuple(report.extra["grasp"]["X_GO"]["rpy"]))
+    carrying = DrakeWorld(scene, attached=Attachment(scene.object(report.extra["picked"]), "gripper_link", X_GO), visual=False)
+    dense = np.vstack([world.space.discretize(a, b, fine) for a, b in zip(tp.q[:-1], tp.q[1:])])
+    free = carrying.configs_free(dense)
+    # from the first free configuration of the lift on (before it, the object rests on its support),
+    # as place.lift_is_clear; the lift is timed waypoint to waypoint on the checked lift path
+    assert np.all(free[int(np.argmax(free)):])
+    assert np.all(np.abs(tp.qd) <= 1.01 * tp.limits.velocity) and np.all(np.abs(tp.qdd) <= 1.01 * tp.limits.acceleration)
+    whole = report_trajectory(report)
+    (t_close, close), (t_open, open_) = whole.events
+    assert (close, open_) == ("close gripper", "open gripper")
+    assert t_close == pytest.approx(pick.motion.trajectory.duration)
+    assert t_open == pytest.approx(t_close + 0.5 + tp.duration, abs=0.011)
+    assert np.all(np.diff(whole.t) > 0) and np.allclose(whole.q[-1], tp.q[-1])
+    doc = report_to_json(report)
+    assert [e["event"] for e in doc["trajectory"]["events"]] == ["close gripper", "open gripper"]
+    assert all(s["trajectory"] is not None for s in doc["steps"])
