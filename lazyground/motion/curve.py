@@ -50,6 +50,7 @@ class Curve:
     control: np.ndarray
     blend: float
     breaks: np.ndarray = None
+    known_free: np.ndarray = None  # per knot span: it lies on a segment already checked (no check needed)
 
     def __post_init__(self):
         if self.breaks is None:
@@ -58,6 +59,8 @@ class Curve:
             n = len(self.control)
             inner = [np.mean(c[j : j + DEGREE]) for j in range(1, n - DEGREE)]
             object.__setattr__(self, "breaks", np.array([0.0, *inner, 1.0]))
+        if self.known_free is None:
+            object.__setattr__(self, "known_free", np.zeros(len(self.breaks) - 1, bool))
 
     @property
     def knots(self) -> np.ndarray:
@@ -77,14 +80,25 @@ class Curve:
         return self.spline()(np.asarray(u, float))
 
 
-def blended_curve(path: np.ndarray, blend: float) -> Curve:
-    """The B-spline through an (unwrapped) path with corners rounded by ``blend`` in (0, 0.5]."""
+def blended_curve(path: np.ndarray, blend: float, checked: np.ndarray | None = None) -> Curve:
+    """The B-spline through an (unwrapped) path with corners rounded by ``blend`` in (0, 0.5].
+
+    Args:
+        path: (n, dim) waypoints.
+        blend: how far along each segment (as a fraction) the rounding starts.
+        checked: per segment, whether it was already checked at the resolution the curve will be
+            (its straight knot span, which lies on it, then needs no check).
+    """
     path = np.asarray(path, float)
     control = [path[0]]
     for a, b in zip(path[:-1], path[1:]):
         d = b - a
         control.extend([a + blend * d, b - blend * d, b])
-    return Curve(np.array(control), blend)
+    # knot span 3k depends on control points w_k, A_k, B_k, w_k+1 only: it lies on segment k
+    known = np.zeros(3 * (len(path) - 1), bool)
+    if checked is not None:
+        known[0::3] = np.asarray(checked, bool)
+    return Curve(np.array(control), blend, known_free=known)
 
 
 def dense_samples(space: ConfigSpace, curve: Curve, resolution: float, max_rounds: int = 8) -> tuple[np.ndarray, np.ndarray]:
@@ -107,7 +121,12 @@ def dense_samples(space: ConfigSpace, curve: Curve, resolution: float, max_round
 
 
 def curve_is_free(space: ConfigSpace, checker: ValidityChecker, curve: Curve, resolution: float) -> bool:
-    """Whether every point of the curve sampled at most ``resolution`` apart is free."""
-    _, q = dense_samples(space, curve, resolution)
+    """Whether every point of the curve sampled at most ``resolution`` apart is free
+    (skipping the knot spans that lie on segments checked before)."""
+    u, q = dense_samples(space, curve, resolution)
+    span = np.clip(np.searchsorted(curve.breaks, u, side="right") - 1, 0, len(curve.known_free) - 1)
+    q = q[~curve.known_free[span]]
+    if not len(q):
+        return True
     wrapped = space.interpolate(q, q, 0.0) if space.wrap.any() else q  # the checker sees the planner's angles
     return bool(np.all(checker.configs_free(wrapped)))

@@ -136,8 +136,10 @@ def _smooth_piece(space, checker, piece: np.ndarray, resolution: float, blends, 
     """The first blend whose curve is free and timeable, as ([timed], label); (None, label) when none is."""
     if len(piece) == 2:
         return ([_time_curve(_straight(*piece), limits, dt)] if np.any(piece[0] != piece[1]) else []), "straight"
+    kept = _merge_close(space, piece, resolution)
+    checked = np.diff(kept) == 1  # segments of the (checked) path itself; merged ones are new
     for blend in blends:
-        curve = blended_curve(_merge_close(space, piece, resolution), blend)
+        curve = blended_curve(piece[kept], blend, checked)
         if not curve_is_free(space, checker, curve, resolution):
             continue
         try:
@@ -148,7 +150,8 @@ def _smooth_piece(space, checker, piece: np.ndarray, resolution: float, blends, 
 
 
 def _merge_close(space: ConfigSpace, piece: np.ndarray, resolution: float) -> np.ndarray:
-    """Drop interior waypoints closer than ``resolution`` to the previous kept one.
+    """The indices of the waypoints kept when dropping interior ones closer than ``resolution``
+    to the previous kept one.
 
     Near-duplicate waypoints make corners with near-zero dq/du; the curve is checked
     densely anyway, so dropping them only changes which curve is checked.
@@ -159,7 +162,7 @@ def _merge_close(space: ConfigSpace, piece: np.ndarray, resolution: float) -> np
             keep.append(k)
     if len(keep) > 1 and space.distance(piece[keep[-1]], piece[-1]) < resolution:
         keep.pop()
-    return piece[keep + [len(piece) - 1]]
+    return np.array(keep + [len(piece) - 1])
 
 
 @dataclass(frozen=True)
