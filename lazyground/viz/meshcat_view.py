@@ -37,10 +37,11 @@ from grounding.regions import END_EFFECTOR
 from lazyground.drake.world import PARKED_CAR_SIZE, Attachment, DrakeWorld, rigid_transform
 from lazyground.geometry import Pose
 from lazyground.viz.style import FAILED_RGBA, GOAL_BIASED_RGBA, PATH_RGBA, REGION_RGBA, TREE_RGBA, weight_rgba
-from lazyground.viz.trace import resample_path, tree_edges
+from lazyground.viz.trace import frames_in_time, resample_path, tree_edges
 
 FPS = 30
-STEP_SECONDS = 4.0  # animation length of one planned step
+STEP_SECONDS = 4.0  # animation length of a step without a timed trajectory (else: its real duration)
+RAW_PATH_ALPHA = 0.3  # the planner's raw path, drawn faintly beside the shortened one
 PAUSE_SECONDS = 0.5  # hold at the end of a step
 ROOT = "/lazyground"
 EXTERNAL_SCRIPT = re.compile(r"<script[^>]*\bsrc\s*=\s*[\"']?(https?:)?//", re.IGNORECASE)
@@ -107,13 +108,14 @@ class _Segment:
     report: object
     attached: Attachment | None
     motion: np.ndarray | None
+    trajectory: object = None  # the step's timed Trajectory (lazyground.motion): the replay's clock
 
 
 def _segments(report, scene) -> list[_Segment]:
     """The steps to replay: one for a plain plan; pick, then lift and place (carrying) for pick and place."""
     if not report.steps:
-        return [_Segment(report, report.extra.get("attached"), report.result.path)]
-    out = [_Segment(report.steps[0], None, report.steps[0].result.path)]
+        return [_Segment(report, report.extra.get("attached"), report.result.path, _trajectory(report))]
+    out = [_Segment(report.steps[0], None, report.steps[0].result.path, _trajectory(report.steps[0]))]
     carried = None
     if "picked" in report.extra:  # lazyground.place: the grasp and the lift-off are in the parent's extra
         X_GO = report.extra["grasp"]["X_GO"]
@@ -124,8 +126,12 @@ def _segments(report, scene) -> list[_Segment]:
         lift = report.extra.get("lift", {}).get("path")
         if motion is not None and lift is not None and step is report.steps[1]:
             motion = np.vstack([np.asarray(lift, float), motion[1:]])
-        out.append(_Segment(step, step.extra.get("attached", carried), motion))
+        out.append(_Segment(step, step.extra.get("attached", carried), motion, _trajectory(step)))
     return out
+
+
+def _trajectory(report):
+    return report.motion.trajectory if getattr(report, "motion", None) is not None else None
 
 
 @dataclass(frozen=True)
@@ -143,6 +149,7 @@ class _StepView:
     def __init__(self, segment: _Segment, scene, meshcat: Meshcat, prefix: str):
         report = segment.report
         self.report, self.motion, self.scene, self.meshcat, self.prefix = report, segment.motion, scene, meshcat, prefix
+        self.trajectory = segment.trajectory
         params = MeshcatVisualizerParams(prefix=prefix, delete_on_initialization_event=False)
 
         def add_visualizer(builder):
@@ -191,10 +198,17 @@ class _StepView:
         if self.motion is not None:
             dense = resample_path(self.motion, 200, self.world.space.wrap)
             self.meshcat.SetLine(f"{path}/path", self.points(dense), 4.0, Rgba(*PATH_RGBA))
+        raw = self.report.motion.raw_path if getattr(self.report, "motion", None) is not None else None
+        if raw is not None and not np.array_equal(raw, self.report.result.path):
+            dense = resample_path(raw, 200, self.world.space.wrap)
+            self.meshcat.SetLine(f"{path}/raw_path", self.points(dense), 2.0, Rgba(*PATH_RGBA[:3], RAW_PATH_ALPHA))
 
     def animate(self, t0: float) -> float:
-        """Record the robot along the path from time ``t0``; returns the end time."""
-        if self.motion is None:
+        """Record the robot along its timed trajectory at real speed (else along the path in
+        ``STEP_SECONDS``) from time ``t0``; returns the end time."""
+        if self.trajectory is not None:
+            qs = frames_in_time(self.trajectory, FPS)
+        elif self.motion is None:
             qs = np.atleast_2d(self.start)
         else:
             qs = resample_path(self.motion, int(STEP_SECONDS * FPS) + 1, self.world.space.wrap)
@@ -202,6 +216,8 @@ class _StepView:
             self.context.SetTime(t0 + i / FPS)
             self.world.plant.SetPositions(self.plant_context, self.world.full(q))
             self.world.diagram.ForcedPublish(self.context)
+        if self.trajectory is not None:
+            return t0 + self.trajectory.duration
         return t0 + (len(qs) - 1) / FPS
 
     def _points(self, path: str, p: np.ndarray, rgba, size: float) -> None:
