@@ -77,8 +77,10 @@ def animate_parking(report, scene, path, fps: int = 12) -> None:
     fig.canvas.draw()
     background = fig.canvas.copy_from_bbox(fig.bbox)
     segments = view.tree_segments()
-    if view.trajectory is not None:  # the GIF's clock is the trajectory's: one frame every 1 / fps s
-        drive = frames_in_time(view.trajectory, fps)
+    # GIFs time frames in centiseconds (browsers slow delays under 2 cs down): the nearest at least 2 cs
+    frame_ms = 10 * max(2, round(100 / fps))
+    if view.trajectory is not None:  # the GIF's clock is the trajectory's: one frame every frame_ms
+        drive = frames_in_time(view.trajectory, 1000.0 / frame_ms)
     elif view.path is not None:
         drive = view.resampled(DRIVE_FRAMES)
     else:
@@ -100,7 +102,7 @@ def animate_parking(report, scene, path, fps: int = 12) -> None:
     plt.close(fig)
     palette = frames[-1].quantize(colors=128)  # one shared palette keeps the GIF small and steady
     frames = [f.quantize(palette=palette, dither=Image.Dither.NONE) for f in frames]
-    frames[0].save(str(path), save_all=True, append_images=frames[1:], duration=int(1000 / fps), loop=0, optimize=True)
+    frames[0].save(str(path), save_all=True, append_images=frames[1:], duration=frame_ms, loop=0, optimize=True)
 
 
 class _View:
