@@ -21,6 +21,7 @@ from lazyground.motion.export import read_ros_trajectory, read_trajectory_csv, w
 from lazyground.motion.limits import world_limits  # noqa: E402
 from lazyground.motion.pipeline import MotionSettings  # noqa: E402
 from lazyground.motion.trajectory import TimingSettings, time_path  # noqa: E402
+from lazyground.motion.validate import trajectory_problems  # noqa: E402
 from lazyground.planning import path_is_valid  # noqa: E402
 from lazyground.report import report_to_json  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
@@ -51,13 +52,9 @@ def parking():
 def assert_valid_trajectory(world, report):
     """Starts at the start, ends at the goal, free as a curve at the fine resolution, within the limits."""
     tr, settings = report.motion.trajectory, report.settings
-    space, fine = world.space, settings.resolution / settings.validation_factor
-    assert np.allclose(space.difference(tr.q[0], world.start), 0.0, atol=1e-9)
-    assert np.allclose(space.difference(tr.q[-1], report.result.goal.end), 0.0, atol=1e-9)
-    assert np.allclose(tr.qd[[0, -1]], 0.0, atol=1e-9)
-    assert path_is_valid(space, world, tr.q, fine) == -1
-    assert np.all(np.abs(tr.qd) <= 1.01 * tr.limits.velocity)
-    assert np.all(np.abs(tr.qdd) <= 1.01 * tr.limits.acceleration)
+    fine = settings.resolution / settings.validation_factor
+    assert trajectory_problems(tr, world.space, world, world.start, report.result.goal.end, fine) == []
+    assert np.allclose(world.space.difference(tr.q[-1], report.result.goal.end), 0.0, atol=1e-9)
     dt = np.diff(tr.t)
     assert np.allclose(dt[:-1], dt[0]) and 0 < dt[-1] <= dt[0] + 1e-12
     # the velocities are those of the positions (trapezoid rule between samples)
@@ -154,12 +151,9 @@ def test_pick_and_place_times_each_step_with_the_gripper_events_between():
     assert np.allclose(tp.q[0], pick.motion.trajectory.q[-1]) and np.allclose(tp.q[-1], place.result.path[-1])
     X_GO = Pose(tuple(report.extra["grasp"]["X_GO"]["xyz"]), tuple(report.extra["grasp"]["X_GO"]["rpy"]))
     carrying = DrakeWorld(scene, attached=Attachment(scene.object(report.extra["picked"]), "gripper_link", X_GO), visual=False)
-    dense = np.vstack([world.space.discretize(a, b, fine) for a, b in zip(tp.q[:-1], tp.q[1:])])
-    free = carrying.configs_free(dense)
     # from the first free configuration of the lift on (before it, the object rests on its support),
     # as place.lift_is_clear; the lift is timed waypoint to waypoint on the checked lift path
-    assert np.all(free[int(np.argmax(free)):])
-    assert np.all(np.abs(tp.qd) <= 1.01 * tp.limits.velocity) and np.all(np.abs(tp.qdd) <= 1.01 * tp.limits.acceleration)
+    assert trajectory_problems(tp, carrying.space, carrying, pick.result.path[-1], place.result.path[-1], fine, from_first_free=True) == []
     whole = report_trajectory(report)
     (t_close, close), (t_open, open_) = whole.events
     assert (close, open_) == ("close gripper", "open gripper")
