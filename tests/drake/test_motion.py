@@ -80,6 +80,8 @@ def test_parking_trajectory_is_valid_and_the_heading_wraps(parking):
     assert_valid_trajectory(world, report)
     doc = report_to_json(report)
     assert doc["trajectory"]["wrap"] == ["car_qz"]
+    limits = world_limits(world)  # the planar joint has none in the URDF: models/car/robot.yaml's
+    assert limits.velocity.tolist() == [1.5, 1.5, 0.5] and limits.acceleration.tolist() == [1.0, 1.0, 1.0]
     assert doc["raw_path_length"] >= doc["path_length"]
     assert len(doc["trajectory"]["trajectory"]["t"]) == len(doc["trajectory"]["trajectory"]["q"])
 
