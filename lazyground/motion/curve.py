@@ -6,7 +6,8 @@ and ends at the path's ends, runs on the path's segments away from the corners a
 each corner inside the triangle the corner spans (a B-spline lies in the convex hull of
 each four consecutive control points). Less blending hugs the corners closer; the caller
 tries decreasing blends until one curve is free. Wrapping coordinates are unwrapped first
-so the curve turns the short way.
+so the curve turns the short way. The curve is checked where it is timed
+(:mod:`lazyground.motion.trajectory`), on the samples a controller receives.
 """
 
 from __future__ import annotations
@@ -16,7 +17,6 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.interpolate import BSpline
 
-from lazyground.planning.problem import ValidityChecker
 from lazyground.planning.space import ConfigSpace
 
 DEGREE = 3
@@ -50,7 +50,6 @@ class Curve:
     control: np.ndarray
     blend: float
     breaks: np.ndarray = None
-    known_free: np.ndarray = None  # per knot span: it lies on a segment already checked (no check needed)
 
     def __post_init__(self):
         if self.breaks is None:
@@ -59,8 +58,6 @@ class Curve:
             n = len(self.control)
             inner = [np.mean(c[j : j + DEGREE]) for j in range(1, n - DEGREE)]
             object.__setattr__(self, "breaks", np.array([0.0, *inner, 1.0]))
-        if self.known_free is None:
-            object.__setattr__(self, "known_free", np.zeros(len(self.breaks) - 1, bool))
 
     @property
     def knots(self) -> np.ndarray:
@@ -80,53 +77,11 @@ class Curve:
         return self.spline()(np.asarray(u, float))
 
 
-def blended_curve(path: np.ndarray, blend: float, checked: np.ndarray | None = None) -> Curve:
-    """The B-spline through an (unwrapped) path with corners rounded by ``blend`` in (0, 0.5].
-
-    Args:
-        path: (n, dim) waypoints.
-        blend: how far along each segment (as a fraction) the rounding starts.
-        checked: per segment, whether it was already checked at the resolution the curve will be
-            (its straight knot span, which lies on it, then needs no check).
-    """
+def blended_curve(path: np.ndarray, blend: float) -> Curve:
+    """The B-spline through an (unwrapped) path with corners rounded by ``blend`` in (0, 0.5]."""
     path = np.asarray(path, float)
     control = [path[0]]
     for a, b in zip(path[:-1], path[1:]):
         d = b - a
         control.extend([a + blend * d, b - blend * d, b])
-    # knot span 3k depends on control points w_k, A_k, B_k, w_k+1 only: it lies on segment k
-    known = np.zeros(3 * (len(path) - 1), bool)
-    if checked is not None:
-        known[0::3] = np.asarray(checked, bool)
-    return Curve(np.array(control), blend, known_free=known)
-
-
-def dense_samples(space: ConfigSpace, curve: Curve, resolution: float, max_rounds: int = 8) -> tuple[np.ndarray, np.ndarray]:
-    """Parameters u and points q(u) along the curve, consecutive points at most ``resolution`` apart.
-
-    Raises:
-        RuntimeError: the spacing did not converge (a degenerate curve).
-    """
-    polygon = float(segment_lengths(space, curve.control).sum())
-    u = np.linspace(0.0, 1.0, max(2, int(np.ceil(polygon / resolution)) + 1))
-    f = curve.spline()
-    for _ in range(max_rounds):
-        q = f(u)
-        gaps = segment_lengths(space, q)
-        if gaps.max(initial=0.0) <= resolution:
-            return u, q
-        extra = np.maximum(1, np.ceil(gaps / resolution * 1.2).astype(int))
-        u = np.concatenate([np.linspace(u[k], u[k + 1], m, endpoint=False) for k, m in enumerate(extra)] + [u[-1:]])
-    raise RuntimeError("dense curve sampling did not converge")
-
-
-def curve_is_free(space: ConfigSpace, checker: ValidityChecker, curve: Curve, resolution: float) -> bool:
-    """Whether every point of the curve sampled at most ``resolution`` apart is free
-    (skipping the knot spans that lie on segments checked before)."""
-    u, q = dense_samples(space, curve, resolution)
-    span = np.clip(np.searchsorted(curve.breaks, u, side="right") - 1, 0, len(curve.known_free) - 1)
-    q = q[~curve.known_free[span]]
-    if not len(q):
-        return True
-    wrapped = space.interpolate(q, q, 0.0) if space.wrap.any() else q  # the checker sees the planner's angles
-    return bool(np.all(checker.configs_free(wrapped)))
+    return Curve(np.array(control), blend)

@@ -7,8 +7,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from lazyground.motion.shortcut import ShortcutResult, ShortcutSettings, shortcut_path
-from lazyground.motion.trajectory import Limits, TimingSettings, Trajectory, time_path
+from lazyground.motion.shortcut import ShortcutResult, ShortcutSettings, ShortcutStatus, shortcut_path
+from lazyground.motion.trajectory import Limits, MotionError, TimingSettings, Trajectory, time_path
 from lazyground.planning.problem import PlannerSettings, PlanResult, ValidityChecker
 from lazyground.planning.space import ConfigSpace
 
@@ -90,10 +90,21 @@ def make_motion(
     if not settings.timing or limits is None:
         return Motion(short, None, short.time_s, 0.0, "" if not settings.timing else "no limits for timing")
     t0 = time.perf_counter()
-    stops = (len(short.path) - 2,) if approach else ()
-    traj = time_path(space, checker, short.path, limits, planner.resolution / planner.validation_factor,
-                     settings.timing_settings(), stops=stops)
-    return Motion(short, traj, short.time_s, time.perf_counter() - t0)
+    fine = planner.resolution / planner.validation_factor
+    for attempt in (short, _reverted(short)):
+        stops = (len(attempt.path) - 2,) if approach else ()
+        try:
+            traj = time_path(space, checker, attempt.path, limits, fine, settings.timing_settings(), stops=stops)
+        except MotionError as exc:
+            if attempt.path is attempt.raw_path:
+                return Motion(short, None, short.time_s, time.perf_counter() - t0, f"no trajectory: {exc}")
+            continue  # a shortcut segment grazes an obstacle between its fine checks: time the raw path instead
+        return Motion(attempt, traj, short.time_s, time.perf_counter() - t0)
+    raise AssertionError("unreachable")
+
+
+def _reverted(short: ShortcutResult) -> ShortcutResult:
+    return replace(short, status=ShortcutStatus.REVERTED, path=short.raw_path, length=short.raw_length)
 
 
 def with_motion(result: PlanResult, motion: Motion) -> PlanResult:
@@ -120,6 +131,6 @@ def motion_for_world(world, result: PlanResult, planner: PlannerSettings, settin
     except SceneError as exc:
         limits, note = None, f"no trajectory: {exc}"
     motion = make_motion(world.space, world, result, planner, settings, limits, rng)
-    if note:
+    if note and not motion.note:
         motion = replace(motion, note=note)
     return with_motion(result, motion), motion

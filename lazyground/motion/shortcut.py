@@ -35,6 +35,7 @@ class ShortcutStatus(str, enum.Enum):
     UNCHANGED = "unchanged"  # no shortcut found (or none tried)
     DISABLED = "disabled"
     BACKTRACKED = "backtracked"  # the last version failed the fine check; an earlier, valid one is returned
+    REVERTED = "reverted"  # the shortened path could not be timed (lazyground.motion.pipeline): the raw one is kept
 
     def __str__(self) -> str:
         return self.value

@@ -1,10 +1,12 @@
 """Time parameterisation on Drake: TOPP-RA over a smooth curve through a path.
 
 Each piece of the path (pieces end where the robot must stop: the start of a straight
-approach) gets a blended B-spline (:mod:`lazyground.motion.curve`) that is checked densely
-at the fine resolution, with decreasing blends; when no blend is free the piece falls back
-to the piecewise-linear path with a stop at every waypoint, which is always as valid as
-the path. Drake's ``Toppra`` (Pham and Pham, IEEE T-RO 2018) finds the fastest timing under
+approach) gets a blended B-spline (:mod:`lazyground.motion.curve`). The sampled output is
+checked densely at the fine resolution (its samples and the joins between them, the very
+check ``lazyground.motion.validate`` re-runs); a piece whose curve collides is redone with
+less blending, then as the piecewise-linear path with a stop at every waypoint. When even
+that fails (the path grazes an obstacle between the points its own fine check tested)
+there is no trajectory (:class:`MotionError`). Drake's ``Toppra`` (Pham and Pham, IEEE T-RO 2018) finds the fastest timing under
 per-joint velocity and acceleration limits. TOPP-RA enforces its constraints at grid
 points; the sampled trajectory is then slowed uniformly by the largest overshoot between
 them, so every sample respects the limits. ``speed`` s scales the limits to s v_max and
@@ -19,7 +21,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lazyground.motion.curve import Curve, blended_curve, curve_is_free, unwrap_path
+from lazyground.motion.curve import Curve, blended_curve, unwrap_path
+from lazyground.motion.validate import first_colliding_join
 from lazyground.planning.problem import ValidityChecker
 from lazyground.planning.space import ConfigSpace
 
@@ -112,17 +115,34 @@ def time_path(
     q = unwrap_path(space, path)
     scaled = Limits(limits.velocity * settings.speed, limits.acceleration * settings.speed**2)
     cuts = sorted({0, len(q) - 1, *(k for k in stops if 0 < k < len(q) - 1)})
-    parts, labels, dt = [], [], 1.0 / settings.sample_rate
-    for a, b in zip(cuts[:-1], cuts[1:]):
-        timed, label = _smooth_piece(space, checker, q[a : b + 1], fine_resolution, settings.blends, scaled, dt)
-        if timed is None:  # stop at every waypoint: straight segments are exactly the checked path
-            timed = [_time_curve(_straight(q[k], q[k + 1]), scaled, dt) for k in range(a, b) if np.any(q[k] != q[k + 1])]
-        parts.extend(timed)
-        labels.append(label)
-    if not parts:  # start == goal
-        parts = [_Rest(q[0])]
-    t, qs, qd, qdd = _sample(parts, dt)
-    return Trajectory(space.names, tuple(bool(w) for w in space.wrap), t, qs, qd, qdd, scaled, " + ".join(labels), time.perf_counter() - t0)
+    pieces = [q[a : b + 1] for a, b in zip(cuts[:-1], cuts[1:])]
+    dt = 1.0 / settings.sample_rate
+    options = [*settings.blends, None]  # None: stop at every waypoint
+    level = [0] * len(pieces)
+    timed = [_time_piece(space, p, options[0], fine_resolution, scaled, dt) for p in pieces]
+    checked_until = 0  # output samples before this index passed the check
+    while True:
+        parts = [part for piece in timed for part in piece[0]] or [_Rest(q[0])]
+        t, qs, qd, qdd = _sample(parts, dt)
+        bad = first_colliding_join(space, checker, qs, fine_resolution, first=checked_until)
+        if bad is None:
+            break
+        # the piece playing at the colliding join gets less blending (pieces before it are unchanged)
+        ends = np.cumsum([sum(part.duration for part in piece[0]) for piece in timed])
+        k = min(int(np.searchsorted(ends, t[bad], side="right")), len(pieces) - 1)
+        level[k] += 1
+        if level[k] >= len(options):
+            raise MotionError(f"no collision-free timing: the path grazes an obstacle between its fine-resolution "
+                              f"checks near t = {t[bad]:.2f} s")
+        timed[k] = _time_piece(space, pieces[k], options[level[k]], fine_resolution, scaled, dt)
+        start_k = ends[k - 1] if k else 0.0
+        checked_until = max(0, int(np.floor(start_k / dt)) - 1)
+    labels = " + ".join(piece[1] for piece in timed)
+    return Trajectory(space.names, tuple(bool(w) for w in space.wrap), t, qs, qd, qdd, scaled, labels, time.perf_counter() - t0)
+
+
+class MotionError(RuntimeError):
+    """No valid timed trajectory could be made (the caller reports it; the path stays valid)."""
 
 
 STRAIGHT = 1.0 / 3.0  # a blend that spaces a straight segment's control points evenly (constant dq/du)
@@ -132,21 +152,16 @@ def _straight(a: np.ndarray, b: np.ndarray) -> Curve:
     return blended_curve(np.array([a, b]), STRAIGHT)
 
 
-def _smooth_piece(space, checker, piece: np.ndarray, resolution: float, blends, limits: Limits, dt: float):
-    """The first blend whose curve is free and timeable, as ([timed], label); (None, label) when none is."""
-    if len(piece) == 2:
-        return ([_time_curve(_straight(*piece), limits, dt)] if np.any(piece[0] != piece[1]) else []), "straight"
-    kept = _merge_close(space, piece, resolution)
-    checked = np.diff(kept) == 1  # segments of the (checked) path itself; merged ones are new
-    for blend in blends:
-        curve = blended_curve(piece[kept], blend, checked)
-        if not curve_is_free(space, checker, curve, resolution):
-            continue
-        try:
-            return [_time_curve(curve, limits, dt)], f"blend {blend:g}"
-        except RuntimeError:  # TOPP-RA failed on this curve (numerics): less blending, or stops
-            continue
-    return None, "stops at waypoints"
+def _time_piece(space, piece: np.ndarray, blend: float | None, resolution: float, limits: Limits, dt: float):
+    """([timed curves], label) for a piece between two stops: one blended curve, or (``blend`` None,
+    or TOPP-RA failing on the curve) straight segments with a stop at every waypoint."""
+    if len(piece) == 2 or blend is None:
+        label = "straight" if len(piece) == 2 else "stops at waypoints"
+        return [_time_curve(_straight(a, b), limits, dt) for a, b in zip(piece[:-1], piece[1:]) if np.any(a != b)], label
+    try:
+        return [_time_curve(blended_curve(piece[_merge_close(space, piece, resolution)], blend), limits, dt)], f"blend {blend:g}"
+    except RuntimeError:  # TOPP-RA failed on this curve (numerics): stops at waypoints
+        return _time_piece(space, piece, None, resolution, limits, dt)
 
 
 def _merge_close(space: ConfigSpace, piece: np.ndarray, resolution: float) -> np.ndarray:

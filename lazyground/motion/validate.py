@@ -45,10 +45,28 @@ def trajectory_problems(
         ratio = float(np.max(np.abs(values) / limit))
         if ratio > 1.0 + LIMIT_TOLERANCE:
             problems.append(f"trajectory exceeds a {name} limit {ratio:.3f}x")
-    dense = np.vstack([space.discretize(a, b, resolution, skip_first=k > 0) for k, (a, b) in enumerate(zip(traj.q[:-1], traj.q[1:]))])
-    free = checker.configs_free(space.interpolate(dense, dense, 0.0) if space.wrap.any() else dense)
-    if from_first_free:
-        free = free[int(np.argmax(free)):]
-    if not np.all(free):
+    if first_colliding_join(space, checker, traj.q, resolution, from_first_free) is not None:
         problems.append(f"trajectory collides at resolution {resolution:g}")
     return problems
+
+
+def first_colliding_join(space: ConfigSpace, checker: ValidityChecker, q: np.ndarray, resolution: float,
+                         from_first_free: bool = False, first: int = 0) -> int | None:
+    """The first k >= ``first`` whose join q[k] -> q[k + 1], checked every ``resolution``, collides; None if none.
+
+    The one check of sampled motions: :func:`trajectory_problems` and the timing itself
+    (:func:`lazyground.motion.trajectory.time_path` checks its output with it, so what it
+    returns passes this re-check by construction).
+    """
+    q = np.asarray(q, float)[first:]
+    if len(q) < 2:
+        return None
+    parts = [space.discretize(a, b, resolution, skip_first=k > 0) for k, (a, b) in enumerate(zip(q[:-1], q[1:]))]
+    owner = np.concatenate([np.full(len(p), k) for k, p in enumerate(parts)])
+    owner[0] = 0
+    dense = np.vstack(parts)
+    free = checker.configs_free(space.interpolate(dense, dense, 0.0) if space.wrap.any() else dense)
+    if from_first_free:
+        free[: int(np.argmax(free))] = True
+    bad = np.flatnonzero(~free)
+    return None if not len(bad) else first + int(owner[bad[0]])

@@ -3,7 +3,8 @@
 import numpy as np
 import pytest
 
-from lazyground.motion.curve import blended_curve, curve_is_free, dense_samples, unwrap_path
+from lazyground.motion.curve import blended_curve, unwrap_path
+from lazyground.motion.validate import first_colliding_join
 from lazyground.motion.shortcut import ShortcutSettings, ShortcutStatus, shortcut_path
 from lazyground.planning import PlannerSettings, path_is_valid, solve
 from lazyground.planning.space import ConfigSpace
@@ -82,21 +83,21 @@ def test_blended_curve_runs_from_start_to_goal_near_the_corners():
     for blend in (0.3, 0.1, 0.03):
         curve = blended_curve(path, blend)
         assert np.allclose(curve(0.0), path[0]) and np.allclose(curve(1.0), path[-1])
-        u, q = dense_samples(SPACE, curve, 0.01)
-        gaps = np.linalg.norm(np.diff(q, axis=0), axis=1)
-        assert gaps.max() <= 0.01 and np.all(np.diff(u) > 0)
+        q = curve(np.linspace(0.0, 1.0, 4000))
         # the curve stays within blend x the longest segment of the polyline
         seg = [np.min(np.linalg.norm(q[:, None] - np.linspace(a, b, 2000)[None], axis=2), axis=1) for a, b in zip(path[:-1], path[1:])]
         assert np.min(seg, axis=0).max() <= blend * 8.0
 
 
-def test_curve_check_finds_a_corner_cut_into_an_obstacle():
+def test_the_join_check_finds_a_corner_cut_into_an_obstacle():
     # A box sits inside the corner at (5, 5): the polyline goes around it, a wide blend cuts into it.
     world = BoxWorld([(4.3, 4.3, 4.9, 4.9)])
     path = np.array([[1.0, 5.0], [5.0, 5.0], [5.0, 1.0]])
     assert path_is_valid(SPACE, world, path, 0.005) == -1
-    assert not curve_is_free(SPACE, world, blended_curve(path, 0.3), 0.005)
-    assert curve_is_free(SPACE, world, blended_curve(path, 0.03), 0.005)
+    u = np.linspace(0.0, 1.0, 500)
+    assert first_colliding_join(SPACE, world, blended_curve(path, 0.3)(u), 0.005) is not None
+    assert first_colliding_join(SPACE, world, blended_curve(path, 0.03)(u), 0.005) is None
+    assert first_colliding_join(SPACE, world, path, 0.005) is None
 
 
 def test_unwrap_takes_the_short_way_round():
