@@ -120,14 +120,14 @@ def time_path(
     options = [*settings.blends, None]  # None: stop at every waypoint
     level = [0] * len(pieces)
     timed = [_time_piece(space, p, options[0], fine_resolution, scaled, dt) for p in pieces]
-    checked_until = 0  # output samples before this index passed the check
     while True:
         parts = [part for piece in timed for part in piece[0]] or [_Rest(q[0])]
         t, qs, qd, qdd = _sample(parts, dt)
-        bad = first_colliding_join(space, checker, qs, fine_resolution, first=checked_until)
+        bad = first_colliding_join(space, checker, qs, fine_resolution)
         if bad is None:
             break
-        # the piece playing at the colliding join gets less blending (pieces before it are unchanged)
+        # the piece playing at the colliding join gets less blending; the whole output is checked again
+        # (rarely needed), so that it passes the very check a re-check runs
         ends = np.cumsum([sum(part.duration for part in piece[0]) for piece in timed])
         k = min(int(np.searchsorted(ends, t[bad], side="right")), len(pieces) - 1)
         level[k] += 1
@@ -135,8 +135,6 @@ def time_path(
             raise MotionError(f"no collision-free timing: the path grazes an obstacle between its fine-resolution "
                               f"checks near t = {t[bad]:.2f} s")
         timed[k] = _time_piece(space, pieces[k], options[level[k]], fine_resolution, scaled, dt)
-        start_k = ends[k - 1] if k else 0.0
-        checked_until = max(0, int(np.floor(start_k / dt)) - 1)
     labels = " + ".join(piece[1] for piece in timed)
     return Trajectory(space.names, tuple(bool(w) for w in space.wrap), t, qs, qd, qdd, scaled, labels, time.perf_counter() - t0)
 

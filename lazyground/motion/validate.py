@@ -51,22 +51,26 @@ def trajectory_problems(
 
 
 def first_colliding_join(space: ConfigSpace, checker: ValidityChecker, q: np.ndarray, resolution: float,
-                         from_first_free: bool = False, first: int = 0) -> int | None:
-    """The first k >= ``first`` whose join q[k] -> q[k + 1], checked every ``resolution``, collides; None if none.
+                         from_first_free: bool = False) -> int | None:
+    """The sample k where the motion through ``q`` first collides, checked every ``resolution``; None if free.
 
     The one check of sampled motions: :func:`trajectory_problems` and the timing itself
     (:func:`lazyground.motion.trajectory.time_path` checks its output with it, so what it
     returns passes this re-check by construction).
     """
-    q = np.asarray(q, float)[first:]
+    q = np.asarray(q, float)
     if len(q) < 2:
         return None
-    parts = [space.discretize(a, b, resolution, skip_first=k > 0) for k, (a, b) in enumerate(zip(q[:-1], q[1:]))]
-    owner = np.concatenate([np.full(len(p), k) for k, p in enumerate(parts)])
-    owner[0] = 0
+    # Samples closer together than the resolution (a robot speeding up or slowing down) need not
+    # all be checked: keep one per ``resolution`` of arc length, and discretize what lies between.
+    e = space.embed(q)
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(e, axis=0), axis=1))])
+    keep = np.unique(np.concatenate([np.searchsorted(s, np.arange(0.0, s[-1], resolution), side="right") - 1, [0, len(q) - 1]]))
+    parts = [space.discretize(q[a], q[b], resolution, skip_first=k > 0) for k, (a, b) in enumerate(zip(keep[:-1], keep[1:]))]
+    owner = np.concatenate([np.full(len(p), a) for p, a in zip(parts, keep[:-1])])
     dense = np.vstack(parts)
     free = checker.configs_free(space.interpolate(dense, dense, 0.0) if space.wrap.any() else dense)
     if from_first_free:
         free[: int(np.argmax(free))] = True
     bad = np.flatnonzero(~free)
-    return None if not len(bad) else first + int(owner[bad[0]])
+    return None if not len(bad) else int(owner[bad[0]])
