@@ -1,10 +1,14 @@
-"""Plan reports as JSON and as a few human-readable lines (the CLI prints these)."""
+"""Plan reports as JSON and as a few human-readable lines (the CLI prints these).
+
+The report itself is :class:`lazyground.plan_report.PlanReport`.
+"""
 
 from __future__ import annotations
 
-from lazyground.api import PlanReport
 from lazyground.motion.export import motion_line, motion_to_json, trajectory_to_json
 from lazyground.motion.steps import report_trajectory
+from lazyground.plan_report import PlanReport
+from lazyground.settings import Algorithm
 
 
 def _r(x: float, nd: int = 6) -> float:
@@ -60,10 +64,25 @@ def report_to_json(report: PlanReport) -> dict:
     if report.motion is not None:
         out.update(motion_to_json(report.motion))
     if report.steps:
-        out["steps"] = [report_to_json(s) for s in report.steps]
-        out.update(report.extra)
-        joined = report_trajectory(report)
+        out["steps"] = [report_to_json(report.step_report(s)) for s in report.steps]
+        out.update(_pick_and_place_json(report.outcome))
+        joined = report_trajectory(report)  # the steps' trajectories with the gripper events between
         out["trajectory"] = trajectory_to_json(joined) if joined is not None else None
+    return out
+
+
+def _pick_and_place_json(outcome) -> dict:
+    """The keys a pick-and-place document adds (the names of the earlier ``extra`` dict)."""
+    out: dict = {"fallbacks": outcome.fallbacks}
+    grasp = outcome.grasp
+    if grasp is not None:
+        out["picked"] = grasp.object_id
+        out["grasp"] = {"region": grasp.region, "label": grasp.label, "X_WG": grasp.X_WG.to_json(), "X_GO": grasp.X_GO.to_json()}
+    if outcome.placement is not None:
+        p = outcome.placement
+        out["placement"] = {"region": p.region, "target": p.target, "X_WO": p.X_WO.to_json()}
+    if outcome.lift is not None:
+        out["lift"] = {"height": outcome.lift.height, "path": outcome.lift.path.round(9).tolist()}
     return out
 
 
@@ -94,6 +113,6 @@ def report_lines(report: PlanReport) -> list[str]:
 
 
 def _planner_label(settings) -> str:
-    if settings.algorithm == "bidirectional":  # no goal bias in the two-tree planner
+    if settings.algorithm is Algorithm.BIDIRECTIONAL:  # no goal bias in the two-tree planner
         return f"{settings.strategy}, bidirectional"
     return f"{settings.strategy}, bias {settings.goal_bias:g}"

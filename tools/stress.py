@@ -34,9 +34,11 @@ REPO = Path(__file__).resolve().parents[1]
 if str(REPO) not in sys.path:
     sys.path.insert(0, str(REPO))
 
-STRATEGIES = ("reward-penalty", "consecutive", "random")
+from lazyground.settings import Algorithm, Strategy  # noqa: E402
+
+STRATEGIES = tuple(Strategy)
 BIASES = (0.05, 0.1, 0.2, 0.5)
-ALGORITHMS = ("rrt", "bidirectional")  # both planners on every scene, each with the scene's settings for it
+ALGORITHMS = tuple(Algorithm)  # both planners on every scene, each with the scene's settings for it
 PARKING_LIMIT = 5.0  # s: parking solves in 1-2 s; the cap keeps a rare slow run short
 FETCH_LIMITS = {"pick": 2.0, "place": 3.0}  # s: short on purpose; timeouts are fine, invalid paths are not
 PARKING_SHARE = 0.85
@@ -55,7 +57,7 @@ class StressRun:
     strategy: str
     goal_bias: float
     time_limit: float
-    algorithm: str = "rrt"
+    algorithm: str = Algorithm.RRT
 
 
 def bundled_scenes() -> tuple[list[tuple[str, str]], list[tuple[str, str]], list[str]]:
@@ -146,14 +148,10 @@ def _trajectory_problems(report, world, start, fine: float, from_first_free: boo
 
 def _pick_and_place_trajectory_problems(report, scene, world, fine: float) -> list[str]:
     """The pick's trajectory in the world; the place step's (lift first) with the object carried."""
-    from lazyground.drake.world import Attachment, DrakeWorld
-    from lazyground.geometry import Pose
+    from lazyground.tasks.worlds import Worlds
 
     pick, place = report.steps
-    X_GO = report.extra["grasp"]["X_GO"]
-    frame = scene.robot.end_effector or "gripper_link"
-    carrying = DrakeWorld(scene, attached=Attachment(scene.object(report.extra["picked"]), frame,
-                                                     Pose(tuple(X_GO["xyz"]), tuple(X_GO["rpy"]))), visual=False)
+    carrying = Worlds(scene, world, visual=False).get(place.grasp)
     return (["pick: " + p for p in _trajectory_problems(pick, world, world.start, fine)]
             + ["place: " + p for p in _trajectory_problems(place, carrying, pick.result.path[-1], fine, from_first_free=True)])
 

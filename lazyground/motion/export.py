@@ -141,3 +141,22 @@ def motion_line(motion) -> str:
     if tr is not None:
         line += f"; trajectory {tr.duration:.2f} s ({tr.curve}{', limits bind' if tr.limits_bind else ''})"
     return line + f"; shortcut {motion.shortcut_s:.3f} s, timing {motion.timing_s:.3f} s"
+
+
+def write_outputs(report, args, out) -> None:
+    """Write --trajectory / --ros-trajectory for a solved report (pick and place: the steps joined)."""
+    if not (args.trajectory or args.ros_trajectory):
+        return
+    from lazyground.motion.steps import report_trajectory
+
+    traj = report_trajectory(report)
+    if traj is None:
+        motion = report.motion
+        print("note: no trajectory to write" + (f" ({motion.note})" if motion is not None and motion.note else ""), file=out)
+        return
+    if args.trajectory:
+        write_trajectory(traj, args.trajectory)
+        print(f"wrote {args.trajectory}", file=out)
+    if args.ros_trajectory:
+        write_ros_trajectory(traj, args.ros_trajectory)
+        print(f"wrote {args.ros_trajectory}", file=out)

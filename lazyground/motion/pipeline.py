@@ -9,33 +9,19 @@ import numpy as np
 
 from lazyground.motion.shortcut import ShortcutResult, ShortcutSettings, ShortcutStatus, shortcut_path
 from lazyground.motion.trajectory import Limits, MotionError, TimingSettings, Trajectory, time_path
-from lazyground.planning.problem import PlannerSettings, PlanResult, ValidityChecker
+from lazyground.planning.problem import PlanResult, ValidityChecker
+from lazyground.settings import PlannerSettings
 from lazyground.planning.space import ConfigSpace
 
 
-@dataclass(frozen=True)
-class MotionSettings:
-    """Shortcutting and timing after every solve.
+def shortcut_settings(settings: PlannerSettings) -> ShortcutSettings:
+    """The shortcut's settings from the planner's (declared in lazyground.settings)."""
+    return ShortcutSettings(enabled=settings.shortcut_iterations > 0, max_iterations=settings.shortcut_iterations,
+                            time_budget=settings.shortcut_time)
 
-    ``shortcut=False`` keeps the raw path; ``timing=False`` skips the trajectory;
-    ``speed`` in (0, 1] scales velocity limits by s and acceleration limits by s^2.
-    """
 
-    shortcut: bool = True
-    shortcut_iterations: int = 100
-    shortcut_time: float = 1.0  # s; the shortcut's time budget
-    timing: bool = True
-    speed: float = 1.0
-    sample_rate: float = 100.0  # Hz
-
-    def __post_init__(self):
-        self.shortcut_settings(), self.timing_settings()  # validate once, here
-
-    def shortcut_settings(self) -> ShortcutSettings:
-        return ShortcutSettings(enabled=self.shortcut, max_iterations=self.shortcut_iterations, time_budget=self.shortcut_time)
-
-    def timing_settings(self) -> TimingSettings:
-        return TimingSettings(speed=self.speed, sample_rate=self.sample_rate)
+def timing_settings(settings: PlannerSettings) -> TimingSettings:
+    return TimingSettings(speed=settings.speed, sample_rate=settings.sample_rate)
 
 
 @dataclass(frozen=True)
@@ -66,7 +52,6 @@ def make_motion(
     checker: ValidityChecker,
     result: PlanResult,
     planner: PlannerSettings,
-    settings: MotionSettings,
     limits: Limits | None,
     rng: np.random.Generator,
 ) -> Motion:
@@ -76,8 +61,8 @@ def make_motion(
         space: the planner's configuration space.
         checker: the planner's validity checker.
         result: a solved PlanResult (its goal's ``final`` marks a straight approach to keep).
-        planner: the settings it was planned with (resolution, validation factor).
-        settings: what to do.
+        planner: the settings it was planned with (resolution, validation factor) and the motion's
+            (shortcut_iterations, shortcut_time, speed, sample_rate).
         limits: velocity/acceleration limits; None: no trajectory.
         rng: the plan's generator (continues its stream, so the motion follows from the seed).
 
@@ -86,15 +71,15 @@ def make_motion(
     """
     approach = result.goal is not None and result.goal.final is not None
     short = shortcut_path(space, checker, result.path, planner.resolution, planner.validation_factor,
-                          settings.shortcut_settings(), rng, keep_last_segment=approach)
-    if not settings.timing or limits is None:
-        return Motion(short, None, short.time_s, 0.0, "" if not settings.timing else "no limits for timing")
+                          shortcut_settings(planner), rng, keep_last_segment=approach)
+    if limits is None:
+        return Motion(short, None, short.time_s, 0.0, "no limits for timing")
     t0 = time.perf_counter()
     fine = planner.resolution / planner.validation_factor
     for attempt in (short, _reverted(short)):
         stops = (len(attempt.path) - 2,) if approach else ()
         try:
-            traj = time_path(space, checker, attempt.path, limits, fine, settings.timing_settings(), stops=stops)
+            traj = time_path(space, checker, attempt.path, limits, fine, timing_settings(planner), stops=stops)
         except MotionError as exc:
             if attempt.path is attempt.raw_path:
                 return Motion(short, None, short.time_s, time.perf_counter() - t0, f"no trajectory: {exc}")
@@ -112,7 +97,7 @@ def with_motion(result: PlanResult, motion: Motion) -> PlanResult:
     return replace(result, path=motion.shortcut.path, path_length=motion.shortcut.length)
 
 
-def motion_for_world(world, result: PlanResult, planner: PlannerSettings, settings: MotionSettings,
+def motion_for_world(world, result: PlanResult, planner: PlannerSettings,
                      rng: np.random.Generator) -> tuple[PlanResult, Motion | None]:
     """The API's hook: shorten and time a result planned in a DrakeWorld.
 
@@ -126,11 +111,10 @@ def motion_for_world(world, result: PlanResult, planner: PlannerSettings, settin
     from lazyground.scene.typed_yaml import SceneError
 
     try:
-        limits = world_limits(world) if settings.timing else None
-        note = ""
+        limits, note = world_limits(world), ""
     except SceneError as exc:
         limits, note = None, f"no trajectory: {exc}"
-    motion = make_motion(world.space, world, result, planner, settings, limits, rng)
+    motion = make_motion(world.space, world, result, planner, limits, rng)
     if note and not motion.note:
         motion = replace(motion, note=note)
     return with_motion(result, motion), motion

@@ -19,7 +19,6 @@ from lazyground.cli import main  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.motion.export import read_ros_trajectory, read_trajectory_csv, write_ros_trajectory, write_trajectory  # noqa: E402
 from lazyground.motion.limits import world_limits  # noqa: E402
-from lazyground.motion.pipeline import MotionSettings  # noqa: E402
 from lazyground.motion.trajectory import TimingSettings, time_path  # noqa: E402
 from lazyground.motion.validate import trajectory_problems  # noqa: E402
 from lazyground.planning import path_is_valid  # noqa: E402
@@ -28,14 +27,14 @@ from lazyground.scene import load_scene  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 # the iteration budget decides, never the clock (the time budget is out of reach)
-MOTION = MotionSettings(shortcut_iterations=60, shortcut_time=1e9)
+MOTION = {"shortcut_iterations": 60, "shortcut_time": 1e9}
 
 
 @pytest.fixture(scope="module")
 def fetch():
     scene = load_scene(ROOT / "yaml_scenes/fetch_cans_1.yaml")
     world = DrakeWorld(scene, visual=False)
-    report = api.plan(scene, "pick up a can", seed=1, world=world, motion=MOTION)
+    report = api.plan(scene, "pick up a can", seed=1, world=world, **MOTION)
     assert report.result.solved
     return world, report
 
@@ -44,7 +43,7 @@ def fetch():
 def parking():
     scene = load_scene(ROOT / "yaml_scenes/parking_1.yaml")
     world = DrakeWorld(scene, visual=False)
-    report = api.plan(scene, "park", seed=3, world=world, motion=MOTION)
+    report = api.plan(scene, "park", seed=3, world=world, **MOTION)
     assert report.result.solved
     return world, report
 
@@ -113,7 +112,7 @@ def test_ros_yaml_and_csv_read_back_the_same_samples(fetch, tmp_path):
 
 def test_no_shortcut_keeps_the_raw_path(fetch):
     world, report = fetch
-    raw = api.plan(world.scene, "pick up a can", seed=1, world=world, motion=replace(MOTION, shortcut=False))
+    raw = api.plan(world.scene, "pick up a can", seed=1, world=world, **(MOTION | {"shortcut_iterations": 0}))
     assert raw.motion.shortcut.status.value == "disabled"
     assert np.array_equal(raw.result.path, raw.motion.raw_path)
     assert np.array_equal(raw.motion.raw_path, report.motion.raw_path)  # the same plan (seeded)
@@ -138,12 +137,11 @@ def test_cli_rejects_bad_motion_options(args, capsys):
 
 
 def test_pick_and_place_times_each_step_with_the_gripper_events_between():
-    from lazyground.drake.world import Attachment
-    from lazyground.geometry import Pose
     from lazyground.motion.steps import report_trajectory
+    from lazyground.tasks.worlds import Worlds
 
     scene = load_scene(ROOT / "yaml_scenes/kitchen_put_cup_on_table.yaml")
-    report = next(r for r in (api.plan(scene, "put a cup on the table", seed=s, motion=MOTION) for s in range(3)) if r.result.solved)
+    report = next(r for r in (api.plan(scene, "put a cup on the table", seed=s, **MOTION) for s in range(3)) if r.result.solved)
     pick, place = report.steps
     world = DrakeWorld(scene, visual=False)
     fine = report.settings.resolution / report.settings.validation_factor
@@ -151,8 +149,7 @@ def test_pick_and_place_times_each_step_with_the_gripper_events_between():
     tp = place.motion.trajectory
     # the place step starts with the lift at the grasp and ends at the placement
     assert np.allclose(tp.q[0], pick.motion.trajectory.q[-1]) and np.allclose(tp.q[-1], place.result.path[-1])
-    X_GO = Pose(tuple(report.extra["grasp"]["X_GO"]["xyz"]), tuple(report.extra["grasp"]["X_GO"]["rpy"]))
-    carrying = DrakeWorld(scene, attached=Attachment(scene.object(report.extra["picked"]), "gripper_link", X_GO), visual=False)
+    carrying = Worlds(scene, world, visual=False).get(place.grasp)
     # from the first free configuration of the lift on (before it, the object rests on its support),
     # as place.lift_is_clear; the lift is timed waypoint to waypoint on the checked lift path
     assert trajectory_problems(tp, carrying.space, carrying, pick.result.path[-1], place.result.path[-1], fine, from_first_free=True) == []
