@@ -249,7 +249,11 @@ def add_cli_options(parser: argparse.ArgumentParser) -> None:
     for s in declared(Layer.CLI):
         parser.add_argument(s.flag, dest=s.name, type=str if s.choices else s.type, choices=s.choices,
                             metavar=None if s.choices else s.name.upper(),
-                            help=f"{s.doc} ({'' if s.choices else s.allowed() + '; '}default: the scene's)")
+                            help=f"{s.doc} ({'' if s.choices else s.allowed() + '; '}default: {_cli_default(s)})")
+
+
+def _cli_default(s: Setting) -> str:
+    return "the scene's" if Layer.SCENE in s.layers else f"{s.default:g}"
 
 
 def cli_values(args: argparse.Namespace) -> dict[str, Any]:
