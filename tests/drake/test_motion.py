@@ -145,7 +145,7 @@ def test_pick_and_place_times_each_step_with_the_gripper_events_between():
     pick, place = report.steps
     world = DrakeWorld(scene, visual=False)
     fine = report.settings.resolution / report.settings.validation_factor
-    assert_valid_trajectory(world, pick)
+    assert_valid_trajectory(world, report.step_report(pick))
     tp = place.motion.trajectory
     # the place step starts with the lift at the grasp and ends at the placement
     assert np.allclose(tp.q[0], pick.motion.trajectory.q[-1]) and np.allclose(tp.q[-1], place.result.path[-1])
