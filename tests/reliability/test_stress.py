@@ -60,7 +60,8 @@ def test_the_check_finds_a_trajectory_too_fast_or_through_obstacles():
     fast = replace(tr, qd=tr.qd * 1.05)
     through = replace(tr, q=np.linspace(tr.q[0], tr.q[-1], len(tr.q)))  # straight across the lot
     for bad, expected in ((fast, "velocity limit"), (through, "collides")):
-        worse = replace(report, motion=replace(report.motion, trajectory=bad))
+        step = report.outcome.steps[0]
+        worse = replace(report, outcome=replace(report.outcome, steps=(replace(step, motion=replace(step.motion, trajectory=bad)),)))
         assert any(expected in p for p in stress.check_report(worse, scene, world))
 
 
