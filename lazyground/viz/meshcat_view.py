@@ -33,8 +33,8 @@ from pydrake.math import RigidTransform
 from pydrake.perception import BaseField, Fields, PointCloud
 
 from grounding.regions import END_EFFECTOR
-from lazyground.drake.world import PARKED_CAR_SIZE, Attachment, DrakeWorld, rigid_transform
-from lazyground.viz.style import FAILED_RGBA, GOAL_BIASED_RGBA, PATH_RGBA, REGION_RGBA, TREE_RGBA, weight_rgba
+from lazyground.drake.world import Attachment, DrakeWorld, rigid_transform
+from lazyground.viz.style import CAR_FOOTPRINT, FAILED_RGBA, GOAL_BIASED_RGBA, PATH_RGBA, REGION_RGBA, TREE_RGBA, weight_rgba
 from lazyground.viz.trace import frames_in_time, resample_path, tree_edges
 
 FPS = 30
@@ -161,12 +161,9 @@ class _StepView:
     # --- kinematics ----------------------------------------------------------------------
     def poses(self, qs) -> list[RigidTransform]:
         """World poses of the tracer point at planned configurations ``qs``."""
-        plant, out = self.world.plant, []
-        for q in self.world.full(np.atleast_2d(qs)):
-            plant.SetPositions(self.plant_context, q)
-            X_WB = plant.EvalBodyPoseInWorld(self.plant_context, self.tracer.body)
-            out.append(X_WB.multiply(RigidTransform(self.tracer.p_BT)))
-        return out
+        frame = self.tracer.body.body_frame()
+        X_BT = RigidTransform(self.tracer.p_BT)
+        return [self.world.kinematics.X_WF(frame, q).multiply(X_BT) for q in self.world.full(np.atleast_2d(qs))]
 
     def points(self, qs) -> np.ndarray:
         """(3, n) tracer positions at ``qs``."""
@@ -225,22 +222,13 @@ class _StepView:
     def _draw_regions(self, path: str, regions) -> None:
         drawn = set()
         for region in regions:
-            if region.kind == "config":
-                if region.object in drawn:  # one box per object (a spot's forwards and reversing regions)
-                    continue
-                drawn.add(region.object)
-                obj = self.scene.object(region.object)
-                hx, hy, hz = obj.geometry.half_extents()
-                shape = Box(2 * hx, 2 * hy, max(2 * hz, 1.0))
-                X = rigid_transform(obj.pose.pose()).multiply(RigidTransform([0, 0, shape.depth() / 2]))
-            else:
-                lo, hi = np.asarray(region.lower[:3]), np.asarray(region.upper[:3])
-                size = np.maximum(hi - lo, 0.03)  # a point-like region (a top grasp) stays visible
-                shape = Box(*size)
-                X = rigid_transform(region.X_WR).multiply(RigidTransform((lo + hi) / 2))
-            name = f"{path}/{_safe(region.object if region.kind == 'config' else region.id)}"
-            self.meshcat.SetObject(name, shape, Rgba(*REGION_RGBA))
-            self.meshcat.SetTransform(name, X)
+            d = region.drawing(self.scene)
+            if d.name in drawn:  # one box per drawing (a spot's forwards and reversing regions)
+                continue
+            drawn.add(d.name)
+            name = f"{path}/{_safe(d.name)}"
+            self.meshcat.SetObject(name, Box(*d.size), Rgba(*REGION_RGBA))
+            self.meshcat.SetTransform(name, rigid_transform(d.X_WB))
 
     def _draw_samples(self, path: str, samples) -> None:
         if not samples:
@@ -251,7 +239,7 @@ class _StepView:
             name = f"{path}/{i}"
             self.meshcat.SetObject(f"{name}/point", Sphere(self.scale * 0.6), rgba)
             if not self.tracer.arm:  # the car's footprint at the sample, translucent
-                x, y, _ = PARKED_CAR_SIZE
+                x, y = CAR_FOOTPRINT
                 self.meshcat.SetObject(f"{name}/footprint", Box(x, y, 0.04), Rgba(*weight_rgba(s.weight, 0.35)))
             length = self.scale * (4.0 if self.tracer.arm else 10.0)
             head = np.array([[length, 0, 0], [0.7 * length, 0.2 * length, 0], [0.7 * length, -0.2 * length, 0]]).T

@@ -20,8 +20,9 @@ from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.colors import ListedColormap  # noqa: E402
 from matplotlib.patches import Circle, Polygon  # noqa: E402
 
-from lazyground.drake.world import PARKED_CAR_SIZE  # noqa: E402
+from grounding.regions import occupant_geometry  # noqa: E402
 from lazyground.viz.style import (  # noqa: E402
+    CAR_FOOTPRINT,
     CAR_RGBA,
     FAILED_RGBA,
     GOAL_BIASED_RGBA,
@@ -33,7 +34,6 @@ from lazyground.viz.style import (  # noqa: E402
 )
 from lazyground.viz.trace import frames_in_time, planar_indices, rect_corners, resample_path, tree_edges  # noqa: E402
 
-CAR_FOOTPRINT = PARKED_CAR_SIZE[:2]  # models/car/car.urdf: the planned car has the parked cars' size
 WEIGHT_CMAP = ListedColormap([weight_rgba(w) for w in np.linspace(0, 1, 256)], name="goal_weight")
 GROW_FRAMES, DRIVE_FRAMES, HOLD_FRAMES = 24, 40, 8
 
@@ -154,7 +154,10 @@ class _View:
             spot = rect_corners(x, y, yaw, lx, ly)
             if obj.occupied:
                 ax.add_patch(Polygon(spot, closed=True, fc="none", ec=(0.5, 0.5, 0.5), lw=0.8, zorder=1))
-                ax.add_patch(Polygon(rect_corners(x, y, yaw, *CAR_FOOTPRINT), closed=True, fc=OBSTACLE_RGBA, ec="black", lw=0.5, zorder=2))
+                occupant = occupant_geometry(obj, self.scene)
+                if occupant is not None:  # the footprint of what stands in the spot (a parked car)
+                    hx, hy, _ = occupant.half_extents()
+                    ax.add_patch(Polygon(rect_corners(x, y, yaw, 2 * hx, 2 * hy), closed=True, fc=OBSTACLE_RGBA, ec="black", lw=0.5, zorder=2))
             else:
                 ax.add_patch(Polygon(spot, closed=True, fc=REGION_RGBA, ec=REGION_RGBA[:3], lw=1.2, zorder=1))
                 ax.text(x, y, obj.id, ha="center", va="center", fontsize=6, color=(0, 0.35, 0.1), rotation=0, zorder=1)
