@@ -7,6 +7,7 @@ live in ``types.yaml``; the templates below say what they mean.
 
 from __future__ import annotations
 
+import difflib
 import math
 from functools import lru_cache
 from pathlib import Path
@@ -52,6 +53,23 @@ def occupant_geometry(obj: SceneObject, scene: Scene | None = None) -> Geometry 
         return load_dataclass(spec, Geometry, f"{obj.type}.occupant")
     except SceneError as exc:
         raise GroundingError(f"grounding/types.yaml: {exc}") from None
+
+
+def check_types(scene: Scene) -> None:
+    """Every object type must be defined (``types.yaml``) or declared by the scene (``grasp_types: {pillar: {}}``).
+
+    A misspelt type would otherwise turn a goal into a plain obstacle without a word.
+
+    Raises:
+        GroundingError: the first undefined type, with the closest defined names.
+    """
+    known = type_definitions(scene)
+    for obj in scene.objects:
+        if obj.type not in known:
+            close = difflib.get_close_matches(obj.type, sorted(known), n=2, cutoff=0.6)
+            hint = f"did you mean {' or '.join(repr(c) for c in close)}? " if close else ""
+            raise GroundingError(f"object {obj.id!r}: unknown type {obj.type!r}; {hint}(types: grounding/types.yaml; "
+                                 f"a scene declares its own under grasp_types, e.g. 'grasp_types: {{{obj.type}: {{}}}}')")
 
 
 def regions_for(obj: SceneObject, role: str, interpretation: str, scene: Scene | None = None) -> tuple[GoalRegion, ...]:

@@ -21,6 +21,7 @@ from matplotlib.colors import ListedColormap  # noqa: E402
 from matplotlib.patches import Circle, Polygon  # noqa: E402
 
 from grounding.regions import occupant_geometry  # noqa: E402
+from lazyground.viz.legend import HANDLER_MAP, LABEL_STYLE, parking_handles  # noqa: E402
 from lazyground.viz.style import (  # noqa: E402
     CAR_FOOTPRINT,
     CAR_RGBA,
@@ -73,7 +74,10 @@ def animate_parking(report, scene, path, fps: int = 12) -> None:
     trail, = ax.plot([], [], color=PATH_RGBA, lw=2.5, zorder=6, animated=True)
     car = Polygon(view.footprint(view.start), closed=True, fc=CAR_RGBA, ec="black", lw=1.0, zorder=8, animated=True)
     ax.add_patch(car)
-    view.finish(fig, ax)
+    view.finish(fig, ax, outlines=False)
+    labels = list(ax.texts)  # spot labels: redrawn over the moving car, never under it
+    for label in labels:
+        label.set_animated(True)
     fig.canvas.draw()
     background = fig.canvas.copy_from_bbox(fig.bbox)
     segments = view.tree_segments()
@@ -96,7 +100,7 @@ def animate_parking(report, scene, path, fps: int = 12) -> None:
             trail.set_data(xy[:, 0], xy[:, 1])
             car.set_xy(view.footprint(drive[k]))
         fig.canvas.restore_region(background)
-        for artist in (tree, trail, car):
+        for artist in (tree, trail, car, *labels):
             ax.draw_artist(artist)
         frames.append(Image.fromarray(np.asarray(fig.canvas.buffer_rgba())[..., :3].copy()))
     plt.close(fig)
@@ -160,7 +164,7 @@ class _View:
                     ax.add_patch(Polygon(rect_corners(x, y, yaw, 2 * hx, 2 * hy), closed=True, fc=OBSTACLE_RGBA, ec="black", lw=0.5, zorder=2))
             else:
                 ax.add_patch(Polygon(spot, closed=True, fc=REGION_RGBA, ec=REGION_RGBA[:3], lw=1.2, zorder=1))
-                ax.text(x, y, obj.id, ha="center", va="center", fontsize=6, color=(0, 0.35, 0.1), rotation=0, zorder=1)
+                ax.text(x, y, obj.id, **LABEL_STYLE)
         ax.add_patch(Polygon(self.footprint(self.start), closed=True, fc="none", ec="black", lw=1.0, ls="--", zorder=7))
         return fig, ax
 
@@ -201,8 +205,10 @@ class _View:
             ax.plot(self.raw_path[:, self.ix[0]], self.raw_path[:, self.ix[1]], color=PATH_RGBA, alpha=0.35, lw=1.5,
                     ls="--", zorder=5, label="raw path")
 
-    def finish(self, fig, ax) -> None:
+    def finish(self, fig, ax, outlines: bool = True) -> None:
         lo, hi = _extent(self.scene)
+        car = np.concatenate([self.footprint(self.start)] + ([self.path[:, list(self.ix[:2])]] if self.path is not None else []))
+        lo, hi = np.minimum(lo, car.min(axis=0)), np.maximum(hi, car.max(axis=0))  # the start may lie outside the geometry
         ax.set_xlim(lo[0] - 1, hi[0] + 1)
         ax.set_ylim(lo[1] - 1, hi[1] + 1)
         ax.set_aspect("equal")
@@ -214,8 +220,11 @@ class _View:
                      f"{len(res.goal_samples)} goal samples", fontsize=9)
         sm = plt.cm.ScalarMappable(cmap=WEIGHT_CMAP, norm=plt.Normalize(0, 1))
         fig.colorbar(sm, ax=ax, fraction=0.03, pad=0.02).set_label("goal-sample weight", fontsize=8)
-        if ax.get_legend_handles_labels()[0]:
-            ax.legend(loc="upper right", fontsize=6, framealpha=0.8)
+        handles = parking_handles(res.tree is not None, res.failed_from is not None and len(res.failed_from) > 0,
+                                  self.path is not None, any(o.occupied for o in self.scene.objects), outlines)
+        # below the lot, never over it
+        ax.legend(handles=handles, handler_map=HANDLER_MAP, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=3,
+                  fontsize=6, frameon=False)
         fig.tight_layout()
 
 
