@@ -36,6 +36,10 @@ TYPE_RGBA = {"table": (0.6, 0.45, 0.3, 1.0), "shelf": (0.55, 0.55, 0.6, 1.0), "p
 
 
 def drake_shape(g: Geometry):
+    if g.mesh:
+        from lazyground.drake.mesh_shape import mesh_shape
+
+        return mesh_shape(g.mesh)
     if g.box:
         return Box(*g.box)
     if g.cylinder:
