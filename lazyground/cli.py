@@ -151,6 +151,10 @@ def cmd_plan(args) -> int:
         print(f"interrupted after {report.time_s:.1f} s: {res.iterations} iterations, tree {res.tree_size}, "
               f"{len(res.goal_samples)} goal samples", file=sys.stderr)
         return EXIT_INTERRUPTED
+    if res.status.value == "invalid_start":  # #15: say which start would do
+        from lazyground.drake.start_check import start_hint
+
+        print(f"hint: {start_hint(scene)}", file=sys.stderr)
     _write_visuals(report, scene, args)
     return EXIT_OK if res.solved else EXIT_FAILED
 

@@ -35,3 +35,11 @@ def start_collision_message(scene, start_source: str, world=None) -> str | None:
     free = free_named_poses(world)
     hint = f"free named poses: {', '.join(free)} (use --start NAME)" if free else "no named pose of the robot is free either"
     return f"the start ({start_source}) is in collision: {world.explain(world.start)}; {hint}, or --start-from REQUEST.yaml / --start-joints"
+
+
+def start_hint(scene) -> str:
+    """For ``plan`` when the start is in collision: the robot's free named poses, as one line."""
+    from lazyground.drake.world import DrakeWorld
+
+    free = free_named_poses(DrakeWorld(scene, visual=False))
+    return f"free named poses: {', '.join(free)} (plan ... --start NAME)" if free else "no named pose of the robot is free here"
