@@ -43,6 +43,8 @@ class Run:
     time_s: float  # grounding + planning (goal sampling and search), as the CLI reports it
     setup_s: float  # building the Drake world (once per scene, shared by its seeds)
     reached: str | None
+    iterations: int = 0
+    path: object = field(default=None, repr=False, compare=False)  # the solution path (rows over the planned joints)
 
 
 def corpus_entries(corpus: Path = CORPUS, reference: Path = REFERENCE) -> list[CorpusEntry]:
@@ -66,8 +68,12 @@ def import_entry(entry: CorpusEntry, out_dir: Path):
     return import_moveit_file(entry.file, out_dir / f"{entry.name}.yaml", options)
 
 
-def run_entry(entry: CorpusEntry, out_dir: Path, seeds, **overrides) -> list[Run]:
-    """Import ``entry`` and plan its request once per seed (default settings unless overridden)."""
+def run_entry(entry: CorpusEntry, out_dir: Path, seeds, **overrides) -> tuple[list[Run], object]:
+    """Import ``entry`` and plan its request once per seed (default settings unless overridden).
+
+    Returns:
+        The runs, and the DrakeWorld they planned in (for re-checking paths).
+    """
     import time
 
     from lazyground import api
@@ -81,8 +87,9 @@ def run_entry(entry: CorpusEntry, out_dir: Path, seeds, **overrides) -> list[Run
     runs = []
     for seed in seeds:
         report = api.plan(scene, entry.request, seed=seed, world=world, **overrides)
-        runs.append(Run(entry.name, seed, report.status.value, report.time_s, setup_s, report.chosen_object))
-    return runs
+        res = report.result
+        runs.append(Run(entry.name, seed, res.status.value, report.time_s, setup_s, report.chosen_object, res.iterations, res.path))
+    return runs, world
 
 
 def table(runs: list[Run]) -> list[str]:

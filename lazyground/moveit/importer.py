@@ -82,7 +82,10 @@ def import_moveit_file(path, output, options: ImportOptions = ImportOptions(), c
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as f:
             f.write(text)
-        loaded = load_scene(tmp)
+        try:
+            loaded = load_scene(tmp)
+        except SceneError as exc:  # name the output, not the temporary file
+            raise SceneError(str(exc).replace(tmp, str(output))) from None
         if check_start:
             _check_start(loaded, summary.start_source, path)
         os.replace(tmp, output)

@@ -7,7 +7,7 @@ otherwise the first type word decides. Geometry then has the last word: a suppor
 (table, shelf, counter) must be a box wider than it is tall (a vertical board is
 an obstacle), and a pickable object must fit the gripper's opening. User rules
 (``--type 'REGEX=TYPE'``, a rules file) are searched in the whole id first and
-are taken as given.
+are taken as given, except that meshes stay obstacles.
 """
 
 from __future__ import annotations
@@ -102,14 +102,14 @@ def classify(object_id: str, extents: tuple[float, float, float], kind: str, ope
     Returns:
         The type (``obstacle`` = untyped) and a note when geometry overruled the id's words.
     """
-    for rule in user_rules:
-        if rule.pattern.search(object_id):
-            return rule.type, None
-    type_name = word_type(object_id)
+    rule = next((r for r in user_rules if r.pattern.search(object_id)), None)
+    type_name = rule.type if rule else word_type(object_id)
     if type_name == OBSTACLE:
         return OBSTACLE, None
-    if kind == "mesh":
+    if kind == "mesh":  # a scene's typed objects are primitives (grasp and support regions need their shape)
         return OBSTACLE, f"{object_id}: a mesh, imported as an obstacle (meshes cannot be {type_name}s)"
+    if rule:
+        return type_name, None
     sx, sy, sz = extents
     if type_name in SUPPORTS and (kind != "box" or sz > min(sx, sy)):
         return OBSTACLE, (f"{object_id}: {sx:.2f} x {sy:.2f} x {sz:.2f} m is not a horizontal board: "

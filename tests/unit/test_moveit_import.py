@@ -133,6 +133,7 @@ def test_user_rules_win_and_parse(tmp_path):
     rules = (parse_rule("^plant=can"), parse_rule("big=box"))
     assert classify("Plant", (0.07, 0.07, 0.1), "cylinder", 0.10, rules) == ("can", None)
     assert classify("big_box", (0.25, 0.25, 0.25), "box", 0.10, rules) == ("box", None)  # taken as given
+    assert classify("plant_pot", (0, 0, 0), "mesh", 0.10, rules)[0] == "obstacle"  # but a mesh stays an obstacle
     path = tmp_path / "rules.yaml"
     path.write_text("'^tray': table\n")
     assert classify("tray_1", (0.05, 0.05, 0.5), "box", 0.1, load_rules_file(path))[0] == "table"
