@@ -26,7 +26,7 @@ def main(argv=None) -> int:
         for entry in corpus_entries():
             if args.only and entry.name not in args.only:
                 continue
-            mine = run_entry(entry, Path(tmp), range(args.seeds))
+            mine, _ = run_entry(entry, Path(tmp), range(args.seeds))
             runs += mine
             print(f"{entry.name}: {sum(r.status == 'solved' for r in mine)}/{len(mine)} solved", file=sys.stderr, flush=True)
     print("\n".join(table(runs)))
