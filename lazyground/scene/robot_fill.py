@@ -3,8 +3,12 @@
 A scene names its robot model; what the robot folder's ``robot.yaml`` provides
 (base link, planned joints, end-effector frame, the start as its default named
 pose, and the planner settings) need not be repeated. Keys the scene gives win.
-A scene without a ``planner:`` block plans with the robot's planner settings
-(every imported MoveIt scene); a scene with one keeps exactly its own, as before.
+
+Planner settings layer as robot.yaml < the scene's ``planner:`` block <
+``per_algorithm`` < CLI/API overrides (the last two in ``lazyground.settings``): a
+scene without a ``planner:`` block (every imported MoveIt scene) plans with the
+robot's settings; a key the scene sets at the top of its block also beats the
+robot's ``per_algorithm`` value for it (the scene's choice is the more specific).
 """
 
 from __future__ import annotations
@@ -45,6 +49,29 @@ def fill_from_robot_defaults(data, resolve: Callable[[str], Path | None]):
             raise SceneError(f"robot.start: no named pose {start!r} (named: {', '.join(defaults.named_poses) or 'none'})")
         robot["start"] = dict(defaults.named_poses[start])
     out = {**data, "robot": robot}
-    if "planner" not in data and defaults.planner:
-        out["planner"] = dict(defaults.planner)
+    if defaults.planner:
+        out["planner"] = merge_planner(defaults.planner, data.get("planner"))
     return out
+
+
+def merge_planner(robot: dict, scene) -> dict:
+    """The robot's planner block under the scene's (a non-mapping scene block is left for the loader to reject)."""
+    if scene is None:
+        return dict(robot)
+    if not isinstance(scene, dict):
+        return scene
+    per_scene = scene.get("per_algorithm") or {}
+    if not isinstance(per_scene, dict):
+        return {**robot, **scene}
+    per = {}
+    for name, values in (robot.get("per_algorithm") or {}).items():
+        per[name] = {k: v for k, v in values.items() if k not in scene}
+    for name, values in per_scene.items():
+        per[name] = {**per.get(name, {}), **values} if isinstance(values, dict) else values
+    merged = {**robot, **scene}
+    per = {k: v for k, v in per.items() if v != {}}
+    if per:
+        merged["per_algorithm"] = per
+    else:
+        merged.pop("per_algorithm", None)
+    return merged

@@ -99,9 +99,13 @@ def test_robot_yaml_fills_robot_keys_and_the_planner():
     assert bare.robot.end_effector == "gripper_link" and len(bare.robot.planned_joints) == 8
     assert bare.planner.algorithm == "bidirectional" and bare.planner.edge_resolution == 0.05
     assert bare.planner.per_algorithm["rrt"].step_size == 2.65
-    named = parse_scene("name: m\nrobot: {model: fetch, base: {xyz: [0, 0, 0]}, start: zero}\nplanner: {step_size: 0.3}\n")
+    named = parse_scene("name: m\nrobot: {model: fetch, base: {xyz: [0, 0, 0]}, start: zero}\n"
+                        "planner: {step_size: 0.3, per_algorithm: {bidirectional: {edge_resolution: 0.02}}}\n")
     assert named.robot.start["elbow_flex_joint"] == 0.0
-    assert named.planner.algorithm == "rrt" and named.planner.step_size == 0.3  # a planner block is the scene's own
+    p = named.planner  # robot.yaml < the scene's planner block, key by key
+    assert p.algorithm == "bidirectional" and p.step_size == 0.3 and p.collision_padding == 0.005
+    assert "rrt" not in p.per_algorithm  # the scene's step_size beats the robot's per-algorithm step
+    assert p.per_algorithm["bidirectional"].edge_resolution == 0.02
     with pytest.raises(SceneError, match="robot.start: no named pose 'home'"):
         parse_scene("name: m\nrobot: {model: fetch, start: home}\n", "x.yaml")
 
