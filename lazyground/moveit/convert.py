@@ -159,12 +159,16 @@ def _convert_object(entry, oid: str, where: str, frames, lookup: MeshLookup, war
     if operation not in (0, "0", "add", "ADD", None):
         warnings.append(f"{oid}: operation {operation!r} is not an add: skipped")
         return []
-    frame = str((entry.get("header") or {}).get("frame_id", "")).lstrip("/")
+    header = entry.get("header") or {}
+    if not isinstance(header, dict):
+        raise SceneError(f"{where}: header: expected a mapping with frame_id")
+    frame = str(header.get("frame_id", "")).lstrip("/")
     if frame not in frames:
         raise SceneError(f"{where}: header.frame_id {frame!r} is not supported (use one of: {', '.join(f for f in frames if f)})")
     X_WO = _pose(entry["pose"], f"{where}: pose", oid, warnings) if entry.get("pose") else Pose()
     if entry.get("planes"):
-        warnings.append(f"{oid}: {len(entry['planes'])} plane(s) skipped (planes are not supported; model a floor from a box)")
+        n = len(entry["planes"]) if isinstance(entry["planes"], list) else 1
+        warnings.append(f"{oid}: {n} plane(s) skipped (planes are not supported; model a floor from a box)")
     out = []
     for shapes_key, poses_key, convert in (("primitives", "primitive_poses", _primitive), ("meshes", "mesh_poses", _mesh)):
         shapes, poses = entry.get(shapes_key) or [], entry.get(poses_key) or []

@@ -170,6 +170,10 @@ def test_what_is_not_a_planning_scene_is_said_in_one_line(text, words, tmp_path)
     ("world: {collision_objects: [{id: A, primitives: [{type: box, dimensions: [1, 1, 1]}], primitive_poses: [{orientation: [0, 0, 0, 0]}]}]}", "zero quaternion"),
     ("world: {collision_objects: [{primitives: []}]}", "non-empty id"),
     ("robot_state: {joint_state: {name: [a, b], position: [1]}}", "equal length"),
+    ("world: {collision_objects: [{id: A, header: 3, primitives: [], primitive_poses: []}]}", "header: expected a mapping"),
+    ("world: {collision_objects: [{id: A, primitives: [3], primitive_poses: [3]}]}", "primitives[0]: expected a mapping"),
+    ("world: {collision_objects: [{id: A, pose: 3, primitives: [], primitive_poses: []}]}", "pose: expected a mapping"),
+    ("world: {collision_objects: [3]}", "world.collision_objects[0]: expected a mapping with a non-empty id"),
     ("robot_state: {joint_state: {name: [torso_lift_joint], position: [0.9]}}\nworld: {collision_objects: [{id: A, primitives: [{type: box, dimensions: [1, 1, 1]}], primitive_poses: [{position: [3, 0, 0]}]}]}", "outside its limits [0, 0.38615]"),
 ])
 def test_bad_input_is_one_line_naming_the_object(text, problem, tmp_path):
