@@ -86,6 +86,7 @@ def import_moveit_file(path, output, options: ImportOptions = ImportOptions(), c
             loaded = load_scene(tmp)
         except SceneError as exc:  # name the output, not the temporary file
             raise SceneError(str(exc).replace(tmp, str(output))) from None
+        _check_types(loaded, path)
         if check_start:
             _check_start(loaded, summary.start_source, path)
         os.replace(tmp, output)
@@ -106,6 +107,18 @@ def _relative_meshes(scene: dict, base: Path) -> None:
         mesh = item["geometry"].get("mesh")
         if mesh is not None and Path(mesh["file"]).is_relative_to(base):
             mesh["file"] = str(Path(mesh["file"]).relative_to(base))
+
+
+def _check_types(scene, source: Path) -> None:
+    """A --type rule may name a type the grounding does not know: say so now, not at the first plan."""
+    from grounding.model import GroundingError
+    from grounding.regions import check_types
+
+    try:
+        check_types(scene)
+    except GroundingError as exc:
+        raise SceneError(f"{source}: {str(exc).split(' (types:')[0]} (from a --type or --rules rule; the types are "
+                         f"those of grounding/types.yaml, or 'obstacle')") from None
 
 
 def _check_start(scene, start_source: str, source: Path) -> None:

@@ -242,3 +242,10 @@ def test_mesh_paths_inside_the_output_folder_are_relative(tmp_path):
     out = _import(src, tmp_path).output
     assert yaml.safe_load(out.read_text())["obstacles"][0]["geometry"]["mesh"]["file"] == "m/block.obj"
     assert load_scene(out).obstacles[0].geometry.mesh.file == str((tmp_path / "m" / "block.obj").resolve())
+
+
+def test_a_rule_naming_an_unknown_type_fails_at_import(tmp_path):
+    options = ImportOptions(user_rules=(parse_rule("can_3=plant"),))
+    with pytest.raises(SceneError, match="object 'can_3': unknown type 'plant'; .*from a --type or --rules rule"):
+        _import(CORPUS / "bookshelf_cans.yaml", tmp_path, options)
+    assert list(tmp_path.iterdir()) == []
