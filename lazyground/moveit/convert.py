@@ -4,8 +4,9 @@ written here (lazyground.moveit.importer does that).
 Reads ``world.collision_objects`` (box ``[x, y, z]``, cylinder ``[height, radius]``, sphere
 ``[radius]``, meshes by file; ``primitive_poses``/``mesh_poses`` with xyzw quaternions,
 composed with the object's ``pose``) and the start (``robot_state.joint_state``, or the
-start options). The robot block names the model and its start only, and no planner block
-is written: the robot's ``robot.yaml`` supplies the rest (lazyground.scene.robot_fill).
+start options). The robot block spells out the robot.yaml's base link, planned joints and
+end-effector frame; no planner block is written, so the robot.yaml's planner settings apply
+(lazyground.scene.robot_fill).
 """
 
 from __future__ import annotations
@@ -117,7 +118,7 @@ def convert_moveit(data, source: str, options: ImportOptions = ImportOptions(), 
     scene = {
         "name": options.name,
         "description": f"Imported from the MoveIt planning scene {Path(source).name}.",
-        "robot": {"model": options.robot, "base": {"xyz": [0.0, 0.0, 0.0]}, "start": start},
+        "robot": _robot_block(options.robot, defaults, start),
         "obstacles": obstacles,
         "objects": objects,
     }
@@ -125,6 +126,15 @@ def convert_moveit(data, source: str, options: ImportOptions = ImportOptions(), 
     summary = ImportSummary(dict(types), meshes.imported, meshes.dropped, len(entries), sum(dropped.values()),
                             start_source, tuple(warnings), tuple(notes))
     return scene, summary
+
+
+def _robot_block(robot: str, defaults: RobotDefaults, start: dict[str, float]) -> dict:
+    """The scene's robot block: the model welded at the origin, the robot.yaml's keys spelt out, the start."""
+    block = {"model": robot, "base": {"xyz": [0.0, 0.0, 0.0]}, "base_link": defaults.base_link,
+             "planned_joints": list(defaults.planned_joints)}
+    if defaults.end_effector is not None:
+        block["end_effector"] = defaults.end_effector.frame
+    return {**block, "start": start}
 
 
 def _start(data: dict, source: str, options: StartOptions, defaults: RobotDefaults, model: Path, warnings: list[str]):

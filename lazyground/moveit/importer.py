@@ -73,7 +73,7 @@ def import_moveit_file(path, output, options: ImportOptions = ImportOptions(), c
         options = replace(options, name=output.stem)
     scene, summary = convert_moveit(data, str(path), options, scene_dir=path.parent)
     _relative_meshes(scene, output.resolve().parent)
-    header = f"# Imported from {path.name} by `lazyground import-moveit`; robot keys and planner settings come from the robot's robot.yaml.\n"
+    header = f"# Imported from {path.name} by `lazyground import-moveit`; no planner block: the robot's robot.yaml settings apply.\n"
     text = header + yaml.safe_dump(scene, sort_keys=False, default_flow_style=None, width=120)
     try:
         fd, tmp = tempfile.mkstemp(prefix=f".{output.name}.", suffix=".tmp", dir=output.parent if str(output.parent) else ".")

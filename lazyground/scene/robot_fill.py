@@ -1,14 +1,11 @@
-"""Fill a scene mapping's robot and planner keys from the robot's ``robot.yaml`` (#15).
+"""A scene's planner settings layered over its robot's (#15).
 
-A scene names its robot model; what the robot folder's ``robot.yaml`` provides
-(base link, planned joints, end-effector frame, the start as its default named
-pose, and the planner settings) need not be repeated. Keys the scene gives win.
-
-Planner settings layer as robot.yaml < the scene's ``planner:`` block <
-``per_algorithm`` < CLI/API overrides (the last two in ``lazyground.settings``): a
-scene without a ``planner:`` block (every imported MoveIt scene) plans with the
-robot's settings; a key the scene sets at the top of its block also beats the
-robot's ``per_algorithm`` value for it (the scene's choice is the more specific).
+Planner settings layer as robot.yaml ``planner`` < the scene's ``planner:`` block <
+``per_algorithm`` < CLI/API overrides (the last two in ``lazyground.settings.from_scene``),
+key by key: a scene without a ``planner:`` block (every imported MoveIt scene) plans with
+the robot's settings; a key the scene sets at the top of its block also beats the robot's
+``per_algorithm`` value for it (the scene's choice is the more specific). The robot.yaml's
+block is checked by the same declarations when it is read (robots/defaults.py).
 """
 
 from __future__ import annotations
@@ -17,41 +14,26 @@ from pathlib import Path
 from typing import Callable
 
 from lazyground.robots.defaults import defaults_for_model
-from lazyground.scene.typed_yaml import SceneError
 
 
 def fill_from_robot_defaults(data, resolve: Callable[[str], Path | None]):
-    """The scene mapping with the robot's defaults filled in (``data`` itself when there are none).
+    """The scene mapping with the robot's planner settings under its own (``data`` itself when there are none).
 
     Args:
         data: the parsed scene YAML (anything; non-mappings are returned for the strict loader to reject).
         resolve: model name or path -> model file (None when not found).
 
     Raises:
-        SceneError: the robot.yaml is invalid, or ``robot.start`` names a pose it does not have.
+        SceneError: the robot.yaml is invalid.
     """
     robot = data.get("robot") if isinstance(data, dict) else None
     if not isinstance(robot, dict) or not isinstance(robot.get("model"), str):
         return data
     model = resolve(robot["model"])
     defaults = defaults_for_model(model) if model is not None else None
-    if defaults is None:
+    if defaults is None or not defaults.planner:
         return data
-    robot = dict(robot)
-    robot.setdefault("base_link", defaults.base_link)
-    if defaults.planned_joints is not None:
-        robot.setdefault("planned_joints", list(defaults.planned_joints))
-    if defaults.end_effector is not None:
-        robot.setdefault("end_effector", defaults.end_effector.frame)
-    start = robot.get("start", defaults.start)
-    if isinstance(start, str):  # a named pose of the robot
-        if start not in defaults.named_poses:
-            raise SceneError(f"robot.start: no named pose {start!r} (named: {', '.join(defaults.named_poses) or 'none'})")
-        robot["start"] = dict(defaults.named_poses[start])
-    out = {**data, "robot": robot}
-    if defaults.planner:
-        out["planner"] = merge_planner(defaults.planner, data.get("planner"))
-    return out
+    return {**data, "planner": merge_planner(defaults.planner, data.get("planner"))}
 
 
 def merge_planner(robot: dict, scene) -> dict:

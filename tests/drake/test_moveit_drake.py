@@ -11,6 +11,7 @@ from lazyground.drake.world import DrakeWorld
 from lazyground.moveit import ImportOptions, import_moveit_file
 from lazyground.scene import load_scene
 from lazyground.scene.typed_yaml import SceneError
+from tests.unit.test_scene_meshes_and_robot_fill import FETCH
 
 
 def test_a_start_in_collision_names_the_pairs_and_the_free_named_poses(tmp_path):
@@ -27,7 +28,7 @@ def test_mesh_obstacles_collide_as_their_shape(tmp_path, mesh):
     path = tmp_path / "s.yaml"
     path.write_text(textwrap.dedent(f"""
         name: m
-        robot: {{model: fetch, base: {{xyz: [0, 0, 0]}}}}
+        robot: {FETCH}
         obstacles: [{{id: block, geometry: {{mesh: {{file: {CORPUS / mesh}}}}}, pose: {{xyz: [X, 0, 0]}}}}]
     """))
     far = DrakeWorld(load_scene(_with(path, "X", "2.5")), visual=False)

@@ -97,7 +97,8 @@ def test_small_scene_poses_types_and_start():
     assert scene["robot"]["start"]["torso_lift_joint"] == 0.2
     assert scene["robot"]["start"]["wrist_flex_joint"] == 1.66  # missing joints: the tucked pose, with a warning
     assert any("wrist_flex_joint" in w for w in summary.warnings)
-    assert "planner" not in scene and set(scene["robot"]) == {"model", "base", "start"}  # the rest is the robot's
+    assert "planner" not in scene  # the robot.yaml's planner settings apply
+    assert scene["robot"]["end_effector"] == "gripper_link" and len(scene["robot"]["planned_joints"]) == 8
     assert summary.types == {"cup": 1, "box": 2} and summary.start_source == "the scene's robot_state"
 
 
