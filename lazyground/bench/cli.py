@@ -234,6 +234,9 @@ def write_outputs(rows: list[dict], out: Path, title: str, notes: list[str], tot
         from lazyground.bench.compare import strategy_table
 
         md += ["## Strategies against consecutive (Mann-Whitney U, two-sided)\n", strategy_table(rows)]
+    motion = tables.motion_table(rows)
+    if motion:
+        md += ["## Shortening and timing after the solve (solved runs, medians)\n", motion]
     md += [f"Note: {n}\n" for n in notes]
     (out / "table.md").write_text("\n".join(md))
     print("\n".join(md))
