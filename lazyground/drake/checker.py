@@ -19,7 +19,6 @@ from lazyground.drake.coordinates import Coordinates
 # Drake needs a positive step at construction; a checker built without a resolution
 # replaces this once, before its first edge check, and never again.
 _UNSET_STEP = 0.05
-PARALLEL_BATCH = 64  # configurations from which a batch check uses every core (#19)
 
 
 class DrakeChecker:
@@ -71,10 +70,9 @@ class DrakeChecker:
         if len(qs) == 1:
             return np.array([self.config_free(qs[0])])
         t0 = time.perf_counter()
-        # Large batches (a path's fine re-check) go over Drake's context pool on every core; small ones
-        # cost more to hand out than to check (measured under load: 0.28 vs 0.35 ms per config for 1,000).
-        parallel = len(qs) >= PARALLEL_BATCH and self.drake.SupportsParallelChecking()
-        free = self.drake.CheckConfigsCollisionFree(list(self.coordinates.full(qs)), parallelize=parallel)
+        # Serial on purpose: Drake's parallel batch (OpenMP) was at best 20 % faster here under load, and once a
+        # process has used its OpenMP pool, a bench worker forked from it hangs in its first parallel batch (#19).
+        free = self.drake.CheckConfigsCollisionFree(list(self.coordinates.full(qs)), parallelize=False)
         self.check_time += time.perf_counter() - t0
         self.checks += len(qs)
         return np.asarray(free, bool)
