@@ -26,6 +26,7 @@ from lazyground.geometry import Pose
 from lazyground.planning.problem import PlannerSettings, PlanResult, PlanStatus
 from lazyground.planning.rrt import path_is_valid, solve
 from lazyground.regions import GoalRegion
+from lazyground.robots.end_effector import frame_of
 from lazyground.scene.schema import Scene
 
 PLACE_SHARE = 0.4  # of the time limit, for one placement attempt before falling back
@@ -130,7 +131,7 @@ def plan_pick_and_place(
     rng = np.random.default_rng(seed)
     world = DrakeWorld(scene)
     setup_s = time.perf_counter() - t0
-    frame = scene.robot.end_effector or "gripper_link"
+    frame = frame_of(scene.robot)
     grasps, places = _regions_by_object(g)
     excluded: list[str] = []
     notes: list[str] = []
@@ -220,7 +221,7 @@ def validate_pick_and_place(report: PlanReport, scene: Scene, resolution: float)
         problems.append("pick path collides")
     obj = scene.object(report.extra["picked"])
     X_GO = Pose(tuple(report.extra["grasp"]["X_GO"]["xyz"]), tuple(report.extra["grasp"]["X_GO"]["rpy"]))
-    frame = scene.robot.end_effector or "gripper_link"
+    frame = frame_of(scene.robot)
     carrying = DrakeWorld(scene, attached=Attachment(obj, frame, X_GO), visual=False)
     if path_is_valid(carrying.space, carrying, place.path, resolution) >= 0:
         problems.append("place path collides (with the carried object)")

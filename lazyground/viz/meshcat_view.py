@@ -33,9 +33,9 @@ from pydrake.geometry import Box, Meshcat, MeshcatAnimation, MeshcatVisualizer, 
 from pydrake.math import RigidTransform
 from pydrake.perception import BaseField, Fields, PointCloud
 
-from grounding.regions import END_EFFECTOR
 from lazyground.drake.world import PARKED_CAR_SIZE, Attachment, DrakeWorld, rigid_transform
 from lazyground.geometry import Pose
+from lazyground.robots.end_effector import frame_of
 from lazyground.viz.style import FAILED_RGBA, GOAL_BIASED_RGBA, PATH_RGBA, REGION_RGBA, TREE_RGBA, weight_rgba
 from lazyground.viz.trace import resample_path, tree_edges
 
@@ -117,7 +117,7 @@ def _segments(report, scene) -> list[_Segment]:
     carried = None
     if "picked" in report.extra:  # lazyground.place: the grasp and the lift-off are in the parent's extra
         X_GO = report.extra["grasp"]["X_GO"]
-        frame = scene.robot.end_effector or END_EFFECTOR
+        frame = frame_of(scene.robot)
         carried = Attachment(scene.object(report.extra["picked"]), frame, Pose(tuple(X_GO["xyz"]), tuple(X_GO["rpy"])))
     for step in report.steps[1:]:
         motion = step.result.path
@@ -253,7 +253,7 @@ class _StepView:
 def _tracer(world: DrakeWorld, scene) -> _Tracer:
     """The end effector if the robot has one, otherwise its base (lifted off the ground)."""
     plant = world.plant
-    ee = scene.robot.end_effector or END_EFFECTOR
+    ee = frame_of(scene.robot)
     if plant.HasBodyNamed(ee, world.robot):
         return _Tracer(plant.GetBodyByName(ee, world.robot), np.zeros(3), arm=True)
     base = plant.get_body(plant.GetBodyIndices(world.robot)[0])
