@@ -59,7 +59,11 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
     problem = _overlap_problem(scene.objects)
     if problem:
         raise SceneError(f"{source}: {problem}")
-    return replace(scene, robot=replace(scene.robot, model=str(model)), source=source)
+    # imported here: lazyground.robots reads robot.yaml through this package's typed_yaml
+    from lazyground.robots.complete import complete_robot
+
+    robot = complete_robot(replace(scene.robot, model=str(model)), scene_dir, source)
+    return replace(scene, robot=robot, source=source)
 
 
 def load_scene(path: str | os.PathLike) -> Scene:
