@@ -17,8 +17,10 @@ from pydrake.multibody.plant import CoulombFriction
 from pydrake.multibody.tree import PlanarJoint, RevoluteJoint
 from pydrake.planning import LinearDistanceAndInterpolationProvider, RobotDiagramBuilder, SceneGraphCollisionChecker
 
+from lazyground.drake.robot_model import add_robot, allow_collisions
 from lazyground.geometry import Pose
 from lazyground.planning.space import ConfigSpace
+from lazyground.robots.srdf import read_srdf
 from lazyground.scene.schema import Geometry, Scene, SceneObject
 from lazyground.scene.typed_yaml import SceneError
 
@@ -83,11 +85,8 @@ class DrakeWorld:
         self.padding = scene.planner.collision_padding if padding is None else padding
         builder = RobotDiagramBuilder(time_step=0.0)
         plant = builder.plant()
-        try:
-            (self.robot,) = builder.parser().AddModels(scene.robot.model)
-        except Exception as exc:  # Drake's parser raises RuntimeError with multi-line text
-            first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-            raise SceneError(f"{scene.source}: robot.model: cannot parse {scene.robot.model}: {first}") from None
+        # package:// URIs, STL/DAE meshes: lazyground/drake/robot_model.py
+        self.robot, self.model_files = add_robot(builder.parser(), scene.robot.model, scene.robot.packages, f"{scene.source}: robot.model")
         if scene.robot.base is not None:
             try:
                 base = plant.GetFrameByName(scene.robot.base_link, self.robot)
@@ -117,10 +116,18 @@ class DrakeWorld:
         )
         self.plant = self.checker.plant()
         self.diagram = self.checker.model()
+        self._allow_collisions(scene.robot)
         self._check_time = 0.0
         self.checks = 0
 
     # --- building --------------------------------------------------------------------------
+    def _allow_collisions(self, robot) -> None:
+        """Link pairs never checked: the SRDF's disable_collisions (links it names that this model
+        lacks are skipped: SRDFs often cover variants) and the scene's allowed_collisions."""
+        if robot.srdf:
+            allow_collisions(self.checker, self.plant, self.robot, read_srdf(robot.srdf).disabled_collisions, robot.srdf, strict=False)
+        allow_collisions(self.checker, self.plant, self.robot, robot.allowed_collisions, f"{self.scene.source}: robot.allowed_collisions")
+
     def _add_environment(self, plant, visual: bool) -> None:
         world = plant.world_body()
         items = [(o.id, o.geometry, o.pose.pose(), OBSTACLE_RGBA) for o in self.scene.obstacles]

@@ -235,10 +235,11 @@ def prepare_model(path: str | os.PathLike, packages: dict[str, Path] | None = No
             if "://" in uri and not uri.startswith("file://"):
                 name = uri.split("://", 1)[1].split("/", 1)[0]
                 used[name] = str(known[name])
+        # Drake takes only file:// URIs (not bare paths) in a model parsed from a string
         if attr:
-            element.set(attr, meshes[uri])
+            element.set(attr, f"file://{meshes[uri]}")
         else:
-            element.text = meshes[uri]
+            element.text = f"file://{meshes[uri]}"
     _register_namespaces(model)
     text = ET.tostring(tree.getroot(), encoding="unicode")
     return PreparedModel(text, file_type, meshes, tuple(converted), used)
