@@ -170,3 +170,14 @@ def test_end_effector_mapping_in_a_scene():
     assert (robot.end_effector.frame, robot.end_effector.closing_axis, robot.end_effector.offset_xyz) == ("panda_link8", "x", (0.0, 0.0, 0.2))
     with pytest.raises(SceneError, match="closing_axis: must differ from approach_axis"):
         _robot("", "  end_effector: {frame: panda_link8, approach_axis: z, closing_axis: -z}\n")
+
+
+def test_dae_converts_through_trimesh_when_installed(tmp_path):
+    trimesh = pytest.importorskip("trimesh")
+    pytest.importorskip("collada")
+    dae = tmp_path / "box.dae"
+    dae.write_bytes(trimesh.exchange.dae.export_collada(trimesh.creation.box(extents=(0.1, 0.2, 0.3))))
+    lines = obj_for(dae).read_text().splitlines()
+    vertices = np.array([[float(v) for v in line.split()[1:]] for line in lines if line.startswith("v ")])
+    np.testing.assert_allclose(vertices.max(axis=0) - vertices.min(axis=0), [0.1, 0.2, 0.3], atol=1e-9)
+    assert sum(line.startswith("f ") for line in lines) == 12
