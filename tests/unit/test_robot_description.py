@@ -181,3 +181,18 @@ def test_dae_converts_through_trimesh_when_installed(tmp_path):
     vertices = np.array([[float(v) for v in line.split()[1:]] for line in lines if line.startswith("v ")])
     np.testing.assert_allclose(vertices.max(axis=0) - vertices.min(axis=0), [0.1, 0.2, 0.3], atol=1e-9)
     assert sum(line.startswith("f ") for line in lines) == 12
+
+
+def test_sdf_mesh_uris_resolve_and_other_uris_stay(tmp_path):
+    pkg = _package(tmp_path, "arm_description")
+    _ascii_stl(pkg / "meshes" / "link.stl", TRIANGLE)
+    sdf = pkg / "arm.sdf"
+    sdf.write_text(textwrap.dedent("""\
+        <sdf version="1.9"><model name="arm"><link name="a">
+          <collision name="c"><geometry><mesh><uri>package://arm_description/meshes/link.stl</uri></mesh></geometry></collision>
+          <visual name="v"><geometry><box><size>1 1 1</size></box></geometry>
+            <material><script><uri>file://media/materials/scripts</uri></script></material></visual>
+        </link></model></sdf>"""))
+    prepared = prepare_model(sdf)
+    assert prepared.file_type == "sdf" and list(prepared.meshes) == ["package://arm_description/meshes/link.stl"]
+    assert "file://media/materials/scripts" in prepared.text and "package://" not in prepared.text
