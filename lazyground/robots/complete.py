@@ -79,7 +79,7 @@ def _start(start, poses: dict[str, dict[str, float]], defaults: RobotDefaults | 
         name = start[FROM]
         if not isinstance(name, str) or name not in poses:
             known = ", ".join(sorted(poses)) or "none"
-            raise SceneError(f"{source}: robot.start: no named pose {name!r} (named poses: {known})")
+            raise SceneError(f"{source}: robot.start: no named pose {name!r} (named: {known})")
         base = dict(poses[name])
     for joint, value in start.items():
         if joint == FROM:

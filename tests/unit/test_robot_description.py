@@ -146,7 +146,7 @@ def test_start_named_from_overrides_or_left_to_the_robot():
     robot = _robot("")
     assert robot.base_link == "panda_link0" and robot.planned_joints[0] == "panda_joint1"
     assert robot.end_effector.frame == "panda_hand_tcp" and robot.end_effector.approach_axis == "z"
-    with pytest.raises(SceneError, match=r"^s.yaml: robot.start: no named pose 'tucked' \(named poses: ready, transport\)"):
+    with pytest.raises(SceneError, match=r"^s.yaml: robot.start: no named pose 'tucked' \(named: ready, transport\)"):
         _robot("  start: tucked\n")
     with pytest.raises(SceneError, match=r"robot.start.panda_joint1: expected a number"):
         _robot("  start: {from: ready, panda_joint1: fast}\n")
