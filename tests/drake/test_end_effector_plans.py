@@ -15,6 +15,7 @@ pytest.importorskip("pydrake")
 
 from lazyground import api  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
+from lazyground.robots.end_effector import frame_of  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 
 SCENES = Path(__file__).resolve().parents[2] / "yaml_scenes"
@@ -28,7 +29,7 @@ ANGLE, POSITION = 0.011, 0.004
 def test_solved_grasps_point_the_tool_z_axis_along_the_approach(scene_name, request_text):
     scene = load_scene(SCENES / scene_name)
     world = DrakeWorld(scene)
-    frame = scene.robot.end_effector
+    frame = frame_of(scene.robot)
     cup = scene.object(request_text.split()[-1])
     p_WC = np.array(cup.pose.xyz)
     solved = 0
