@@ -97,7 +97,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     m = sub.add_parser("import-moveit", help="convert a MoveIt planning-scene YAML into a lazyground scene")
     m.add_argument("file")
-    m.add_argument("--robot", default="fetch")
+    m.add_argument("--robot", default="fetch", help="fetch, panda, ur5e, or a URDF/SDF path with a robot.yaml beside it")
+    m.add_argument("--srdf", metavar="FILE", help="MoveIt SRDF written into the scene's robot block")
     m.add_argument("-o", "--output", required=True)
     m.add_argument("--debug", action="store_true", help="show tracebacks")
 
@@ -225,7 +226,7 @@ def cmd_check_robot(args) -> int:
 def cmd_import_moveit(args) -> int:
     from lazyground.moveit import import_moveit_file
 
-    for warning in import_moveit_file(args.file, args.robot, args.output):
+    for warning in import_moveit_file(args.file, args.robot, args.output, srdf=args.srdf):
         print(f"warning: {warning}", file=sys.stderr)
     print(f"wrote {args.output}")
     return EXIT_OK

@@ -19,6 +19,7 @@ import numpy as np
 import yaml
 
 from lazyground.geometry import Pose, matrix_to_rpy, quaternion_xyzw_to_matrix
+from lazyground.robots.lookup import import_spec
 from lazyground.scene.loader import load_scene
 from lazyground.scene.typed_yaml import SceneError
 
@@ -67,7 +68,7 @@ def object_type(object_id: str, rules=TYPE_RULES) -> str:
     return "obstacle"
 
 
-def import_moveit_file(path, robot: str, output, rules=None, name: str | None = None) -> list[str]:
+def import_moveit_file(path, robot: str, output, rules=None, name: str | None = None, srdf: str | None = None) -> list[str]:
     """Convert a MoveIt planning-scene YAML file into a lazyground scene file.
 
     Args:
@@ -76,6 +77,7 @@ def import_moveit_file(path, robot: str, output, rules=None, name: str | None = 
         output: the scene file to write.
         rules: (prefix, type) pairs tried before :data:`TYPE_RULES`.
         name: the scene name (default: the output file's stem).
+        srdf: a MoveIt SRDF for the robot block (disabled pairs, named poses).
 
     Returns:
         Warnings, one line each (skipped meshes, normalised quaternions, ...).
@@ -96,6 +98,8 @@ def import_moveit_file(path, robot: str, output, rules=None, name: str | None = 
         raise SceneError(f"{path}: not a UTF-8 text file") from None
     all_rules = tuple(rules or ()) + TYPE_RULES
     scene, warnings = convert_moveit(data, robot, str(path), all_rules, name or output.stem)
+    if srdf:
+        scene["robot"]["srdf"] = str(Path(srdf).resolve())
     text = f"# Imported from {path.name} by `lazyground import-moveit`.\n" + yaml.safe_dump(scene, sort_keys=False, default_flow_style=None, width=120)
     try:
         output.write_text(text, encoding="utf-8")
@@ -107,11 +111,9 @@ def import_moveit_file(path, robot: str, output, rules=None, name: str | None = 
 
 def convert_moveit(data, robot: str, source: str, rules=TYPE_RULES, name: str = "imported") -> tuple[dict, list[str]]:
     """A MoveIt planning-scene mapping → (scene mapping for :func:`load_scene`, warnings)."""
-    if robot not in ROBOTS:
-        raise SceneError(f"{source}: unknown robot {robot!r} (known: {', '.join(ROBOTS)})")
     if not isinstance(data, dict):
         raise SceneError(f"{source}: expected a MoveIt planning scene mapping at the top level")
-    spec = ROBOTS[robot]
+    spec = ROBOTS[robot] if robot in ROBOTS else import_spec(robot, source)  # any robot with a robot.yaml
     warnings: list[str] = []
     start = _start(data, spec, source, warnings)
     world = data.get("world") or {}
