@@ -221,8 +221,10 @@ def prepare_model(path: str | os.PathLike, packages: dict[str, Path] | None = No
     meshes: dict[str, str] = {}
     converted: list[str] = []
     used: dict[str, str] = {}
+    # SDF <uri> also names materials and included models; only a <mesh>'s is a mesh
+    parent = {child: element for element in tree.iter() for child in element} if file_type == "sdf" else {}
     for element in tree.iter():
-        if _local(element.tag) != tag or (file_type == "sdf" and not _inside_mesh(tree, element)):
+        if _local(element.tag) != tag or (file_type == "sdf" and _local(getattr(parent.get(element), "tag", "")) != "mesh"):
             continue
         uri = (element.get(attr) if attr else element.text or "").strip()
         if not uri:
@@ -247,13 +249,6 @@ def prepare_model(path: str | os.PathLike, packages: dict[str, Path] | None = No
 
 def _local(tag: str) -> str:
     return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else ""
-
-
-def _inside_mesh(tree: ET.ElementTree, element: ET.Element) -> bool:
-    """SDF ``<uri>`` also names materials and included models; only a ``<mesh>``'s is a mesh."""
-    parents = {child: parent for parent in tree.iter() for child in parent}
-    parent = parents.get(element)
-    return parent is not None and _local(parent.tag) == "mesh"
 
 
 def _register_namespaces(model: Path) -> None:
