@@ -21,25 +21,25 @@ from __future__ import annotations
 import math
 
 from lazyground.geometry import Pose
-from lazyground.regions import GoalRegion
+from lazyground.regions import GoalRegion, WorkspaceRegion
 from lazyground.robots.end_effector import X_NT, EndEffectorSpec, is_neutral, vector_in_tool
 
 GRASP_CLEARANCE = 0.01  # m: the fingers must open this much wider than the object
 
 
-def make_region(obj, interpretation, label, kind, lower, upper, X_WR, X_SE=Pose(), wrap=(), approach=(0.0, 0.0, 0.0),
-                ee: EndEffectorSpec | None = None, frame: str = "") -> GoalRegion:
-    """A goal region; with ``ee``, bounds on N become bounds on the tool frame and ``approach`` (in N) moves to T's axes."""
+def make_region(cls, obj, interpretation, label, lower, upper, ee: EndEffectorSpec | None = None, **fields) -> GoalRegion:
+    """A region of class ``cls`` on ``obj``, named ``<object id>/<label>``.
+
+    With ``ee`` (grasps), the bounds are on the neutral frame N: the region constrains ``ee.frame``
+    through X_SE · X_NT, and ``approach`` (given in N) is moved to the tool frame's axes.
+    """
     if ee is not None:
-        frame = ee.frame
+        fields["frame"] = ee.frame
         if not is_neutral(ee):
-            X_SE = X_SE.compose(X_NT(ee))
-            approach = vector_in_tool(ee, approach)
-    return GoalRegion(
-        id=f"{obj.id}/{label}", interpretation=interpretation, object=obj.id, kind=kind,
-        lower=tuple(float(v) for v in lower), upper=tuple(float(v) for v in upper),
-        frame=frame, X_WR=X_WR, X_SE=X_SE, wrap=wrap, label=label, approach=tuple(float(v) for v in approach),
-    )
+            fields["X_SE"] = fields.get("X_SE", Pose()).compose(X_NT(ee))
+            fields["approach"] = vector_in_tool(ee, fields.get("approach", (0.0, 0.0, 0.0)))
+    return cls(id=f"{obj.id}/{label}", interpretation=interpretation, object=obj.id, label=label,
+               lower=tuple(float(v) for v in lower), upper=tuple(float(v) for v in upper), **fields)
 
 
 def fits(width: float, ee: EndEffectorSpec, spec: dict) -> bool:
@@ -81,8 +81,8 @@ def top(obj, spec, interpretation, ee):
         options = [("top", 2 * hx, (-math.pi, math.pi))]
     else:
         options = [("top y", 2 * hy, (0.0, 0.0)), ("top x", 2 * hx, (math.pi / 2, math.pi / 2))]
-    return [make_region(obj, interpretation, label, "workspace", (-d1, 0, 0, roll[0], 0, 0), (-d0, 0, 0, roll[1], 0, 0), X_WR,
-                        approach=_approach_back(spec), ee=ee)
+    return [make_region(WorkspaceRegion, obj, interpretation, label, (-d1, 0, 0, roll[0], 0, 0), (-d0, 0, 0, roll[1], 0, 0), ee,
+                        X_WR=X_WR, approach=_approach_back(spec))
             for label, width, roll in options if fits(width, ee, spec)]
 
 
@@ -104,8 +104,8 @@ def side_faces(obj, spec, interpretation, ee):
         offset = [0.0, 0.0, 0.0]
         offset[axis] = sign * half[axis]
         X_WR = obj.pose.pose().compose(Pose(tuple(offset), (0.0, 0.0, yaw)))
-        out.append(make_region(obj, interpretation, f"face {name}", "workspace", (d0, l0, -h, 0, 0, 0), (d1, l1, h, 0, 0, 0), X_WR,
-                               approach=_approach_back(spec), ee=ee))
+        out.append(make_region(WorkspaceRegion, obj, interpretation, f"face {name}", (d0, l0, -h, 0, 0, 0), (d1, l1, h, 0, 0, 0), ee,
+                               X_WR=X_WR, approach=_approach_back(spec)))
     return out
 
 
@@ -125,8 +125,8 @@ def side_around(obj, spec, interpretation, ee):
         bands = [(f"side {100 * f:.0f}%", f - band, f + band) for f in spec["heights"]]
     else:
         bands = [("side", *spec["height_fraction"])]
-    return [make_region(obj, interpretation, label, "workspace", (-half_depth, 0, -hz + 2 * hz * f0, 0, 0, -math.pi),
-                        (half_depth, 0, -hz + 2 * hz * f1, 0, 0, math.pi), obj.pose.pose(), X_SE, approach=_approach_back(spec), ee=ee)
+    return [make_region(WorkspaceRegion, obj, interpretation, label, (-half_depth, 0, -hz + 2 * hz * f0, 0, 0, -math.pi),
+                        (half_depth, 0, -hz + 2 * hz * f1, 0, 0, math.pi), ee, X_WR=obj.pose.pose(), X_SE=X_SE, approach=_approach_back(spec))
             for label, f0, f1 in bands]
 
 

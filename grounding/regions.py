@@ -7,6 +7,7 @@ live in ``types.yaml``; the templates below say what they mean.
 
 from __future__ import annotations
 
+import difflib
 import math
 from functools import lru_cache
 from pathlib import Path
@@ -16,9 +17,10 @@ import yaml
 from grounding.grasps import GRASP_TEMPLATES, make_region
 from grounding.model import GroundingError
 from lazyground.geometry import Pose
-from lazyground.regions import GoalRegion
+from lazyground.regions import ConfigRegion, GoalRegion, PlacementRegion
 from lazyground.robots.end_effector import LEGACY_FRAME, EndEffectorSpec, end_effector_of
-from lazyground.scene.schema import Scene, SceneObject
+from lazyground.scene.schema import Geometry, Scene, SceneObject
+from lazyground.scene.typed_yaml import SceneError, load_dataclass
 
 TYPES_FILE = Path(__file__).with_name("types.yaml")
 DEG = math.pi / 180
@@ -36,6 +38,40 @@ def type_definitions(scene: Scene | None) -> dict:
     if scene is not None and scene.grasp_types:
         types.update(scene.grasp_types)
     return types
+
+
+def occupant_geometry(obj: SceneObject, scene: Scene | None = None) -> Geometry | None:
+    """What an occupied ``obj`` holds: its own ``occupant``, else its type's; None if neither says.
+
+    Raises:
+        GroundingError: the type's ``occupant`` entry is not a geometry.
+    """
+    if obj.occupant is not None:
+        return obj.occupant
+    spec = type_definitions(scene).get(obj.type, {}).get("occupant")
+    if spec is None:
+        return None
+    try:
+        return load_dataclass(spec, Geometry, f"{obj.type}.occupant")
+    except SceneError as exc:
+        raise GroundingError(f"grounding/types.yaml: {exc}") from None
+
+
+def check_types(scene: Scene) -> None:
+    """Every object type must be defined (``types.yaml``) or declared by the scene (``grasp_types: {pillar: {}}``).
+
+    A misspelt type would otherwise turn a goal into a plain obstacle without a word.
+
+    Raises:
+        GroundingError: the first undefined type, with the closest defined names.
+    """
+    known = type_definitions(scene)
+    for obj in scene.objects:
+        if obj.type not in known:
+            close = difflib.get_close_matches(obj.type, sorted(known), n=2, cutoff=0.6)
+            hint = f"did you mean {' or '.join(repr(c) for c in close)}? " if close else ""
+            raise GroundingError(f"object {obj.id!r}: unknown type {obj.type!r}; {hint}(types: grounding/types.yaml; "
+                                 f"a scene declares its own under grasp_types, e.g. 'grasp_types: {{{obj.type}: {{}}}}')")
 
 
 def regions_for(obj: SceneObject, role: str, interpretation: str, scene: Scene | None = None) -> tuple[GoalRegion, ...]:
@@ -69,8 +105,8 @@ def surface(obj, spec, interpretation, ee):
     X_WR = obj.pose.pose().compose(Pose((0.0, 0.0, hz), (0.0, 0.0, 0.0)))
     c = spec["clearance"]
     # the carried object comes straight down from ``approach`` above
-    return [make_region(obj, interpretation, "surface", "placement", (-(hx - m), -(hy - m), c, 0, 0, -math.pi), (hx - m, hy - m, c, 0, 0, math.pi), X_WR,
-                        approach=(0.0, 0.0, float(spec.get("approach", 0.0))))]
+    return [make_region(PlacementRegion, obj, interpretation, "surface", (-(hx - m), -(hy - m), c, 0, 0, -math.pi), (hx - m, hy - m, c, 0, 0, math.pi),
+                        X_WR=X_WR, approach=(0.0, 0.0, float(spec.get("approach", 0.0))))]
 
 
 def parking(obj, spec, interpretation, ee):
@@ -82,7 +118,7 @@ def parking(obj, spec, interpretation, ee):
     for label, heading in (("forwards", yaw), ("reversing", yaw + math.pi)):
         lo_h = math.remainder(heading - htol, 2 * math.pi)
         hi_h = math.remainder(heading + htol, 2 * math.pi)
-        out.append(make_region(obj, interpretation, label, "config", (x - tol, y - tol, lo_h), (x + tol, y + tol, hi_h), Pose(), wrap=(2,)))
+        out.append(make_region(ConfigRegion, obj, interpretation, label, (x - tol, y - tol, lo_h), (x + tol, y + tol, hi_h), wrap=(2,)))
     return out
 
 

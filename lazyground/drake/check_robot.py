@@ -115,23 +115,23 @@ def check_robot(model: str | Path, srdf: str | Path | None = None, packages: dic
         plant.WeldFrames(plant.world_frame(), plant.GetFrameByName(base, instance))
     except RuntimeError:  # already jointed to the world (a planar car): check it as it is
         pass
-    diagram = builder.Build()
-    plant = diagram.plant()
-    checker = SceneGraphCollisionChecker(model=diagram, robot_model_instances=[instance], edge_step_size=0.05,
-                                         env_collision_padding=PADDING, self_collision_padding=PADDING)
     problems: list[str] = []
     notes: list[str] = []
     unsupported = _unsupported_urdf(prepared.text) if prepared.file_type == "urdf" else []
     poses = dict(defaults.named_poses) if defaults is not None else {}
     if srdf is not None:
         parsed = read_srdf(srdf)
-        skipped = allow_collisions(checker, checker.plant(), instance, parsed.disabled_collisions, str(srdf), strict=False)
+        skipped = allow_collisions(builder.scene_graph(), plant, instance, parsed.disabled_collisions, str(srdf), strict=False)
         notes.append(f"SRDF {Path(srdf).name}: {len(parsed.disabled_collisions) - len(skipped)} disabled pairs applied, "
                      f"{len(parsed.named_poses)} named poses")
         if skipped:
             notes.append(f"SRDF pairs naming links not in the model, skipped: {len(skipped)} (e.g. {skipped[0][0]}-{skipped[0][1]})")
         unsupported += [f"SRDF <{tag}> x{n} read but not used" for tag, n in sorted(parsed.ignored.items())]
         poses.update(parsed.named_poses)
+    diagram = builder.Build()
+    plant = diagram.plant()
+    checker = SceneGraphCollisionChecker(model=diagram, robot_model_instances=[instance], edge_step_size=0.05,
+                                         env_collision_padding=PADDING, self_collision_padding=PADDING)
     joints = _joints(plant, instance)
     collisions = {}
     for name, pose in poses.items():

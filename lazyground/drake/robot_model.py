@@ -2,17 +2,21 @@
 
 ``add_robot`` parses a URDF/SDF through ``lazyground.robots.description.prepare_model``
 (``package://`` resolution, STL/DAE meshes converted to OBJ), so a ROS description package
-loads without edits. ``allow_collisions`` filters link pairs in a collision checker: an
-SRDF's ``disable_collisions`` and a scene's ``robot.allowed_collisions``.
+loads without edits. ``allow_collisions`` excludes link pairs in the SceneGraph before the
+diagram is built (so every collision checker over it agrees): an SRDF's
+``disable_collisions`` and a scene's ``robot.allowed_collisions``. ``add_scene_robot`` does
+both for a scene's robot.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
+from pydrake.geometry import CollisionFilterDeclaration, GeometrySet
 from pydrake.multibody.parsing import Parser
 
 from lazyground.robots.description import PreparedModel, prepare_model
+from lazyground.robots.srdf import read_srdf
 from lazyground.scene.typed_yaml import SceneError
 
 
@@ -43,11 +47,12 @@ def add_robot(parser: Parser, model: str | Path, packages: dict[str, Path] | Non
     return instances[0], prepared
 
 
-def allow_collisions(checker, plant, robot, pairs, where: str, strict: bool = True) -> list[tuple[str, str]]:
-    """Stop checking each (link_a, link_b) pair against each other.
+def allow_collisions(scene_graph, plant, robot, pairs, where: str, strict: bool = True) -> list[tuple[str, str]]:
+    """Stop checking each (link_a, link_b) pair against each other (before the diagram is built).
 
     Args:
-        checker: a SceneGraphCollisionChecker over ``plant``.
+        scene_graph: the builder's SceneGraph (its model-level filters).
+        plant: the MultibodyPlant the robot was parsed into.
         robot: the robot's model instance.
         pairs: link-name pairs.
         where: what to name in an error (``robot.allowed_collisions``, the SRDF path).
@@ -59,6 +64,7 @@ def allow_collisions(checker, plant, robot, pairs, where: str, strict: bool = Tr
         SceneError: with ``strict``, a link the model does not have.
     """
     skipped = []
+    manager = scene_graph.collision_filter_manager()
     for a, b in pairs:
         missing = [n for n in (a, b) if not plant.HasBodyNamed(n, robot)]
         if missing:
@@ -66,6 +72,20 @@ def allow_collisions(checker, plant, robot, pairs, where: str, strict: bool = Tr
                 raise SceneError(f"{where}: no link {missing[0]!r} in the robot model (pair {a}, {b})")
             skipped.append((a, b))
             continue
-        if a != b:
-            checker.SetCollisionFilteredBetween(plant.GetBodyByName(a, robot), plant.GetBodyByName(b, robot), True)
+        frames = [plant.GetBodyFrameIdOrThrow(plant.GetBodyByName(n, robot).index()) for n in (a, b)]
+        manager.Apply(CollisionFilterDeclaration().ExcludeBetween(GeometrySet(frames[0]), GeometrySet(frames[1])))
     return skipped
+
+
+def add_scene_robot(builder, scene):
+    """A scene's robot: parsed (packages, meshes) with its SRDF pairs and allowed collisions filtered.
+
+    Raises:
+        SceneError: the model cannot be loaded, or ``allowed_collisions`` names an unknown link.
+    """
+    robot, _ = add_robot(builder.parser(), scene.robot.model, scene.robot.packages, f"{scene.source}: robot.model")
+    plant, scene_graph = builder.plant(), builder.scene_graph()
+    if scene.robot.srdf:
+        allow_collisions(scene_graph, plant, robot, read_srdf(scene.robot.srdf).disabled_collisions, scene.robot.srdf, strict=False)
+    allow_collisions(scene_graph, plant, robot, scene.robot.allowed_collisions, f"{scene.source}: robot.allowed_collisions")
+    return robot

@@ -14,9 +14,13 @@ from lazyground import api  # noqa: E402
 from lazyground.cli import main  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.planning import path_is_valid  # noqa: E402
+from lazyground.robots.description import prepare_model  # noqa: E402
 from lazyground.scene import SceneError, load_scene  # noqa: E402
 
 from tests.drake.ros_package import PACKAGE, make_package, scene_text  # noqa: E402
+
+
+ROS_READY = np.array([0, -1.5708, 1.5708, -1.5708, -1.5708, 0])  # the SRDF's "ready"
 
 
 def _digest(folder: Path) -> str:
@@ -47,9 +51,9 @@ def test_ros_package_plans_pick_up_a_cup_without_edits(workspace):
     before = _digest(pkg)
     scene = load_scene(_scene(root))
     assert scene.robot.start["elbow_joint"] == pytest.approx(1.5708)  # "ready", an SRDF group_state
+    prepared = prepare_model(scene.robot.model, scene.robot.packages)  # what the world parses
+    assert len(prepared.converted) == 25 and all(Path(p).suffix == ".obj" for p in prepared.meshes.values())
     world = DrakeWorld(scene)
-    assert len(world.model_files.converted) > 0 and all(Path(p[len("file://"):] if p.startswith("file://") else p).suffix == ".obj"
-                                                        for p in world.model_files.meshes.values())
     solved = 0
     for seed in range(3):
         report = api.plan(scene, "pick up a cup", seed=seed, world=world)
@@ -95,8 +99,9 @@ def test_unknown_package_is_one_line_saying_what_to_do(tmp_path, monkeypatch, ca
     # the same package given on the command line, or found through ROS_PACKAGE_PATH
     folder = tmp_path / PACKAGE
     assert main(["ground", str(scene), "pick up a cup", "--package", f"arm_meshes={folder}"]) == 0
-    world = DrakeWorld(load_scene(scene, {"packages": {"arm_meshes": str(folder)}}))
-    assert world.model_files.packages == {"arm_meshes": str(folder)}
+    robot = load_scene(scene, {"packages": {"arm_meshes": str(folder)}}).robot
+    assert prepare_model(robot.model, robot.packages).packages == {"arm_meshes": str(folder)}
+    assert DrakeWorld(load_scene(scene, {"packages": {"arm_meshes": str(folder)}})).config_free(ROS_READY)
     (folder / "package.xml").write_text((folder / "package.xml").read_text().replace(PACKAGE, "arm_meshes"))
     monkeypatch.setenv("ROS_PACKAGE_PATH", str(tmp_path))
-    assert DrakeWorld(load_scene(scene)).model_files.packages == {"arm_meshes": str(folder)}
+    assert DrakeWorld(load_scene(scene)).config_free(ROS_READY)  # found through ROS_PACKAGE_PATH
