@@ -22,6 +22,7 @@ from pydrake.multibody.tree import RevoluteJoint
 from pydrake.solvers import IpoptSolver, SnoptSolver, SolverOptions
 from scipy.spatial import cKDTree
 
+from lazyground.drake.chain import chain_to_frame, joints_to_world
 from lazyground.geometry import Pose
 from lazyground.goals import RoundRobinGoalSource, register_goal_source
 from lazyground.planning.problem import GoalSample
@@ -330,23 +331,17 @@ def _build_reach_map(world, frame: str) -> ReachMap:
         W = above.frame_on_child()
     p_EW = X_WE.inverse() @ kin.X_WF(W, world.q_full).translation()
     rng = np.random.default_rng(REACH_SEED)
-    q = world.q_full.copy()
-    points = np.empty((REACH_SAMPLES, 3))
-    for k in range(REACH_SAMPLES):
-        q[world.planned] = world.space.sample(rng)
-        points[k] = kin.X_WF(W, q).translation()
+    qs = np.tile(world.q_full, (REACH_SAMPLES, 1))
+    space = world.space  # as REACH_SAMPLES calls of space.sample(rng): the same draws, in one call
+    qs[:, world.planned] = space.lower + rng.random((REACH_SAMPLES, space.dim)) * (space.upper - space.lower)
+    try:  # all samples in one batch (~50x faster than asking the plant one by one)
+        chain = chain_to_frame(kin.plant, W)
+        points = chain.forward(qs[:, chain.index])[:, :3, 3]
+    except ValueError:  # a joint the chain cannot express (e.g. a planar base): ask the plant
+        points = np.array([kin.X_WF(W, q).translation() for q in qs])
     return ReachMap(frame, np.asarray(p_EW), cKDTree(points))
 
 
 def _joints_to_root(plant, body) -> list:
     """Movable joints from ``body`` up to the world, nearest first."""
-    out = []
-    world_index = plant.world_body().index()
-    while body.index() != world_index:
-        joint = next((plant.get_joint(j) for j in plant.GetJointIndices() if plant.get_joint(j).child_body().index() == body.index()), None)
-        if joint is None:
-            break
-        if joint.num_positions() > 0:
-            out.append(joint)
-        body = joint.parent_body()
-    return out
+    return [j for j in joints_to_world(plant, body) if j.num_positions() > 0]
