@@ -203,6 +203,9 @@ class Expectation:
     algorithm: str | None = checked(BY_NAME["algorithm"].problem, default=None)
     goal_bias: float | None = checked(BY_NAME["goal_bias"].problem, default=None)
     reachable: tuple[str, ...] | None = None  # objects a solution may reach; None = any
+    # per planning run: the outcome of a seed then depends on nothing else, not on the machine's load
+    # (time_limit becomes a backstop); tests/scenes requires it in every bundled scene
+    max_iterations: int | None = checked(positive, default=None)
 
 
 @dataclass(frozen=True)
