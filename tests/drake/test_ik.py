@@ -67,7 +67,9 @@ def _check_samples(source, world, samples, settings):
         dp, angle = source.pose_error(region.frame, q_full, s.extra["X_WG"])
         assert dp <= 1.1 * np.sqrt(3) * settings.position_tolerance and angle <= 1.1 * settings.orientation_tolerance
         v = region_coordinates(region, X)  # the solved pose lies in the region, within the IK tolerance
-        assert region.contains(v, tol=0.01), (region.id, v)
+        # the IK's contract: orientation within 1.1 x its tolerance (the 10 % solver slack); 0.01 flat failed a
+        # legitimate 0.0101 rad yaw once cans got side grasps (#15) and the draws changed
+        assert region.contains(v, tol=1.1 * settings.orientation_tolerance), (region.id, v)
         assert world.space.within_bounds(s.end) and world.config_free(s.end)
 
 
