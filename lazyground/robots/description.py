@@ -21,14 +21,13 @@ from __future__ import annotations
 
 import hashlib
 import os
-import re
-import struct
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from lazyground.mesh_files import MeshFileError, mesh_from_triangles, obj_text, read_stl
 from lazyground.scene.typed_yaml import SceneError
 
 DRAKE_MESHES = (".obj", ".gltf", ".glb", ".vtk")
@@ -81,19 +80,24 @@ def discover_packages(model: Path, env: dict | None = None) -> dict[str, Path]:
     return found
 
 
-def parse_package_args(items) -> dict[str, Path]:
-    """``NAME=DIR`` strings (the CLI's ``--package``) as a mapping.
+def parse_package(item: str) -> tuple[str, Path]:
+    """One ``NAME=DIR`` (the CLI's ``--package``).
 
     Raises:
-        SceneError: an item is not NAME=DIR.
+        SceneError: not NAME=DIR, or DIR is not a folder.
     """
-    out: dict[str, Path] = {}
-    for item in items or ():
-        name, sep, folder = item.partition("=")
-        if not sep or not name or not folder:
-            raise SceneError(f"--package {item!r}: expected NAME=DIR, e.g. --package ur_description=~/ws/src/ur_description")
-        out[name] = Path(folder).expanduser()
-    return out
+    name, sep, folder = item.partition("=")
+    if not sep or not name.strip() or not folder.strip():
+        raise SceneError(f"--package {item!r}: expected NAME=DIR, e.g. --package ur_description=~/ws/src/ur_description")
+    path = Path(folder.strip()).expanduser()
+    if not path.is_dir():
+        raise SceneError(f"--package {name.strip()}: {folder!r} is not a folder")
+    return name.strip(), path.resolve()
+
+
+def parse_package_args(items) -> dict[str, Path]:
+    """``NAME=DIR`` strings (repeated ``--package``) as a mapping (see :func:`parse_package`)."""
+    return dict(parse_package(item) for item in items or ())
 
 
 def resolve_uri(uri: str, base: Path, packages: dict[str, Path], model: Path) -> Path:
@@ -125,25 +129,6 @@ def _cache_dir() -> Path:
     return Path(root) / "meshes"
 
 
-def read_stl(path: Path) -> np.ndarray:
-    """Triangles (n, 3, 3) of a binary or ASCII STL file.
-
-    Raises:
-        SceneError: the file is neither.
-    """
-    data = path.read_bytes()
-    if len(data) >= 84:
-        (count,) = struct.unpack_from("<I", data, 80)
-        if len(data) == 84 + 50 * count:  # binary: 80-byte header, count, 50 bytes per triangle
-            records = np.frombuffer(data, dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]), count=count, offset=84)
-            return records["v"].astype(float)
-    text = data.decode("ascii", errors="replace")
-    numbers = re.findall(r"vertex\s+(\S+)\s+(\S+)\s+(\S+)", text)
-    if not text.lstrip().startswith("solid") or not numbers or len(numbers) % 3:
-        raise SceneError(f"{path}: not a readable STL file (neither binary nor ASCII); convert it to OBJ")
-    return np.array(numbers, dtype=float).reshape(-1, 3, 3)
-
-
 def _read_dae(path: Path) -> np.ndarray:
     try:
         import trimesh  # optional: DAE needs an XML scene-graph reader
@@ -154,17 +139,14 @@ def _read_dae(path: Path) -> np.ndarray:
         mesh = trimesh.load(str(path), force="mesh")
     except Exception as exc:  # trimesh raises many types for malformed files
         raise SceneError(f"{path}: cannot read the DAE mesh ({type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}); convert it to OBJ") from None
-    return np.asarray(mesh.triangles, float)
+    return mesh_from_triangles(np.asarray(mesh.triangles, float))
 
 
-def write_obj(triangles: np.ndarray, path: Path) -> None:
-    """Triangles as an OBJ file, vertices shared where they coincide exactly."""
-    vertices, index = np.unique(triangles.reshape(-1, 3), axis=0, return_inverse=True)
-    faces = index.reshape(-1, 3) + 1
-    lines = [f"v {x:.9g} {y:.9g} {z:.9g}" for x, y, z in vertices] + [f"f {a} {b} {c}" for a, b, c in faces]
-    tmp = path.with_suffix(".tmp")
-    tmp.write_text("\n".join(lines) + "\n")
-    tmp.replace(path)  # atomic: concurrent runs never read half a file
+def _read_stl(path: Path) -> tuple[np.ndarray, np.ndarray]:
+    try:
+        return read_stl(path)
+    except MeshFileError as exc:
+        raise SceneError(f"{exc}; convert it to OBJ") from None
 
 
 def obj_for(mesh: Path) -> Path:
@@ -178,11 +160,13 @@ def obj_for(mesh: Path) -> Path:
     digest = hashlib.sha256(mesh.read_bytes()).hexdigest()[:20]
     out = _cache_dir() / f"{mesh.stem}-{digest}.obj"
     if not out.is_file():
-        triangles = read_stl(mesh) if suffix == ".stl" else _read_dae(mesh)
+        vertices, triangles = _read_stl(mesh) if suffix == ".stl" else _read_dae(mesh)
         if len(triangles) == 0:
             raise SceneError(f"{mesh}: the mesh has no triangles")
         out.parent.mkdir(parents=True, exist_ok=True)
-        write_obj(triangles, out)
+        tmp = out.with_suffix(".tmp")
+        tmp.write_text(obj_text(vertices, triangles))
+        tmp.replace(out)  # atomic: concurrent runs never read half a file
     return out
 
 

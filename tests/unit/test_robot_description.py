@@ -10,7 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from lazyground.robots.description import discover_packages, obj_for, parse_package_args, prepare_model, read_stl, resolve_uri
+from lazyground.mesh_files import read_stl
+from lazyground.robots.description import discover_packages, obj_for, parse_package_args, prepare_model, resolve_uri
 from lazyground.robots.srdf import read_srdf
 from lazyground.scene import SceneError, parse_scene
 
@@ -47,7 +48,8 @@ def _cache(tmp_path, monkeypatch):
 def test_stl_converts_to_an_obj_with_the_same_triangles(tmp_path, writer):
     stl = tmp_path / "part.STL"
     writer(stl, TRIANGLE)
-    np.testing.assert_allclose(read_stl(stl), TRIANGLE)
+    vertices, triangles = read_stl(stl)
+    np.testing.assert_allclose(vertices[triangles], TRIANGLE)
     obj = obj_for(stl)
     assert obj.suffix == ".obj" and obj.parent == tmp_path / "cache" / "meshes"
     lines = obj.read_text().splitlines()
@@ -60,7 +62,7 @@ def test_stl_converts_to_an_obj_with_the_same_triangles(tmp_path, writer):
 def test_not_an_stl_and_unknown_formats_are_one_line(tmp_path):
     bad = tmp_path / "bad.stl"
     bad.write_bytes(b"\x00\x01 garbage")
-    with pytest.raises(SceneError, match="not a readable STL file"):
+    with pytest.raises(SceneError, match=r"not an STL file .*; convert it to OBJ"):
         obj_for(bad)
     ply = tmp_path / "part.ply"
     ply.write_text("ply")
@@ -85,9 +87,11 @@ def test_package_uris_resolve_through_given_own_and_ros_path_packages(tmp_path, 
     with pytest.raises(SceneError, match=r"unknown package 'nope' \(known: arm_description, arm_meshes\); give its folder with "
                                          r"robot.packages: \{nope: DIR\} in the scene, --package nope=DIR, or ROS_PACKAGE_PATH"):
         resolve_uri("package://nope/x.stl", own, discover_packages(model, env={}), model)
-    assert parse_package_args(["a=/x", "b=y"]) == {"a": Path("/x"), "b": Path("y")}
+    assert parse_package_args([f"a={own}", f"b={sibling}"]) == {"a": own.resolve(), "b": sibling.resolve()}
     with pytest.raises(SceneError, match="expected NAME=DIR"):
         parse_package_args(["just_a_name"])
+    with pytest.raises(SceneError, match="is not a folder"):
+        parse_package_args([f"a={tmp_path / 'nowhere'}"])
 
 
 def test_prepare_model_rewrites_meshes_and_keeps_drake_tags(tmp_path):
