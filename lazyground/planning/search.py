@@ -32,6 +32,23 @@ def path_is_valid(space: ConfigSpace, checker: ValidityChecker, path: np.ndarray
     return -1
 
 
+def edge_free(space: ConfigSpace, checker: ValidityChecker, a: np.ndarray, b: np.ndarray, resolution: float) -> bool:
+    """Whether the edge a -> b is free: the checker's own edge check for straight edges,
+    the space's samples along the curve otherwise (Drake's edge check interpolates linearly)."""
+    if space.linear_edges:
+        return checker.edge_free(a, b, resolution)
+    return bool(np.all(checker.configs_free(space.discretize(a, b, resolution, skip_first=True))))
+
+
+def edge_fraction(space: ConfigSpace, checker: ValidityChecker, a: np.ndarray, b: np.ndarray, resolution: float) -> float:
+    """The largest checked fraction t such that a -> interpolate(a, b, t) is free (the free prefix)."""
+    if space.linear_edges:
+        return checker.edge_fraction(a, b, resolution)
+    free = checker.configs_free(space.discretize(a, b, resolution, skip_first=True))
+    blocked = np.flatnonzero(~np.asarray(free, bool))
+    return 1.0 if not len(blocked) else blocked[0] / len(free)
+
+
 class Search:
     def __init__(
         self,

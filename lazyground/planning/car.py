@@ -1,0 +1,159 @@
+"""A car's configuration space (x, y, heading) whose edges are Reeds-Shepp or Dubins curves.
+
+``CarSpace`` keeps :class:`ConfigSpace`'s interface (the planners call only
+that), so goal regions, strategies and both planners are unchanged:
+
+- ``distance`` is the length of the shortest curve (metres driven);
+- ``steer`` moves at most ``step`` along that curve, ``interpolate`` and
+  ``discretize`` walk it, so edges are collision-checked along the curve
+  (``linear_edges`` is False: see :func:`lazyground.planning.search.edge_free`);
+- nearest neighbours use the inherited embedding (x, y, r cos th, r sin th) with
+  r the turning radius: a heading change costs about the arc that turns it. It
+  is not the curve length (a sideways offset costs a car far more than its
+  Euclidean distance), so the nearest node by the embedding is a heuristic
+  choice, not the nearest by driving distance; the tree stays correct because
+  every edge is a real curve.
+
+The curves themselves are in :mod:`lazyground.planning.curves`.
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from lazyground.geometry import wrap_angle
+from lazyground.planning import curves
+from lazyground.planning.space import ConfigSpace
+
+DENSE_SPACING = 0.1  # m: the largest gap between consecutive samples of a returned car path
+
+
+class Kinematics(str, enum.Enum):
+    HOLONOMIC = "holonomic"
+    REEDS_SHEPP = "reeds-shepp"
+    DUBINS = "dubins"
+
+    def __str__(self) -> str:
+        return self.value
+
+
+KINEMATICS = tuple(k.value for k in Kinematics)
+
+
+@dataclass(frozen=True)
+class CarSpace(ConfigSpace):
+    """(x, y, heading) with curve edges; ``radius`` is the minimum turning radius in metres."""
+
+    kinematics: Kinematics = Kinematics.REEDS_SHEPP
+    radius: float = 1.0
+    linear_edges = False  # class attribute, as ConfigSpace.linear_edges
+
+    def __post_init__(self):
+        super().__post_init__()
+        if self.dim != 3 or list(self.wrap) != [False, False, True]:
+            raise ValueError(f"a car space needs coordinates (x, y, heading); got {self.names}")
+        if not self.radius > 0.0:
+            raise ValueError(f"turning radius must be positive, got {self.radius}")
+        object.__setattr__(self, "kinematics", Kinematics(self.kinematics))
+        if self.kinematics is Kinematics.HOLONOMIC:
+            raise ValueError("a holonomic car is a plain ConfigSpace")
+
+    def word(self, a: np.ndarray, b: np.ndarray) -> curves.Word:
+        """The shortest curve a -> b as segments (kind, signed length in metres)."""
+        solve = curves.reeds_shepp_word if self.kinematics is Kinematics.REEDS_SHEPP else curves.dubins_word
+        return tuple((k, s * self.radius) for k, s in solve(*curves.relative(a, b, self.radius)))
+
+    def distance(self, a: np.ndarray, b: np.ndarray) -> float:
+        return curves.word_length(self.word(a, b))
+
+    def poses(self, a: np.ndarray, word: curves.Word, s) -> np.ndarray:
+        """Poses at arc lengths ``s`` (metres, 1-D, within the word's length) along ``word`` from ``a``."""
+        s = np.clip(np.atleast_1d(np.asarray(s, float)), 0.0, curves.word_length(word))
+        out = np.empty((len(s), 3))
+        x, y, th = float(a[0]), float(a[1]), float(a[2])
+        done, r = 0.0, self.radius
+        for i, (kind, length) in enumerate(word):
+            last = i == len(word) - 1
+            mask = (s >= done) & ((s <= done + abs(length)) if last else (s < done + abs(length)))
+            sigma = np.copysign(s[mask] - done, length)  # signed distance into this segment
+            if kind == "S":
+                out[mask] = np.column_stack([x + sigma * math.cos(th), y + sigma * math.sin(th), np.full(len(sigma), th)])
+            else:
+                turn = (1.0 if kind == "L" else -1.0) * sigma / r
+                # the centre of the turning circle is r to the left (L) or right (R) of the car
+                sign = 1.0 if kind == "L" else -1.0
+                out[mask] = np.column_stack([
+                    x + sign * r * (np.sin(th + turn) - math.sin(th)),
+                    y - sign * r * (np.cos(th + turn) - math.cos(th)),
+                    th + turn,
+                ])
+            x, y, th = _end(x, y, th, kind, length, r)
+            done += abs(length)
+        out[:, 2] = wrap_angle(out[:, 2])
+        return out
+
+    def interpolate(self, a: np.ndarray, b: np.ndarray, t) -> np.ndarray:
+        """Poses at fractions ``t`` (scalar or 1-D) of the curve a -> b."""
+        word = self.word(a, b)
+        q = self.poses(a, word, np.asarray(t, float).ravel() * curves.word_length(word))
+        return q[0] if np.ndim(t) == 0 else q
+
+    def discretize(self, a: np.ndarray, b: np.ndarray, resolution: float, skip_first: bool = False) -> np.ndarray:
+        """Poses along the curve a -> b (both ends included, or b only) at most ``resolution`` metres apart."""
+        word = self.word(a, b)
+        length = curves.word_length(word)
+        n = max(1, int(np.ceil(length / resolution)))
+        q = self.poses(a, word, np.arange(1 if skip_first else 0, n + 1) * (length / n))
+        q[-1] = b  # the curve ends at b; drop the last ulp of drift
+        return q
+
+    def steer(self, a: np.ndarray, b: np.ndarray, step: float) -> tuple[np.ndarray, bool]:
+        word = self.word(a, b)
+        if curves.word_length(word) <= step:
+            return np.array(b, float), True
+        return self.poses(a, word, [step])[0], False
+
+    def path_length(self, path: np.ndarray) -> float:
+        return float(sum(self.distance(a, b) for a, b in zip(path[:-1], path[1:])))
+
+    def densify(self, path: np.ndarray, spacing: float = DENSE_SPACING) -> np.ndarray:
+        """The path's curves sampled at most ``spacing`` metres apart (waypoints kept)."""
+        parts = [self.discretize(a, b, spacing, skip_first=k > 0) for k, (a, b) in enumerate(zip(path[:-1], path[1:]))]
+        return np.vstack(parts) if parts else np.array(path, float)
+
+
+def _end(x, y, th, kind, length, r):
+    """The pose after a whole segment (metres), via the unit-radius kinematics."""
+    ex, ey, eth = curves.advance(0.0, 0.0, th, kind, length / r)
+    return x + r * ex, y + r * ey, eth
+
+
+def drive_profile(path: np.ndarray) -> np.ndarray:
+    """Per step of a dense path: +1 forwards, -1 reverse, 0 standing (displacement along the mean heading)."""
+    d = np.diff(path[:, :2], axis=0)
+    mid = path[:-1, 2] + 0.5 * wrap_angle(np.diff(path[:, 2]))
+    along = d[:, 0] * np.cos(mid) + d[:, 1] * np.sin(mid)
+    return np.sign(np.where(np.abs(along) < 1e-12, 0.0, along))
+
+
+def gear_changes(path: np.ndarray) -> int:
+    """Cusps of a dense path: how often the direction of travel flips."""
+    g = drive_profile(path)
+    g = g[g != 0]
+    return int(np.count_nonzero(g[1:] != g[:-1]))
+
+
+def make_space(base: ConfigSpace, kinematics: str | Kinematics, radius: float) -> ConfigSpace:
+    """``base`` for a holonomic car, else a CarSpace over its bounds.
+
+    Nearest neighbours weigh the heading by the turning radius (see the module docstring).
+    """
+    kinematics = Kinematics(kinematics)
+    if kinematics is Kinematics.HOLONOMIC:
+        return base
+    return CarSpace(base.names, base.lower, base.upper, np.array([1.0, 1.0, radius]), base.wrap,
+                    kinematics=kinematics, radius=float(radius))
