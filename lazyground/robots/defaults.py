@@ -1,0 +1,123 @@
+"""Robot defaults that live with the robot: ``models/<robot>/robot.yaml``.
+
+A robot folder holds its model (URDF/SDF) and a ``robot.yaml`` that says what
+every scene using the robot would otherwise repeat: the base link, the planned
+joints, the end effector, named poses (``tucked``), the planner settings that
+suit it, acceleration limits for time parameterisation (URDFs carry velocity
+limits only) and, for cars, the steering kinematics. A scene's own keys win;
+a scene without a ``planner:`` block plans with the robot's.
+
+No pydrake here: loading a scene reads this file.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from lazyground.scene.typed_yaml import SceneError, checked, load_dataclass, positive
+
+DEFAULTS_FILE = "robot.yaml"
+AXES = ("x", "y", "z", "-x", "-y", "-z")
+
+
+@dataclass(frozen=True)
+class EndEffectorSpec:
+    """The gripper frame and how it grasps: ``approach_axis`` points from the palm towards the
+    object, ``closing_axis`` is the direction the fingers close along, ``opening`` the widest
+    object (m) the fingers take."""
+
+    frame: str
+    offset_xyz: tuple[float, float, float] = (0.0, 0.0, 0.0)  # grasp point in ``frame``
+    offset_rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    approach_axis: str = "x"
+    closing_axis: str = "y"
+    opening: float | None = checked(positive, default=None)
+
+    def validate(self) -> str | None:
+        for key in ("approach_axis", "closing_axis"):
+            if getattr(self, key) not in AXES:
+                return f"{key}: {getattr(self, key)!r} is not one of {', '.join(AXES)}"
+        if self.approach_axis.strip("-") == self.closing_axis.strip("-"):
+            return "closing_axis: must differ from approach_axis"
+        return None
+
+
+@dataclass(frozen=True)
+class CarKinematics:
+    """A car-like robot's steering: the minimum turning radius is wheelbase / tan(max_steering_angle)."""
+
+    wheelbase: float = checked(positive)
+    max_steering_angle: float = checked(positive)  # rad
+
+    @property
+    def min_turning_radius(self) -> float:
+        return self.wheelbase / math.tan(self.max_steering_angle)
+
+
+@dataclass(frozen=True)
+class RobotDefaults:
+    """The contents of a ``robot.yaml`` (see module docstring); paths are relative to it."""
+
+    model: str
+    base_link: str = "base_link"
+    planned_joints: tuple[str, ...] | None = None
+    end_effector: EndEffectorSpec | None = None
+    srdf: str | None = None
+    start: str | None = None  # the named pose a scene without ``robot.start`` starts from
+    named_poses: dict[str, dict[str, float]] = field(default_factory=dict)
+    planner: dict[str, Any] = field(default_factory=dict)  # keys as in a scene's ``planner:`` block
+    acceleration_limits: dict[str, float] = field(default_factory=dict)  # per joint, rad/s^2 or m/s^2
+    default_acceleration: float | None = checked(positive, default=None)  # joints not listed above
+    velocity_limits: dict[str, float] = field(default_factory=dict)  # per joint; overrides the URDF's
+    kinematics: CarKinematics | None = None
+    source: str = ""  # the robot.yaml this came from (set by the loader)
+
+    def validate(self) -> str | None:
+        if self.start is not None and self.start not in self.named_poses:
+            return f"start: no named pose {self.start!r} (named: {', '.join(self.named_poses) or 'none'})"
+        for kind, table in (("acceleration_limits", self.acceleration_limits), ("velocity_limits", self.velocity_limits)):
+            for joint, value in table.items():
+                if not value > 0:
+                    return f"{kind}.{joint}: must be > 0, got {value:g}"
+        return None
+
+    @property
+    def folder(self) -> Path:
+        return Path(self.source).parent
+
+    def path(self, relative: str) -> Path:
+        """A file named in this robot.yaml, resolved against its folder."""
+        return (self.folder / relative).resolve()
+
+    def acceleration_limit(self, joint: str) -> float | None:
+        return self.acceleration_limits.get(joint, self.default_acceleration)
+
+
+def defaults_for_model(model_file: str | Path) -> RobotDefaults | None:
+    """The defaults beside a model file (its folder's ``robot.yaml``), or None when there are none.
+
+    Raises:
+        SceneError: the robot.yaml exists but is invalid (one line naming it and the key).
+    """
+    path = Path(model_file).resolve().parent / DEFAULTS_FILE
+    return load_robot_defaults(path) if path.is_file() else None
+
+
+@functools.lru_cache(maxsize=32)
+def load_robot_defaults(path: Path) -> RobotDefaults:
+    """Read one ``robot.yaml`` strictly (cached by path; the files ship with the package)."""
+    try:
+        data = yaml.safe_load(Path(path).read_text())
+    except (OSError, yaml.YAMLError) as exc:
+        raise SceneError(f"{path}: cannot read robot defaults: {str(exc).splitlines()[0]}") from None
+    try:
+        out = load_dataclass(data if data is not None else {}, RobotDefaults, "")
+    except SceneError as exc:
+        raise SceneError(f"{path}: {exc}") from None
+    return replace(out, source=str(path))
