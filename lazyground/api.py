@@ -20,6 +20,7 @@ import grounding
 from grounding.model import Grounding, Interpretation
 from lazyground.planning.problem import PlannerSettings, PlanResult, PlanStatus
 from lazyground.planning.rrt import solve
+from lazyground.robots.car import planning_space
 from lazyground.scene import Scene, load_scene
 
 
@@ -80,6 +81,7 @@ def planner_settings(scene: Scene, **overrides) -> PlannerSettings:
         resample_threshold=spec.resample_threshold,
         resample_count=spec.resample_count,
         goal_extension=spec.goal_extension,
+        kinematics=spec.kinematics,
     )
     known = {f.name for f in fields(PlannerSettings)}
     unknown = set(overrides) - known
@@ -145,7 +147,8 @@ def plan(
     setup_s = time.perf_counter() - t1
     rng = np.random.default_rng(seed)
     source = make_goal_source(world, g.goal_regions)
-    result = solve(world.space, world, source, world.start, settings, rng, seed=seed, keep_tree=keep_tree)
+    space = planning_space(scene, world.space, settings.kinematics)
+    result = solve(space, world, source, world.start, settings, rng, seed=seed, keep_tree=keep_tree)
     return PlanReport(
         request=request,
         scene=scene.name,

@@ -14,6 +14,7 @@ import sys
 import traceback
 from pathlib import Path
 
+from lazyground.planning.car import KINEMATICS
 from lazyground.scene.schema import ALGORITHM_NAMES, GOAL_EXTENSIONS, STRATEGIES
 
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
@@ -37,6 +38,8 @@ def _add_plan_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--step-size", type=float, help="longest extension, in the space's metric")
     p.add_argument("--goal-extension", choices=GOAL_EXTENSIONS,
                    help="one-tree planner's goal step: partial (keep the free part; the authors' planner), extend, connect")
+    p.add_argument("--kinematics", choices=KINEMATICS,
+                   help="car scenes: holonomic (the paper's), reeds-shepp (forwards and reverse) or dubins (forwards only)")
     p.add_argument("--seed", type=int, help="random seed (default: the scene's)")
     p.add_argument("--time-limit", type=float, help="seconds")
 
@@ -136,7 +139,7 @@ def cmd_plan(args) -> int:
     report = api.plan(
         scene, args.request, seed=args.seed, keep_tree=visual,
         strategy=args.strategy, algorithm=args.algorithm, goal_bias=args.goal_bias, step_size=args.step_size, time_limit=args.time_limit,
-        goal_extension=args.goal_extension,
+        goal_extension=args.goal_extension, kinematics=args.kinematics,
     )
     if args.json:
         print(json.dumps(report_to_json(report)))

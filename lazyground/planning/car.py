@@ -46,10 +46,17 @@ KINEMATICS = tuple(k.value for k in Kinematics)
 
 @dataclass(frozen=True)
 class CarSpace(ConfigSpace):
-    """(x, y, heading) with curve edges; ``radius`` is the minimum turning radius in metres."""
+    """(x, y, heading) with curve edges.
+
+    ``radius`` is the minimum turning radius (m) of the reference point, which sits
+    ``offset`` metres ahead of the configuration's origin along the heading (a car's
+    rear axle centre: the point whose velocity is along the heading). The curves are
+    the reference point's; the configuration's origin follows rigidly.
+    """
 
     kinematics: Kinematics = Kinematics.REEDS_SHEPP
     radius: float = 1.0
+    offset: float = 0.0
     linear_edges = False  # class attribute, as ConfigSpace.linear_edges
 
     def __post_init__(self):
@@ -65,7 +72,22 @@ class CarSpace(ConfigSpace):
     def word(self, a: np.ndarray, b: np.ndarray) -> curves.Word:
         """The shortest curve a -> b as segments (kind, signed length in metres)."""
         solve = curves.reeds_shepp_word if self.kinematics is Kinematics.REEDS_SHEPP else curves.dubins_word
-        return tuple((k, s * self.radius) for k, s in solve(*curves.relative(a, b, self.radius)))
+        rel = curves.relative(self.reference(a), self.reference(b), self.radius)
+        return tuple((k, s * self.radius) for k, s in solve(*rel))
+
+    def reference(self, q: np.ndarray) -> np.ndarray:
+        """The reference point's pose (rows or one vector): shifted ``offset`` along the heading."""
+        q = np.array(q, float)
+        q[..., 0] += self.offset * np.cos(q[..., 2])
+        q[..., 1] += self.offset * np.sin(q[..., 2])
+        return q
+
+    def from_reference(self, p: np.ndarray) -> np.ndarray:
+        """Configurations whose reference point is at ``p`` (inverse of :meth:`reference`)."""
+        p = np.array(p, float)
+        p[..., 0] -= self.offset * np.cos(p[..., 2])
+        p[..., 1] -= self.offset * np.sin(p[..., 2])
+        return p
 
     def distance(self, a: np.ndarray, b: np.ndarray) -> float:
         return curves.word_length(self.word(a, b))
@@ -74,7 +96,7 @@ class CarSpace(ConfigSpace):
         """Poses at arc lengths ``s`` (metres, 1-D, within the word's length) along ``word`` from ``a``."""
         s = np.clip(np.atleast_1d(np.asarray(s, float)), 0.0, curves.word_length(word))
         out = np.empty((len(s), 3))
-        x, y, th = float(a[0]), float(a[1]), float(a[2])
+        x, y, th = (float(v) for v in self.reference(a))
         done, r = 0.0, self.radius
         for i, (kind, length) in enumerate(word):
             last = i == len(word) - 1
@@ -94,7 +116,7 @@ class CarSpace(ConfigSpace):
             x, y, th = _end(x, y, th, kind, length, r)
             done += abs(length)
         out[:, 2] = wrap_angle(out[:, 2])
-        return out
+        return self.from_reference(out)
 
     def interpolate(self, a: np.ndarray, b: np.ndarray, t) -> np.ndarray:
         """Poses at fractions ``t`` (scalar or 1-D) of the curve a -> b."""
@@ -126,6 +148,11 @@ class CarSpace(ConfigSpace):
         return np.vstack(parts) if parts else np.array(path, float)
 
 
+    def cusps(self, dense: np.ndarray) -> int:
+        """Gear changes along a dense path of this space (see :func:`gear_changes`)."""
+        return gear_changes(self.reference(dense))
+
+
 def _end(x, y, th, kind, length, r):
     """The pose after a whole segment (metres), via the unit-radius kinematics."""
     ex, ey, eth = curves.advance(0.0, 0.0, th, kind, length / r)
@@ -133,7 +160,7 @@ def _end(x, y, th, kind, length, r):
 
 
 def drive_profile(path: np.ndarray) -> np.ndarray:
-    """Per step of a dense path: +1 forwards, -1 reverse, 0 standing (displacement along the mean heading)."""
+    """Per step of a dense path of reference-point poses: +1 forwards, -1 reverse, 0 standing."""
     d = np.diff(path[:, :2], axis=0)
     mid = path[:-1, 2] + 0.5 * wrap_angle(np.diff(path[:, 2]))
     along = d[:, 0] * np.cos(mid) + d[:, 1] * np.sin(mid)
@@ -141,13 +168,13 @@ def drive_profile(path: np.ndarray) -> np.ndarray:
 
 
 def gear_changes(path: np.ndarray) -> int:
-    """Cusps of a dense path: how often the direction of travel flips."""
+    """Cusps of a dense path of reference-point poses: how often the direction of travel flips."""
     g = drive_profile(path)
     g = g[g != 0]
     return int(np.count_nonzero(g[1:] != g[:-1]))
 
 
-def make_space(base: ConfigSpace, kinematics: str | Kinematics, radius: float) -> ConfigSpace:
+def make_space(base: ConfigSpace, kinematics: str | Kinematics, radius: float, offset: float = 0.0) -> ConfigSpace:
     """``base`` for a holonomic car, else a CarSpace over its bounds.
 
     Nearest neighbours weigh the heading by the turning radius (see the module docstring).
@@ -156,4 +183,4 @@ def make_space(base: ConfigSpace, kinematics: str | Kinematics, radius: float) -
     if kinematics is Kinematics.HOLONOMIC:
         return base
     return CarSpace(base.names, base.lower, base.upper, np.array([1.0, 1.0, radius]), base.wrap,
-                    kinematics=kinematics, radius=float(radius))
+                    kinematics=kinematics, radius=float(radius), offset=float(offset))

@@ -12,6 +12,7 @@ from typing import Protocol
 
 import numpy as np
 
+from lazyground.planning.car import KINEMATICS
 from lazyground.planning.space import ConfigSpace
 from lazyground.regions import GoalRegion
 
@@ -50,10 +51,13 @@ class PlannerSettings:
     validation_factor: float = 10.0  # returned paths are re-checked at edge_resolution / this
     goal_extension: str = "partial"  # one of GOAL_EXTENSIONS (the one-tree planner's goal-biased step)
     algorithm: str = "rrt"  # "rrt": Algorithm 1; "bidirectional": start tree + goal forest (planning/birrt.py)
+    kinematics: str = "holonomic"  # a car's edges: "holonomic" (straight), "reeds-shepp" or "dubins" (planning/car.py)
 
     def __post_init__(self):
         if self.goal_extension not in GOAL_EXTENSIONS:
             raise ValueError(f"unknown goal_extension {self.goal_extension!r} (known: {', '.join(GOAL_EXTENSIONS)})")
+        if self.kinematics not in KINEMATICS:
+            raise ValueError(f"unknown kinematics {self.kinematics!r} (known: {', '.join(KINEMATICS)})")
 
     @property
     def resolution(self) -> float:
@@ -150,6 +154,7 @@ class PlanResult:
     failed_from: np.ndarray | None = None  # nodes from which a goal-biased extension failed
     path_length: float = 0.0
     invalid_paths_rejected: int = 0
+    cusps: int | None = None  # car spaces: gear changes along the path (None: not a car)
 
     @property
     def solved(self) -> bool:

@@ -127,6 +127,10 @@ class Search:
         for i, sample in enumerate(self.samples):
             sample.weight = self.selector.weight(i)
         goal = self.samples[gi] if gi is not None else None
+        length, cusps = (self.space.path_length(path) if path is not None else 0.0), None
+        if path is not None and not self.space.linear_edges:  # a car: return the curves it drives, densely
+            path = self.space.densify(path)
+            cusps = self.space.cusps(path)
         return PlanResult(
             status=status,
             seed=self.seed,
@@ -145,8 +149,9 @@ class Search:
             region_stats=list(self.goals.stats),
             tree=self._tree_arrays() if self.keep_tree else None,
             failed_from=self._failed_from() if self.keep_tree else None,
-            path_length=self.space.path_length(path) if path is not None else 0.0,
+            path_length=length,
             invalid_paths_rejected=self.rejected,
+            cusps=cusps,
         )
 
     def no_goal(self) -> PlanResult:

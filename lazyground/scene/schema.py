@@ -10,6 +10,7 @@ import math
 from dataclasses import dataclass, field
 
 from lazyground.geometry import Pose
+from lazyground.planning.car import KINEMATICS
 from lazyground.planning.problem import GOAL_EXTENSIONS
 from lazyground.scene.typed_yaml import checked, in_range, non_negative, positive
 
@@ -166,6 +167,7 @@ class PlannerSpec:
     resample_count: int = checked(positive, default=10)
     collision_padding: float = checked(non_negative, default=0.0)
     goal_extension: str = "partial"
+    kinematics: str = "holonomic"  # car scenes: holonomic, reeds-shepp or dubins (lazyground/planning/car.py)
     per_algorithm: dict[str, AlgorithmSpec] = field(default_factory=dict)
 
     def validate(self) -> str | None:
@@ -176,6 +178,8 @@ class PlannerSpec:
         for name in self.per_algorithm:
             if name not in ALGORITHM_NAMES:
                 return f"per_algorithm.{name}: unknown algorithm (known: {', '.join(ALGORITHM_NAMES)})"
+        if self.kinematics not in KINEMATICS:
+            return f"kinematics: unknown kinematics {self.kinematics!r} (known: {', '.join(KINEMATICS)})"
         return _goal_extension_problem(self.goal_extension)
 
 
