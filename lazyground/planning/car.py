@@ -29,6 +29,7 @@ from lazyground.geometry import wrap_angle
 from lazyground.planning import curves
 from lazyground.planning.space import ConfigSpace
 
+_TURN = {"L": 1.0, "R": -1.0, "S": 0.0}  # heading change per radian of arc
 DENSE_SPACING = 0.1  # m: the largest gap between consecutive samples of a returned car path
 
 
@@ -44,9 +45,9 @@ class Kinematics(str, enum.Enum):
 KINEMATICS = tuple(k.value for k in Kinematics)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class CarSpace(ConfigSpace):
-    """(x, y, heading) with curve edges.
+    """(x, y, heading) with curve edges (equal and hashed by identity: it caches recent curves).
 
     ``radius`` is the minimum turning radius (m) of the reference point, which sits
     ``offset`` metres ahead of the configuration's origin along the heading (a car's
@@ -66,14 +67,29 @@ class CarSpace(ConfigSpace):
         if not self.radius > 0.0:
             raise ValueError(f"turning radius must be positive, got {self.radius}")
         object.__setattr__(self, "kinematics", Kinematics(self.kinematics))
+        object.__setattr__(self, "_words", {})
+        # the origin moves faster than the reference point on arcs: hypot(1, offset / radius) times
+        object.__setattr__(self, "_stretch", math.hypot(1.0, self.offset / self.radius))
         if self.kinematics is Kinematics.HOLONOMIC:
             raise ValueError("a holonomic car is a plain ConfigSpace")
 
     def word(self, a: np.ndarray, b: np.ndarray) -> curves.Word:
         """The shortest curve a -> b as segments (kind, signed length in metres)."""
-        solve = curves.reeds_shepp_word if self.kinematics is Kinematics.REEDS_SHEPP else curves.dubins_word
-        rel = curves.relative(self.reference(a), self.reference(b), self.radius)
-        return tuple((k, s * self.radius) for k, s in solve(*rel))
+        key = (np.asarray(a, float).tobytes(), np.asarray(b, float).tobytes())
+        word = self._words.get(key)
+        if word is None:
+            solve = curves.reeds_shepp_word if self.kinematics is Kinematics.REEDS_SHEPP else curves.dubins_word
+            rel = curves.relative(self.reference(a), self.reference(b), self.radius)
+            word = tuple((k, s * self.radius) for k, s in solve(*rel))
+            self._remember(key, word)
+        return word
+
+    def _remember(self, key, word) -> None:
+        # the planner steers a -> b, then checks the edge a -> q_new: a few recent words save
+        # recomputing them (a sub-path of a shortest path is a shortest path)
+        if len(self._words) >= 64:
+            self._words.clear()
+        self._words[key] = word
 
     def reference(self, q: np.ndarray) -> np.ndarray:
         """The reference point's pose (rows or one vector): shifted ``offset`` along the heading."""
@@ -93,29 +109,25 @@ class CarSpace(ConfigSpace):
         return curves.word_length(self.word(a, b))
 
     def poses(self, a: np.ndarray, word: curves.Word, s) -> np.ndarray:
-        """Poses at arc lengths ``s`` (metres, 1-D, within the word's length) along ``word`` from ``a``."""
-        s = np.clip(np.atleast_1d(np.asarray(s, float)), 0.0, curves.word_length(word))
-        out = np.empty((len(s), 3))
-        x, y, th = (float(v) for v in self.reference(a))
-        done, r = 0.0, self.radius
-        for i, (kind, length) in enumerate(word):
-            last = i == len(word) - 1
-            mask = (s >= done) & ((s <= done + abs(length)) if last else (s < done + abs(length)))
-            sigma = np.copysign(s[mask] - done, length)  # signed distance into this segment
-            if kind == "S":
-                out[mask] = np.column_stack([x + sigma * math.cos(th), y + sigma * math.sin(th), np.full(len(sigma), th)])
-            else:
-                turn = (1.0 if kind == "L" else -1.0) * sigma / r
-                # the centre of the turning circle is r to the left (L) or right (R) of the car
-                sign = 1.0 if kind == "L" else -1.0
-                out[mask] = np.column_stack([
-                    x + sign * r * (np.sin(th + turn) - math.sin(th)),
-                    y - sign * r * (np.cos(th + turn) - math.cos(th)),
-                    th + turn,
-                ])
+        """Poses at arc lengths ``s`` (metres, 1-D, clipped to the word's length) along ``word`` from ``a``."""
+        r = self.radius
+        starts, x, y, th, done = [], *(float(v) for v in self.reference(a)), 0.0
+        for kind, length in word:  # each segment's start pose and arc-length offset
+            starts.append((done, x, y, th, _TURN[kind], math.copysign(1.0, length)))
             x, y, th = _end(x, y, th, kind, length, r)
             done += abs(length)
-        out[:, 2] = wrap_angle(out[:, 2])
+        table = np.array(starts)
+        s = np.clip(np.atleast_1d(np.asarray(s, float)), 0.0, done)
+        seg = table[np.clip(np.searchsorted(table[:, 0], s, side="right") - 1, 0, len(table) - 1)]
+        s0, x0, y0, th0, turn, gear = seg.T
+        sigma = (s - s0) * gear  # signed distance driven into the segment
+        th1 = th0 + turn * sigma / r
+        straight = turn == 0.0
+        safe = np.where(straight, 1.0, turn)  # a turning circle's centre is r to the left (L) or right (R)
+        out = np.empty((len(s), 3))
+        out[:, 0] = np.where(straight, x0 + sigma * np.cos(th0), x0 + r / safe * (np.sin(th1) - np.sin(th0)))
+        out[:, 1] = np.where(straight, y0 + sigma * np.sin(th0), y0 - r / safe * (np.cos(th1) - np.cos(th0)))
+        out[:, 2] = wrap_angle(th1)
         return self.from_reference(out)
 
     def interpolate(self, a: np.ndarray, b: np.ndarray, t) -> np.ndarray:
@@ -128,7 +140,7 @@ class CarSpace(ConfigSpace):
         """Poses along the curve a -> b (both ends included, or b only) at most ``resolution`` metres apart."""
         word = self.word(a, b)
         length = curves.word_length(word)
-        n = max(1, int(np.ceil(length / resolution)))
+        n = max(1, int(np.ceil(length * self._stretch / resolution)))
         q = self.poses(a, word, np.arange(1 if skip_first else 0, n + 1) * (length / n))
         q[-1] = b  # the curve ends at b; drop the last ulp of drift
         return q
@@ -137,7 +149,9 @@ class CarSpace(ConfigSpace):
         word = self.word(a, b)
         if curves.word_length(word) <= step:
             return np.array(b, float), True
-        return self.poses(a, word, [step])[0], False
+        q = self.poses(a, word, [step])[0]
+        self._remember((np.asarray(a, float).tobytes(), q.tobytes()), curves.prefix(word, step))
+        return q, False
 
     def path_length(self, path: np.ndarray) -> float:
         return float(sum(self.distance(a, b) for a, b in zip(path[:-1], path[1:])))

@@ -223,6 +223,17 @@ def dubins_word(x: float, y: float, phi: float) -> Word:
     return min(words, key=word_length)
 
 
+def prefix(word: Word, length: float) -> Word:
+    """The first ``length`` (same units as the word) of ``word``."""
+    out, left = [], length
+    for kind, s in word:
+        if left <= 0.0:
+            break
+        out.append((kind, math.copysign(min(abs(s), left), s)))
+        left -= abs(s)
+    return tuple(out)
+
+
 def relative(a, b, radius: float) -> tuple[float, float, float]:
     """b in a's frame, positions divided by ``radius``."""
     dx, dy = b[0] - a[0], b[1] - a[1]
