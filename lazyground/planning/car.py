@@ -79,7 +79,7 @@ class CarSpace(ConfigSpace):
         word = self._words.get(key)
         if word is None:
             solve = curves.reeds_shepp_word if self.kinematics is Kinematics.REEDS_SHEPP else curves.dubins_word
-            rel = curves.relative(self.reference(a), self.reference(b), self.radius)
+            rel = curves.relative(self._ref(a), self._ref(b), self.radius)
             word = tuple((k, s * self.radius) for k, s in solve(*rel))
             self._remember(key, word)
         return word
@@ -94,41 +94,63 @@ class CarSpace(ConfigSpace):
     def reference(self, q: np.ndarray) -> np.ndarray:
         """The reference point's pose (rows or one vector): shifted ``offset`` along the heading."""
         q = np.array(q, float)
-        q[..., 0] += self.offset * np.cos(q[..., 2])
-        q[..., 1] += self.offset * np.sin(q[..., 2])
+        if self.offset:
+            q[..., :2] += self.offset * np.stack([np.cos(q[..., 2]), np.sin(q[..., 2])], axis=-1)
         return q
+
+    def _ref(self, q) -> tuple[float, float, float]:
+        """:meth:`reference` of one configuration in scalar maths (the curve solver's input)."""
+        th = float(q[2])
+        return float(q[0]) + self.offset * math.cos(th), float(q[1]) + self.offset * math.sin(th), th
 
     def from_reference(self, p: np.ndarray) -> np.ndarray:
         """Configurations whose reference point is at ``p`` (inverse of :meth:`reference`)."""
         p = np.array(p, float)
-        p[..., 0] -= self.offset * np.cos(p[..., 2])
-        p[..., 1] -= self.offset * np.sin(p[..., 2])
+        if self.offset:
+            p[..., :2] -= self.offset * np.stack([np.cos(p[..., 2]), np.sin(p[..., 2])], axis=-1)
         return p
 
     def distance(self, a: np.ndarray, b: np.ndarray) -> float:
         return curves.word_length(self.word(a, b))
 
+    def _segments(self, a: np.ndarray, word: curves.Word) -> tuple[list, float]:
+        """Each segment's (arc-length offset, reference start pose, turn, gear), and the word's length."""
+        r, off = self.radius, self.offset
+        th = float(a[2])
+        x, y = float(a[0]) + off * math.cos(th), float(a[1]) + off * math.sin(th)
+        starts, done = [], 0.0
+        for kind, length in word:
+            starts.append((done, x, y, th, _TURN[kind], 1.0 if length >= 0.0 else -1.0))
+            x, y, th = _end(x, y, th, kind, length, r)
+            done += abs(length)
+        return starts, done
+
+    def _pose_at(self, a: np.ndarray, word: curves.Word, s: float) -> np.ndarray:
+        """One pose at arc length ``s`` along ``word`` from ``a`` (scalar maths: steering's hot path)."""
+        starts, _ = self._segments(a, word)
+        s0, x, y, th, turn, gear = next(seg for seg in reversed(starts) if seg[0] <= s)
+        kind = "S" if turn == 0.0 else ("L" if turn > 0.0 else "R")
+        x, y, th = _end(x, y, th, kind, gear * (s - s0), self.radius)
+        return np.array([x - self.offset * math.cos(th), y - self.offset * math.sin(th), wrap_angle(th)])
+
     def poses(self, a: np.ndarray, word: curves.Word, s) -> np.ndarray:
         """Poses at arc lengths ``s`` (metres, 1-D, clipped to the word's length) along ``word`` from ``a``."""
         r = self.radius
-        starts, x, y, th, done = [], *(float(v) for v in self.reference(a)), 0.0
-        for kind, length in word:  # each segment's start pose and arc-length offset
-            starts.append((done, x, y, th, _TURN[kind], math.copysign(1.0, length)))
-            x, y, th = _end(x, y, th, kind, length, r)
-            done += abs(length)
+        starts, done = self._segments(a, word)
         table = np.array(starts)
-        s = np.clip(np.atleast_1d(np.asarray(s, float)), 0.0, done)
-        seg = table[np.clip(np.searchsorted(table[:, 0], s, side="right") - 1, 0, len(table) - 1)]
+        s = np.minimum(np.maximum(np.atleast_1d(np.asarray(s, float)), 0.0), done)
+        seg = table[np.maximum(np.searchsorted(table[:, 0], s, side="right") - 1, 0)]
         s0, x0, y0, th0, turn, gear = seg.T
         sigma = (s - s0) * gear  # signed distance driven into the segment
         th1 = th0 + turn * sigma / r
         straight = turn == 0.0
         safe = np.where(straight, 1.0, turn)  # a turning circle's centre is r to the left (L) or right (R)
         out = np.empty((len(s), 3))
-        out[:, 0] = np.where(straight, x0 + sigma * np.cos(th0), x0 + r / safe * (np.sin(th1) - np.sin(th0)))
-        out[:, 1] = np.where(straight, y0 + sigma * np.sin(th0), y0 - r / safe * (np.cos(th1) - np.cos(th0)))
+        c1, s1 = np.cos(th1), np.sin(th1)
+        out[:, 0] = np.where(straight, x0 + sigma * np.cos(th0), x0 + r / safe * (s1 - np.sin(th0))) - self.offset * c1
+        out[:, 1] = np.where(straight, y0 + sigma * np.sin(th0), y0 - r / safe * (c1 - np.cos(th0))) - self.offset * s1
         out[:, 2] = wrap_angle(th1)
-        return self.from_reference(out)
+        return out
 
     def interpolate(self, a: np.ndarray, b: np.ndarray, t) -> np.ndarray:
         """Poses at fractions ``t`` (scalar or 1-D) of the curve a -> b."""
@@ -149,7 +171,7 @@ class CarSpace(ConfigSpace):
         word = self.word(a, b)
         if curves.word_length(word) <= step:
             return np.array(b, float), True
-        q = self.poses(a, word, [step])[0]
+        q = self._pose_at(a, word, step)
         self._remember((np.asarray(a, float).tobytes(), q.tobytes()), curves.prefix(word, step))
         return q, False
 
