@@ -159,11 +159,21 @@ class CarSpace(ConfigSpace):
         return q[0] if np.ndim(t) == 0 else q
 
     def discretize(self, a: np.ndarray, b: np.ndarray, resolution: float, skip_first: bool = False) -> np.ndarray:
-        """Poses along the curve a -> b (both ends included, or b only) at most ``resolution`` metres apart."""
+        """Poses along the curve a -> b (both ends included, or b only) at most ``resolution`` metres apart.
+
+        Every segment is sampled on its own, so its ends (the cusps among them) are samples.
+        """
         word = self.word(a, b)
-        length = curves.word_length(word)
-        n = max(1, int(np.ceil(length * self._stretch / resolution)))
-        q = self.poses(a, word, np.arange(1 if skip_first else 0, n + 1) * (length / n))
+        s, done = [] if skip_first else [0.0], 0.0
+        for _, length in word:
+            if abs(length) <= 1e-12:
+                continue
+            n = max(1, int(np.ceil(abs(length) * self._stretch / resolution)))
+            s.extend(done + abs(length) * np.arange(1, n + 1) / n)
+            done += abs(length)
+        if len(s) == 0:  # a == b, b only
+            s.append(0.0)
+        q = self.poses(a, word, s)
         q[-1] = b  # the curve ends at b; drop the last ulp of drift
         return q
 

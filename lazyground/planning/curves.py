@@ -186,41 +186,64 @@ def reeds_shepp_word(x: float, y: float, phi: float) -> Word:
     return best
 
 
+def _arc(a: float) -> float:
+    """a wrapped into [0, 2 pi), with a rounding error just below 2 pi read as 0 (a turn of nothing)."""
+    v = a % TWO_PI
+    return 0.0 if TWO_PI - v < 1e-10 else v
+
+
 def dubins_word(x: float, y: float, phi: float) -> Word:
     """The shortest Dubins (forwards only) word to (x, y, phi) in the start frame, radius 1."""
     d, theta = math.hypot(x, y), math.atan2(y, x)
-    a, b = (-theta) % TWO_PI, (phi - theta) % TWO_PI
+    a, b = _arc(-theta), _arc(phi - theta)
     sa, sb, ca, cb, cab = math.sin(a), math.sin(b), math.cos(a), math.cos(b), math.cos(a - b)
     words = []
     p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb)  # LSL
-    if p2 >= 0.0:
+    if p2 >= -1e-10:  # rounding: a straight of length 0 can come out as sqrt(-1e-16)
+        p2 = max(p2, 0.0)
         tmp = math.atan2(cb - ca, d + sa - sb)
-        words.append((("L", (tmp - a) % TWO_PI), ("S", math.sqrt(p2)), ("L", (b - tmp) % TWO_PI)))
+        words.append((("L", _arc(tmp - a)), ("S", math.sqrt(p2)), ("L", _arc(b - tmp))))
     p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa)  # RSR
-    if p2 >= 0.0:
+    if p2 >= -1e-10:  # rounding: a straight of length 0 can come out as sqrt(-1e-16)
+        p2 = max(p2, 0.0)
         tmp = math.atan2(ca - cb, d - sa + sb)
-        words.append((("R", (a - tmp) % TWO_PI), ("S", math.sqrt(p2)), ("R", (tmp - b) % TWO_PI)))
+        words.append((("R", _arc(a - tmp)), ("S", math.sqrt(p2)), ("R", _arc(tmp - b))))
     p2 = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb)  # LSR
-    if p2 >= 0.0:
+    if p2 >= -1e-10:  # rounding: a straight of length 0 can come out as sqrt(-1e-16)
+        p2 = max(p2, 0.0)
         p = math.sqrt(p2)
         tmp = math.atan2(-ca - cb, d + sa + sb) - math.atan2(-2.0, p)
-        words.append((("L", (tmp - a) % TWO_PI), ("S", p), ("R", (tmp - b) % TWO_PI)))
+        words.append((("L", _arc(tmp - a)), ("S", p), ("R", _arc(tmp - b))))
     p2 = -2.0 + d * d + 2.0 * cab - 2.0 * d * (sa + sb)  # RSL
-    if p2 >= 0.0:
+    if p2 >= -1e-10:  # rounding: a straight of length 0 can come out as sqrt(-1e-16)
+        p2 = max(p2, 0.0)
         p = math.sqrt(p2)
         tmp = math.atan2(ca + cb, d - sa - sb) - math.atan2(2.0, p)
-        words.append((("R", (a - tmp) % TWO_PI), ("S", p), ("L", (b - tmp) % TWO_PI)))
+        words.append((("R", _arc(a - tmp)), ("S", p), ("L", _arc(b - tmp))))
     c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0  # RLR
-    if abs(c) <= 1.0:
-        p = (TWO_PI - math.acos(c)) % TWO_PI
-        t = (a - math.atan2(ca - cb, d - sa + sb) + 0.5 * p) % TWO_PI
-        words.append((("R", t), ("L", p), ("R", (a - b - t + p) % TWO_PI)))
+    if abs(c) <= 1.0 + 1e-10:
+        c = min(1.0, max(-1.0, c))
+        p = _arc(TWO_PI - math.acos(c))
+        t = _arc(a - math.atan2(ca - cb, d - sa + sb) + 0.5 * p)
+        words.append((("R", t), ("L", p), ("R", _arc(a - b - t + p))))
     c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0  # LRL
-    if abs(c) <= 1.0:
-        p = (TWO_PI - math.acos(c)) % TWO_PI
-        t = (-a - math.atan2(ca - cb, d + sa - sb) + 0.5 * p) % TWO_PI
-        words.append((("L", t), ("R", p), ("L", (b - a - t + p) % TWO_PI)))
-    return min(words, key=word_length)
+    if abs(c) <= 1.0 + 1e-10:
+        c = min(1.0, max(-1.0, c))
+        p = _arc(TWO_PI - math.acos(c))
+        t = _arc(-a - math.atan2(ca - cb, d + sa - sb) + 0.5 * p)
+        words.append((("L", t), ("R", p), ("L", _arc(b - a - t + p))))
+    return min((_merge(w) for w in words), key=word_length)
+
+
+def _merge(word: Word) -> Word:
+    """A Dubins word whose straight came out as (nearly) nothing, as one arc.
+
+    With a straight of length ~0 the split of the turn between the two arcs is an atan2 of a
+    ~zero vector, and the two arcs may sum to a needless extra full circle."""
+    (k1, t), (k2, p), (k3, q) = word
+    if k2 == "S" and k1 == k3 and p < 1e-7:
+        return ((k1, _arc(t + q)),)
+    return word
 
 
 def prefix(word: Word, length: float) -> Word:

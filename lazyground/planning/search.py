@@ -44,9 +44,16 @@ def edge_fraction(space: ConfigSpace, checker: ValidityChecker, a: np.ndarray, b
     """The largest checked fraction t such that a -> interpolate(a, b, t) is free (the free prefix)."""
     if space.linear_edges:
         return checker.edge_fraction(a, b, resolution)
-    free = checker.configs_free(space.discretize(a, b, resolution, skip_first=True))
-    blocked = np.flatnonzero(~np.asarray(free, bool))
-    return 1.0 if not len(blocked) else blocked[0] / len(free)
+    qs = space.discretize(a, b, resolution, skip_first=True)
+    blocked = np.flatnonzero(~np.asarray(checker.configs_free(qs), bool))
+    if not len(blocked):
+        return 1.0
+    if blocked[0] == 0:
+        return 0.0
+    # samples need not be evenly spaced (a car samples each segment on its own): the fraction of the
+    # distance to the last free sample, which interpolate maps back to it (a shortest path's prefix
+    # is the shortest path to its end)
+    return space.distance(a, qs[blocked[0] - 1]) / space.distance(a, b)
 
 
 class Search:
