@@ -200,3 +200,33 @@ def test_lengths_match_ompl(kinematics):
     worst = max(abs(ours.distance(a, b) - space.distance(state(a), state(b))) / space.distance(state(a), state(b))
                 for a, b in _pairs(1000, seed=6))
     assert worst < 1e-6
+
+
+@pytest.mark.parametrize("kinematics", sorted(SOLVERS))
+def test_planned_car_paths_are_drivable(kinematics):
+    from lazyground.goals import ConfigGoalSource
+    from lazyground.planning import solve
+    from lazyground.planning.problem import PlannerSettings
+    from lazyground.regions import GoalRegion
+    from tests.unit.toy import BoxWorld  # checks x and y only: a point car
+
+    space = make_space(BASE, kinematics, R, OFFSET)
+    world = BoxWorld([(18.0, 0.0, 20.0, 22.0)])  # a wall with a gap at the top
+    goal = GoalRegion(id="bay", interpretation="park:bay", object="bay", kind="config",
+                      lower=(30.0, 5.0, -0.15), upper=(30.5, 5.5, 0.15), wrap=(2,))
+    settings = PlannerSettings(step_size=2.0, edge_resolution=0.1, time_limit=1e6, max_iterations=20_000,
+                               goal_bias=0.1, goal_extension="connect", kinematics=kinematics)
+    solved = 0
+    for seed in range(3):
+        res = solve(space, world, ConfigGoalSource((goal,), space, world), np.array([5.0, 5.0, 0.0]), settings,
+                    np.random.default_rng(seed), seed=seed)
+        if not res.solved:
+            continue
+        solved += 1
+        assert goal.contains(res.path[-1])
+        _assert_drivable(space, res.path, 0.1)
+        assert np.all(world.configs_free(res.path))
+        assert res.cusps == gear_changes(space.reference(res.path))
+        if kinematics == "dubins":
+            assert res.cusps == 0
+    assert solved == 3
