@@ -70,7 +70,7 @@ def planner(step=2.0, time_limit=10.0):
 
 
 def parked_car(id_, x, y, yaw):
-    """A parked car (the 4.5 m x 1.8 m footprint, 1.5 m high) centred in a spot."""
+    """A parked car (the 4.5 m x 1.8 m footprint, 1.5 m high) outside any spot object."""
     return box(id_, x, y, 4.5, 1.8, 1.5, yaw=yaw, color="grey")
 
 
@@ -150,7 +150,8 @@ def parking_3() -> dict:
     """A lot where feasibility for the car decides, not collisions alone (issue #17).
 
     Two aisles joined at the east end: the wide north aisle (7.2 m) where the car starts,
-    and a narrow south aisle (3.5 m) behind a median wall. Occupied spots hold parked cars.
+    and a narrow south aisle (3.5 m) behind a median wall. Occupied spots hold parked cars
+    (the Drake world adds them).
     Free spots: s2 off the narrow aisle (a 1.8 x 4.5 m puck pivots in; a car turning no
     tighter than 3.86 m would need a long series of shunts); p0 a parallel gap 5.0 m long
     between parked cars (the puck slides in sideways); s12 at the junction; n4 whose mouth
@@ -167,10 +168,6 @@ def parking_3() -> dict:
         x = 2.3 + 2.6 * i
         objects.append(spot(f"spot_s{i}", x, SPOT[0] / 2, -HALF_PI, i not in free_south))
         objects.append(spot(f"spot_n{i}", x, north_y + SPOT[0] / 2, HALF_PI, i not in free_north))
-        if i not in free_south:
-            obstacles.append(parked_car(f"car_s{i}", x, SPOT[0] / 2, -HALF_PI))
-        if i not in free_north:
-            obstacles.append(parked_car(f"car_n{i}", x, north_y + SPOT[0] / 2, HALF_PI))
     # the pillar at n4's west mouth corner
     xn4 = 2.3 + 2.6 * 4
     obstacles.append(box("pillar_n4", xn4 - 1.6, north_y - 0.9, 0.6, 1.6, 3.0))
