@@ -36,7 +36,9 @@ from pydrake.perception import BaseField, Fields, PointCloud
 from grounding.regions import END_EFFECTOR
 from lazyground.drake.world import PARKED_CAR_SIZE, Attachment, DrakeWorld, rigid_transform
 from lazyground.geometry import Pose
-from lazyground.viz.style import FAILED_RGBA, GOAL_BIASED_RGBA, PATH_RGBA, REGION_RGBA, TREE_RGBA, weight_rgba
+from lazyground.viz.style import (
+    FAILED_RGBA, GOAL_BIASED_RGBA, PATH_DARK_RGBA, PATH_RGBA, REGION_RGBA, REVERSE_RGBA, TREE_RGBA, weight_rgba,
+)
 from lazyground.viz.trace import resample_path, tree_edges
 
 FPS = 30
@@ -189,8 +191,11 @@ class _StepView:
             if res.failed_from is not None:
                 self._points(f"{path}/tree/failed_goal_biased_from", p[:, np.unique(res.failed_from)], FAILED_RGBA, 1.5)
         if self.motion is not None:
-            dense = resample_path(self.motion, 200, self.world.space.wrap)
+            car = self.report.result.cusps is not None  # a car's path is already its curves, densely sampled
+            dense = self.motion if car else resample_path(self.motion, 200, self.world.space.wrap)
             self.meshcat.SetLine(f"{path}/path", self.points(dense), 4.0, Rgba(*PATH_RGBA))
+            if car:
+                self._draw_travel(f"{path}/direction_of_travel", dense)
 
     def animate(self, t0: float) -> float:
         """Record the robot along the path from time ``t0``; returns the end time."""
@@ -203,6 +208,30 @@ class _StepView:
             self.world.plant.SetPositions(self.plant_context, self.world.full(q))
             self.world.diagram.ForcedPublish(self.context)
         return t0 + (len(qs) - 1) / FPS
+
+    def _draw_travel(self, path: str, dense: np.ndarray, every: float = 1.5) -> None:
+        """Arrowheads along a car's path about every ``every`` metres: forwards blue, reverse orange."""
+        poses = self.poses(dense)
+        p = np.array([X.translation() for X in poses])
+        step = np.linalg.norm(np.diff(p, axis=0), axis=1)
+        s = np.concatenate([[0.0], np.cumsum(step)])
+        size = self.scale * 3.0
+        for gear, rgba in ((1.0, PATH_DARK_RGBA), (-1.0, REVERSE_RGBA)):
+            starts, ends = [], []
+            for k in np.unique(np.searchsorted(s, np.arange(every / 2, s[-1], every))):
+                if not 0 < k < len(p) or step[k - 1] <= 0:
+                    continue
+                u = (p[k] - p[k - 1]) / step[k - 1]
+                if np.sign(u @ poses[k].rotation().matrix()[:, 0]) != gear:
+                    continue
+                side = np.cross([0.0, 0.0, 1.0], u)
+                tip = p[k] + [0.0, 0.0, 0.05]
+                for wing in (tip - size * u + 0.5 * size * side, tip - size * u - 0.5 * size * side):
+                    starts.append(wing)
+                    ends.append(tip)
+            if starts:
+                self.meshcat.SetLineSegments(f"{path}/{'forwards' if gear > 0 else 'reverse'}", np.array(starts).T,
+                                             np.array(ends).T, 3.0, Rgba(*rgba))
 
     def _points(self, path: str, p: np.ndarray, rgba, size: float) -> None:
         if p.shape[1] == 0:
