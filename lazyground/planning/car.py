@@ -12,7 +12,13 @@ that), so goal regions, strategies and both planners are unchanged:
   is not the curve length (a sideways offset costs a car far more than its
   Euclidean distance), so the nearest node by the embedding is a heuristic
   choice, not the nearest by driving distance; the tree stays correct because
-  every edge is a real curve.
+  every edge is a real curve. (Measured on parking_2, 8 seeds: heading weight r
+  needed a mean 1,443 iterations, r/2 5,777 and 2r 5,042.)
+
+The bidirectional planner joins goal-tree edges end to start: a reversed
+Reeds-Shepp curve is a Reeds-Shepp curve, but a Dubins car cannot reverse, so there
+its returned path (curves between the same waypoints, forwards) may fail the fine
+re-check more often; the one-tree planner is the one to use with ``dubins``.
 
 The curves themselves are in :mod:`lazyground.planning.curves`.
 """
