@@ -14,8 +14,7 @@ import sys
 import traceback
 from pathlib import Path
 
-from lazyground.planning.car import KINEMATICS
-from lazyground.scene.schema import ALGORITHM_NAMES, GOAL_EXTENSIONS, STRATEGIES
+from lazyground.settings import add_cli_options, cli_values
 
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
 REPO_ROOT = Path(__file__).resolve().parents[1]
@@ -30,20 +29,6 @@ class _Parser(argparse.ArgumentParser):
         raise UsageError(message)
 
 
-def _add_plan_options(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--strategy", choices=STRATEGIES, help="goal-selection strategy")
-    p.add_argument("--algorithm", choices=ALGORITHM_NAMES,
-                   help="rrt: one tree (the paper's Algorithm 1); bidirectional: start tree + a goal tree per goal sample")
-    p.add_argument("--goal-bias", type=float, help="probability of a goal-biased extension (0..1)")
-    p.add_argument("--step-size", type=float, help="longest extension, in the space's metric")
-    p.add_argument("--goal-extension", choices=GOAL_EXTENSIONS,
-                   help="one-tree planner's goal step: partial (keep the free part; the authors' planner), extend, connect")
-    p.add_argument("--kinematics", choices=KINEMATICS,
-                   help="car scenes: holonomic (the paper's), reeds-shepp (forwards and reverse) or dubins (forwards only)")
-    p.add_argument("--seed", type=int, help="random seed (default: the scene's)")
-    p.add_argument("--time-limit", type=float, help="seconds")
-
-
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="lazyground", description="Ground ambiguous requests lazily inside a motion planner.")
     parser.add_argument("--debug", action="store_true", help="show tracebacks")
@@ -52,7 +37,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("plan", help="ground a request and plan to whichever interpretation is reachable")
     p.add_argument("scene")
     p.add_argument("request")
-    _add_plan_options(p)
+    add_cli_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--html", metavar="FILE", help="write a self-contained HTML replay (Meshcat)")
     p.add_argument("--meshcat", action="store_true", help="show the result in a live Meshcat until Ctrl-C")
@@ -126,21 +111,13 @@ def cmd_plan(args) -> int:
     from lazyground.scene import load_scene
 
     scene = load_scene(args.scene)
-    for name in ("goal_bias",):
-        v = getattr(args, name)
-        if v is not None and not 0.0 <= v <= 1.0:
-            raise UsageError(f"--goal-bias must be in [0, 1], got {v:g}")
-    for name in ("step_size", "time_limit"):
-        v = getattr(args, name)
-        if v is not None and not v > 0:
-            raise UsageError(f"--{name.replace('_', '-')} must be > 0, got {v:g}")
+    try:
+        overrides = cli_values(args)
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
     visual = bool(args.html or args.meshcat or args.plot or args.animate)
     _import_drake()
-    report = api.plan(
-        scene, args.request, seed=args.seed, keep_tree=visual,
-        strategy=args.strategy, algorithm=args.algorithm, goal_bias=args.goal_bias, step_size=args.step_size, time_limit=args.time_limit,
-        goal_extension=args.goal_extension, kinematics=args.kinematics,
-    )
+    report = api.plan(scene, args.request, keep_tree=visual, **overrides)
     if args.json:
         print(json.dumps(report_to_json(report)))
     else:

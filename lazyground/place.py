@@ -14,34 +14,24 @@ plans step 1 again over the others; the report says so.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 
 from grounding.model import Grounding
-from lazyground.api import PlanReport
 from lazyground.drake.ik import IKGoalSource
-from lazyground.drake.world import Attachment, DrakeWorld
+from lazyground.drake.world import DrakeWorld
 from lazyground.geometry import Pose
+from lazyground.plan_report import PlanReport
 from lazyground.planning.problem import PlannerSettings, PlanResult, PlanStatus
 from lazyground.planning.rrt import path_is_valid, solve
 from lazyground.regions import GoalRegion
 from lazyground.scene.schema import Scene
+from lazyground.tasks.outcome import Grasp, Lift, Outcome, Placement, Step
+from lazyground.tasks.worlds import Worlds
 
 PLACE_SHARE = 0.4  # of the time limit, for one placement attempt before falling back
 MIN_LIFT, MAX_LIFT, LIFT_STEP = 0.02, 0.08, 0.01  # m: the lift stops at the first clear height above MIN_LIFT
-
-
-@dataclass(frozen=True)
-class Lift:
-    """The lift-off after grasping: waypoints from the grasp to a collision-free pose above it."""
-
-    path: np.ndarray
-    height: float
-
-    @property
-    def q_lift(self) -> np.ndarray:
-        return self.path[-1]
 
 
 def _regions_by_object(g: Grounding) -> tuple[list[GoalRegion], dict[str, list[GoalRegion]]]:
@@ -115,41 +105,45 @@ def _combine(results: list[PlanResult], status: PlanStatus, path, goal, region, 
     )
 
 
-def plan_pick_and_place(
-    scene: Scene,
-    g: Grounding,
-    settings: PlannerSettings,
-    seed: int,
-    grounding_s: float,
-    keep_tree: bool = False,
-    place_share: float = PLACE_SHARE,
-) -> PlanReport:
-    """Plan "put X on Y": a grasp of any X, then a placement on any Y, with fallback."""
+def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Generator, worlds: Worlds, *,
+        seed: int | None = None, keep_tree: bool = False, place_share: float = PLACE_SHARE) -> Outcome:
+    """Plan "put X on Y": a grasp of any X, then a placement on any Y, with fallback (the "place" task).
+
+    Args:
+        scene: the Scene.
+        g: the grounding (action "place": grasp regions and per-object placement regions).
+        settings: PlannerSettings; ``time_limit`` bounds both steps and every fallback.
+        rng: the only source of randomness.
+        worlds: the scene's worlds (the caller's prebuilt world is used for the pick).
+        seed: recorded in the results.
+        keep_tree: keep the search trees (for viewers).
+        place_share: the share of the time limit one placement attempt may use.
+
+    Returns:
+        An Outcome: on success the pick and the place step (the place step carries the
+        object with its Grasp), the lift and the placement; otherwise no steps and why.
+        Its result's ``time_s`` counts planning (IK, lift, search), not building worlds.
+    """
+    world = worlds.get()
     t0 = time.perf_counter()
+    setup_before = worlds.setup_s  # world building from here on is set-up, not planning
     deadline = t0 + settings.time_limit
-    rng = np.random.default_rng(seed)
-    world = DrakeWorld(scene)
-    setup_s = time.perf_counter() - t0
     frame = scene.robot.end_effector or "gripper_link"
     grasps, places = _regions_by_object(g)
     excluded: list[str] = []
     notes: list[str] = []
     results: list[PlanResult] = []
-    steps: tuple[PlanReport, ...] = ()
 
-    def step_report(request: str, result: PlanResult, setup: float) -> PlanReport:
-        return PlanReport(request, scene.name, seed, settings, g, result, world.space.names, 0.0, setup)
+    def planning_s() -> float:
+        return time.perf_counter() - t0 - (worlds.setup_s - setup_before)
 
-    def finish(status: PlanStatus, message: str, extra: dict | None = None, path=None, goal=None, region=None) -> PlanReport:
-        elapsed = time.perf_counter() - t0
+    def finish(status: PlanStatus, message: str, **done) -> Outcome:
         if results:
-            combined = _combine(results, status, path, goal, region, elapsed, message)
+            combined = _combine(results, status, done.get("path"), done.get("goal"), done.get("region"), planning_s(), message)
         else:
-            combined = PlanResult(status, seed, None, None, None, 0, 0, [], 0, elapsed, 0.0, 0.0, message)
-        return PlanReport(
-            g.request, scene.name, seed, settings, g, combined, world.space.names, grounding_s, setup_s,
-            steps=steps, notes=tuple(notes), extra=extra or {},
-        )
+            combined = PlanResult(status, seed, None, None, None, 0, 0, [], 0, planning_s(), 0.0, 0.0, message)
+        return Outcome(combined, done.get("steps", ()), world.space.names, tuple(notes), done.get("lift"),
+                       done.get("placement"), len(excluded) if done.get("steps") else 0)
 
     while True:
         remaining = deadline - time.perf_counter()
@@ -166,12 +160,11 @@ def plan_pick_and_place(
         obj = scene.object(pick.goal_region.object)
         q_grasp = pick.path[-1]
         X_WG = world.frame_pose(frame, q_grasp)
-        X_GO = X_WG.inverse().compose(obj.pose.pose())
-        t_setup = time.perf_counter()
-        carrying = DrakeWorld(scene, attached=Attachment(obj, frame, X_GO))
-        regions = _placement_regions(places.get(obj.id, []), obj.geometry.half_extents()[2])
-        source = IKGoalSource(regions, carrying)
-        setup = time.perf_counter() - t_setup
+        grasp = Grasp(obj.id, pick.goal_region.id, pick.goal_region.label, frame, X_WG, X_WG.inverse().compose(obj.pose.pose()))
+        built = worlds.setup_s
+        carrying = worlds.get(grasp)
+        setup = worlds.setup_s - built
+        source = IKGoalSource(_placement_regions(places.get(obj.id, []), obj.geometry.half_extents()[2]), carrying)
         lift = lift_off(world, carrying, source, frame, q_grasp, settings.resolution)
         if lift is None:
             notes.append(f"picked {obj.id} ({pick.goal_region.label}) but could not lift it clear; trying another object")
@@ -190,20 +183,13 @@ def plan_pick_and_place(
                          "went back for another object")
             excluded.append(obj.id)
             continue
-        q_final = place.path[-1]
-        X_WO = carrying.frame_pose(frame, q_final).compose(X_GO)
-        steps = (step_report(f"pick {obj.id}", pick, 0.0), step_report(f"place {obj.id}", place, setup))
-        extra = {
-            "picked": obj.id,
-            "grasp": {"region": pick.goal_region.id, "label": pick.goal_region.label, "X_WG": X_WG.to_json(), "X_GO": X_GO.to_json()},
-            "placement": {"region": place.goal_region.id, "target": place.goal_region.object, "X_WO": X_WO.to_json()},
-            "lift": {"height": lift.height, "path": lift.path.round(9).tolist()},
-            "fallbacks": len(excluded),
-        }
-        path = np.vstack([pick.path, lift.path[1:], place.path[1:]])
+        X_WO = carrying.frame_pose(frame, place.path[-1]).compose(grasp.X_GO)
+        steps = (Step(f"pick {obj.id}", pick, setup_before), Step(f"place {obj.id}", place, setup, grasp))
         chosen = next(i for i in g.interpretations if i.objects == (obj.id,) and i.target == place.goal_region.object)
         region = replace(place.goal_region, interpretation=chosen.id)  # placement regions are shared by interpretations
-        return finish(PlanStatus.SOLVED, "", extra, path, place.goal, region)
+        return finish(PlanStatus.SOLVED, "", steps=steps, lift=lift, region=region, goal=place.goal,
+                      path=np.vstack([pick.path, lift.path[1:], place.path[1:]]),
+                      placement=Placement(place.goal_region.id, place.goal_region.object, X_WO))
     if not results:
         return finish(PlanStatus.TIMEOUT, "no time left")
     tried = ", ".join(excluded) or "none"
@@ -214,17 +200,14 @@ def plan_pick_and_place(
 def validate_pick_and_place(report: PlanReport, scene: Scene, resolution: float) -> list[str]:
     """Re-check both steps at ``resolution``, the carried object included; returns problems found."""
     problems = []
-    pick, place = (s.result for s in report.steps)
-    world = DrakeWorld(scene, visual=False)
-    if path_is_valid(world.space, world, pick.path, resolution) >= 0:
+    pick, place = report.steps
+    worlds = Worlds(scene, visual=False)
+    world = worlds.get()
+    if path_is_valid(world.space, world, pick.result.path, resolution) >= 0:
         problems.append("pick path collides")
-    obj = scene.object(report.extra["picked"])
-    X_GO = Pose(tuple(report.extra["grasp"]["X_GO"]["xyz"]), tuple(report.extra["grasp"]["X_GO"]["rpy"]))
-    frame = scene.robot.end_effector or "gripper_link"
-    carrying = DrakeWorld(scene, attached=Attachment(obj, frame, X_GO), visual=False)
-    if path_is_valid(carrying.space, carrying, place.path, resolution) >= 0:
+    carrying = worlds.get(place.grasp)
+    if path_is_valid(carrying.space, carrying, place.result.path, resolution) >= 0:
         problems.append("place path collides (with the carried object)")
-    lift = np.array(report.extra["lift"]["path"])
-    if not lift_is_clear(world, carrying, lift, resolution):
+    if not lift_is_clear(world, carrying, report.outcome.lift.path, resolution):
         problems.append("lift-off collides after leaving the support")
     return problems

@@ -1,8 +1,12 @@
-"""Plan reports as JSON and as a few human-readable lines (the CLI prints these)."""
+"""Plan reports as JSON and as a few human-readable lines (the CLI prints these).
+
+The report itself is :class:`lazyground.plan_report.PlanReport`.
+"""
 
 from __future__ import annotations
 
-from lazyground.api import PlanReport
+from lazyground.plan_report import PlanReport
+from lazyground.settings import Algorithm, Kinematics
 
 
 def _r(x: float, nd: int = 6) -> float:
@@ -58,8 +62,23 @@ def report_to_json(report: PlanReport) -> dict:
         "notes": list(report.grounding.notes) + list(report.notes),
     }
     if report.steps:
-        out["steps"] = [report_to_json(s) for s in report.steps]
-        out.update(report.extra)
+        out["steps"] = [report_to_json(report.step_report(s)) for s in report.steps]
+        out.update(_pick_and_place_json(report.outcome))
+    return out
+
+
+def _pick_and_place_json(outcome) -> dict:
+    """The keys a pick-and-place document adds (the names of the earlier ``extra`` dict)."""
+    out: dict = {"fallbacks": outcome.fallbacks}
+    grasp = outcome.grasp
+    if grasp is not None:
+        out["picked"] = grasp.object_id
+        out["grasp"] = {"region": grasp.region, "label": grasp.label, "X_WG": grasp.X_WG.to_json(), "X_GO": grasp.X_GO.to_json()}
+    if outcome.placement is not None:
+        p = outcome.placement
+        out["placement"] = {"region": p.region, "target": p.target, "X_WO": p.X_WO.to_json()}
+    if outcome.lift is not None:
+        out["lift"] = {"height": outcome.lift.height, "path": outcome.lift.path.round(9).tolist()}
     return out
 
 
@@ -90,10 +109,10 @@ def report_lines(report: PlanReport) -> list[str]:
 
 
 def _planner_label(settings) -> str:
-    if settings.algorithm == "bidirectional":  # no goal bias in the two-tree planner
+    if settings.algorithm is Algorithm.BIDIRECTIONAL:  # no goal bias in the two-tree planner
         return f"{settings.strategy}, bidirectional{_car(settings)}"
     return f"{settings.strategy}, bias {settings.goal_bias:g}{_car(settings)}"
 
 
 def _car(settings) -> str:
-    return "" if settings.kinematics == "holonomic" else f", {settings.kinematics}"
+    return "" if settings.kinematics is Kinematics.HOLONOMIC else f", {settings.kinematics}"

@@ -15,11 +15,16 @@ script documents how their geometry was laid out and regenerates it.
 from __future__ import annotations
 
 import math
+import sys
 from pathlib import Path
 
 import yaml
 
 ROOT = Path(__file__).resolve().parents[1]
+if str(ROOT) not in sys.path:
+    sys.path.insert(0, str(ROOT))
+
+from lazyground.settings import GoalExtension, Kinematics, Strategy  # noqa: E402
 SPOT = (5.5, 2.6)  # length along the spot's heading, width
 HALF_PI = round(math.pi / 2, 6)
 
@@ -65,8 +70,9 @@ def planner(step=2.0, time_limit=10.0):
     # all or nothing, as Algorithm 1 reads: on parking_1 that beat keeping the free part of a blocked step
     # (reward-penalty, 300 seeds: 0.037 s vs 0.046 s mean; parking_2 0.159 vs 0.162 s).
     # The car drives Reeds-Shepp curves (issue #17); --kinematics holonomic is the paper's puck.
-    return {"strategy": "reward-penalty", "goal_bias": 0.05, "step_size": step, "edge_resolution": 0.1,
-            "time_limit": time_limit, "seed": 0, "goal_extension": "extend", "kinematics": "reeds-shepp"}
+    return {"strategy": Strategy.REWARD_PENALTY.value, "goal_bias": 0.05, "step_size": step, "edge_resolution": 0.1,
+            "time_limit": time_limit, "seed": 0, "goal_extension": GoalExtension.EXTEND.value,
+            "kinematics": Kinematics.REEDS_SHEPP.value}
 
 
 def parked_car(id_, x, y, yaw):

@@ -15,6 +15,7 @@ import statistics
 from lazyground import api
 from lazyground.drake.world import DrakeWorld
 from lazyground.scene import load_scene
+from lazyground.settings import Strategy
 
 
 def main() -> None:
@@ -23,7 +24,7 @@ def main() -> None:
     ap.add_argument("--seeds", type=int, default=20)
     ap.add_argument("--first-seed", type=int, default=0)
     ap.add_argument("--kinematics", default=None)
-    ap.add_argument("--strategies", default="reward-penalty")
+    ap.add_argument("--strategies", default=Strategy.REWARD_PENALTY.value)
     ap.add_argument("--time-limit", type=float, default=None)
     ap.add_argument("--request", default=None)
     args = ap.parse_args()

@@ -31,9 +31,11 @@ REPO = Path(__file__).resolve().parents[1]
 if str(REPO) not in sys.path:
     sys.path.insert(0, str(REPO))
 
-STRATEGIES = ("reward-penalty", "consecutive", "random")
+from lazyground.settings import Algorithm, Strategy  # noqa: E402
+
+STRATEGIES = tuple(Strategy)
 BIASES = (0.05, 0.1, 0.2, 0.5)
-ALGORITHMS = ("rrt", "bidirectional")  # both planners on every scene, each with the scene's settings for it
+ALGORITHMS = tuple(Algorithm)  # both planners on every scene, each with the scene's settings for it
 PARKING_LIMIT = 5.0  # s: parking solves in 1-2 s; the cap keeps a rare slow run short
 FETCH_LIMITS = {"pick": 2.0, "place": 3.0}  # s: short on purpose; timeouts are fine, invalid paths are not
 PARKING_SHARE = 0.85
@@ -52,7 +54,7 @@ class StressRun:
     strategy: str
     goal_bias: float
     time_limit: float
-    algorithm: str = "rrt"
+    algorithm: str = Algorithm.RRT
 
 
 def bundled_scenes() -> tuple[list[tuple[str, str]], list[tuple[str, str]], list[str]]:

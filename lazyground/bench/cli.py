@@ -24,15 +24,15 @@ from pathlib import Path
 
 from lazyground.bench import arms
 from lazyground.bench.runner import ALGORITHMS, RunSpec, execute, row_key, Progress
-from lazyground.planning.car import KINEMATICS
+from lazyground.settings import BY_NAME, Algorithm, Strategy
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 SCENES_DIR = REPO_ROOT / "yaml_scenes"
-ALL_STRATEGIES = ("consecutive", "random", "reward-penalty")
+ALL_STRATEGIES = (Strategy.CONSECUTIVE, Strategy.RANDOM, Strategy.REWARD_PENALTY)  # the tables' column order
 TABLES = {
     1: dict(scenes=("parking_1", "parking_2"), strategies=ALL_STRATEGIES, biases=(0.05,), runs=1000,
             title="Table I: parking, computation time (s)"),
-    2: dict(scenes=("fetch_cans_1", "fetch_cans_2", "fetch_boxes_3"), strategies=("consecutive", "reward-penalty"),
+    2: dict(scenes=("fetch_cans_1", "fetch_cans_2", "fetch_boxes_3"), strategies=(Strategy.CONSECUTIVE, Strategy.REWARD_PENALTY),
             biases=(0.05, 0.5), runs=100, title="Table II: Fetch, computation time (s)",
             requests={"fetch_cans_1": "pick up a can", "fetch_cans_2": "pick up a can", "fetch_boxes_3": "pick up a box"}),
 }
@@ -54,13 +54,13 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--dof-sweep", action="store_true", help=f"generated planar arms of {', '.join(map(str, arms.DOFS))} DOF")
     p.add_argument("--nn-scaling", action="store_true", help="time per iteration from 1,000 to 100,000 tree nodes")
     p.add_argument("--scenes", help="comma list: scene files, names in yaml_scenes/, or arm:<dof>")
-    p.add_argument("--strategies", help=f"comma list of {', '.join(ALL_STRATEGIES)}")
-    p.add_argument("--biases", help="comma list of goal biases in [0, 1]")
-    p.add_argument("--algorithms", help=f"comma list of {', '.join(ALGORITHMS)} (default: rrt, the paper's Algorithm 1)")
+    p.add_argument("--strategies", help=f"comma list of {BY_NAME['strategy'].allowed()}")
+    p.add_argument("--biases", help=f"comma list of goal biases in {BY_NAME['goal_bias'].allowed()}")
+    p.add_argument("--algorithms", help=f"comma list of {BY_NAME['algorithm'].allowed()} (default: rrt, the paper's Algorithm 1)")
     p.add_argument("--runs", type=int, help="seeds per configuration (tables: 1000 / 100; otherwise 10)")
     p.add_argument("--time-limit", type=float, help="seconds per run (default: each scene's; arms 10)")
     p.add_argument("--request", help="the request (default: each scene's first expectation)")
-    p.add_argument("--kinematics", choices=KINEMATICS, help="car scenes: holonomic (the paper's), reeds-shepp or dubins "
+    p.add_argument("--kinematics", choices=BY_NAME["kinematics"].choices, help="car scenes: holonomic (the paper's), reeds-shepp or dubins "
                    "(default: each scene's)")
     p.add_argument("--peers", action="store_true", help="also run OMPL RRT and RRTConnect (pip install .[bench])")
     p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="worker processes (default: cores)")
@@ -74,6 +74,14 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _csv_list(text: str | None, default) -> list[str]:
     return [t.strip() for t in text.split(",") if t.strip()] if text else list(default)
+
+
+def _checked(option: str, setting: str, values: list) -> list:
+    """``values`` of a sweep option, each checked and converted by the setting's declaration."""
+    try:
+        return [BY_NAME[setting].coerce(v) for v in values]
+    except ValueError as exc:
+        raise BenchUsageError(f"--{option}: {str(exc).partition(': ')[2]}") from None
 
 
 def resolve_scene(name: str) -> str | None:
@@ -94,21 +102,17 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
         preset = dict(scenes=tuple(arms.arm_key(d) for d in arms.DOFS), strategies=ALL_STRATEGIES, biases=(0.05,), runs=10,
                       title="Generated planar arms: time (s) against DOF")
     scene_names = _csv_list(args.scenes, preset.get("scenes", ("parking_1",)))
-    strategies = _csv_list(args.strategies, preset.get("strategies", ALL_STRATEGIES))
-    unknown = [s for s in strategies if s not in ALL_STRATEGIES]
-    if unknown:
-        raise BenchUsageError(f"unknown strategy {unknown[0]!r} (known: {', '.join(ALL_STRATEGIES)})")
+    strategies = _checked("strategies", "strategy", _csv_list(args.strategies, preset.get("strategies", ALL_STRATEGIES)))
     try:
         biases = [float(b) for b in _csv_list(args.biases, preset.get("biases", (0.05,)))]
     except ValueError:
         raise BenchUsageError(f"--biases: not a list of numbers: {args.biases!r}") from None
-    if any(not 0.0 <= b <= 1.0 for b in biases):
-        raise BenchUsageError("--biases: every goal bias must be in [0, 1]")
+    biases = _checked("biases", "goal_bias", biases)
     runs = args.runs if args.runs is not None else preset.get("runs", 10)
     if runs < 1:
         raise BenchUsageError("--runs must be >= 1")
-    if args.time_limit is not None and not args.time_limit > 0:
-        raise BenchUsageError("--time-limit must be > 0")
+    if args.time_limit is not None:
+        _checked("time-limit", "time_limit", [args.time_limit])
     keys, missing = [], []
     for name in scene_names:
         key = resolve_scene(name)
@@ -117,10 +121,7 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
         notes.append(f"missing scenes (not in {SCENES_DIR.relative_to(REPO_ROOT)}/): {', '.join(missing)}")
     if not keys:
         raise BenchUsageError(f"no scene to run: {notes[0]}")
-    algorithms = _csv_list(args.algorithms, preset.get("algorithms", ("rrt",)))
-    unknown = [a for a in algorithms if a not in ALGORITHMS]
-    if unknown:
-        raise BenchUsageError(f"unknown algorithm {unknown[0]!r} (known: {', '.join(ALGORITHMS)})")
+    algorithms = _checked("algorithms", "algorithm", _csv_list(args.algorithms, preset.get("algorithms", (Algorithm.RRT,))))
     configs = [(ALGORITHMS[a], s, b) for a in algorithms for b in biases for s in strategies]
     if args.peers and args.kinematics not in (None, "holonomic"):
         raise BenchUsageError("--peers plan holonomic paths only; leave out --kinematics or --peers")

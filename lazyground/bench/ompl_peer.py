@@ -105,6 +105,7 @@ def run_peer(problem, spec) -> dict:
     from ompl import geometric as og
 
     from lazyground.api import make_goal_source, planner_settings
+    from lazyground.settings import Algorithm
     from lazyground.bench import arms
     from lazyground.goals import ConfigGoalSource
 
@@ -114,7 +115,7 @@ def run_peer(problem, spec) -> dict:
     world = problem.world
     regions, grounding_s = problem.ground()
     # each peer runs with the scene's settings for its counterpart: RRT ~ our one tree, RRTConnect ~ two trees
-    counterpart = "rrt" if spec.planner == "ompl-RRT" else "bidirectional"
+    counterpart = Algorithm.RRT if spec.planner == "ompl-RRT" else Algorithm.BIDIRECTIONAL
     if problem.regions:
         settings = planner_settings(problem.scene, edge_resolution=arms.EDGE_RESOLUTION, algorithm=counterpart)
         source = ConfigGoalSource(regions, world.space, world)

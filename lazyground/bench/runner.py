@@ -19,9 +19,10 @@ from typing import Callable, Iterable, Iterator
 import numpy as np
 
 from lazyground.bench import arms
+from lazyground.settings import Algorithm
 
 LAZYGROUND = "lazyground"
-ALGORITHMS = {"rrt": LAZYGROUND, "bidirectional": "lazyground-bidirectional"}  # algorithm -> planner column
+ALGORITHMS = {Algorithm.RRT: LAZYGROUND, Algorithm.BIDIRECTIONAL: "lazyground-bidirectional"}  # algorithm -> planner column
 PEERS = ("ompl-RRT", "ompl-RRTConnect")
 
 FIELDS = (

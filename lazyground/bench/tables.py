@@ -14,10 +14,9 @@ from pathlib import Path
 import numpy as np
 
 from lazyground.bench.runner import FIELDS
+from lazyground.settings import Algorithm, Strategy
 
-STRATEGY_LABEL = {
-    "consecutive": "Consecutive", "random": "Random", "reward-penalty": "Reward-Penalty",
-}
+STRATEGY_LABEL = {s: s.value.title() for s in Strategy}  # "reward-penalty" -> "Reward-Penalty"
 
 
 # --- CSV ------------------------------------------------------------------------------------
@@ -58,7 +57,7 @@ def config_label(row: dict) -> str:
     if row["planner"] == "lazyground":
         return STRATEGY_LABEL.get(row["strategy"], row["strategy"])
     if row["planner"] == "lazyground-bidirectional":
-        return STRATEGY_LABEL.get(row["strategy"], row["strategy"]) + " (bidirectional)"
+        return STRATEGY_LABEL.get(row["strategy"], row["strategy"]) + f" ({Algorithm.BIDIRECTIONAL})"
     return row["planner"].replace("ompl-", "OMPL ")
 
 
@@ -91,13 +90,13 @@ def group(rows: list[dict]) -> dict[tuple, dict[str, list[dict]]]:
     for r in rows:
         out.setdefault((config_label(r), r["bias"]), {}).setdefault(r["scene"], []).append(r)
     order = list(STRATEGY_LABEL.values())
-    order += [f"{label} (bidirectional)" for label in order]
+    order += [f"{label} ({Algorithm.BIDIRECTIONAL})" for label in order]
 
     def rank(key):  # ours (one tree, then bidirectional) by bias then strategy as in the paper, then the peers
         label, bias = key
         b = float(bias) if bias not in ("", None) else 2.0
         ours = label in order
-        return (not ours, ours and "bidirectional" in label, b, order.index(label) if ours else label)
+        return (not ours, ours and Algorithm.BIDIRECTIONAL in label, b, order.index(label) if ours else label)
 
     return dict(sorted(out.items(), key=lambda kv: rank(kv[0])))
 

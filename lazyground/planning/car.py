@@ -25,7 +25,6 @@ The curves themselves are in :mod:`lazyground.planning.curves`.
 
 from __future__ import annotations
 
-import enum
 import math
 from dataclasses import dataclass
 
@@ -34,21 +33,12 @@ import numpy as np
 from lazyground.geometry import wrap_angle
 from lazyground.planning import curves
 from lazyground.planning.space import ConfigSpace
+from lazyground.settings import Kinematics
 
 _TURN = {"L": 1.0, "R": -1.0, "S": 0.0}  # heading change per radian of arc
 DENSE_SPACING = 0.1  # m: the largest gap between consecutive samples of a returned car path
 
 
-class Kinematics(str, enum.Enum):
-    HOLONOMIC = "holonomic"
-    REEDS_SHEPP = "reeds-shepp"
-    DUBINS = "dubins"
-
-    def __str__(self) -> str:
-        return self.value
-
-
-KINEMATICS = tuple(k.value for k in Kinematics)
 
 
 @dataclass(frozen=True, eq=False)

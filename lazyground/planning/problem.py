@@ -12,9 +12,9 @@ from typing import Protocol
 
 import numpy as np
 
-from lazyground.planning.car import KINEMATICS
 from lazyground.planning.space import ConfigSpace
 from lazyground.regions import GoalRegion
+from lazyground.settings import PlannerSettings  # noqa: F401  (declared once in lazyground.settings)
 
 
 class PlanStatus(str, enum.Enum):
@@ -26,42 +26,6 @@ class PlanStatus(str, enum.Enum):
 
     def __str__(self) -> str:
         return self.value
-
-
-GOAL_EXTENSIONS = ("partial", "extend", "connect")
-"""How the one-tree planner's goal-biased step goes: "partial" keeps the free part of a
-blocked step and rewards the goal sample if it moved at all (the authors' RRTGoalRegion in
-MoveIt, OMPL ``checkMotion``'s last valid state); "extend" is one step, all or nothing;
-"connect" repeats free steps towards the goal sample until blocked or there."""
-
-
-@dataclass(frozen=True)
-class PlannerSettings:
-    """Plain settings of the reward-penalty RRT (defaults as in the authors' code)."""
-
-    strategy: str = "reward-penalty"
-    goal_bias: float = 0.05
-    step_size: float = 0.5  # epsilon: the longest extension, in the space's metric
-    edge_resolution: float | None = None  # collision-check spacing; default step_size / 10
-    time_limit: float = 10.0
-    max_iterations: int = 10_000_000
-    initial_goal_samples: int = 10
-    resample_threshold: float = 0.2
-    resample_count: int = 10
-    validation_factor: float = 10.0  # returned paths are re-checked at edge_resolution / this
-    goal_extension: str = "partial"  # one of GOAL_EXTENSIONS (the one-tree planner's goal-biased step)
-    algorithm: str = "rrt"  # "rrt": Algorithm 1; "bidirectional": start tree + goal forest (planning/birrt.py)
-    kinematics: str = "holonomic"  # a car's edges: "holonomic" (straight), "reeds-shepp" or "dubins" (planning/car.py)
-
-    def __post_init__(self):
-        if self.goal_extension not in GOAL_EXTENSIONS:
-            raise ValueError(f"unknown goal_extension {self.goal_extension!r} (known: {', '.join(GOAL_EXTENSIONS)})")
-        if self.kinematics not in KINEMATICS:
-            raise ValueError(f"unknown kinematics {self.kinematics!r} (known: {', '.join(KINEMATICS)})")
-
-    @property
-    def resolution(self) -> float:
-        return self.edge_resolution if self.edge_resolution is not None else self.step_size / 10.0
 
 
 class ValidityChecker(Protocol):

@@ -4,7 +4,7 @@ Hernández, Moll and Kavraki, "Lazy Evaluation of Goal Specifications Guided by
 Motion Planning", ICRA 2019: an RRT whose goal-biased extensions go towards
 goal samples chosen by a strategy (reward-penalty max-heap, consecutive, or
 random), drawing more goal samples on demand (Sec. III-C).
-``settings.algorithm == "bidirectional"`` runs the two-tree variant instead
+``Algorithm.BIDIRECTIONAL`` runs the two-tree variant instead
 (:mod:`lazyground.planning.birrt`).
 """
 
@@ -17,6 +17,7 @@ from lazyground.planning.problem import GoalSource, PlannerSettings, PlanResult,
 from lazyground.planning.search import Search, edge_fraction, edge_free, path_is_valid
 from lazyground.planning.space import ConfigSpace
 from lazyground.planning.tree import Tree
+from lazyground.settings import Algorithm, GoalExtension
 
 __all__ = ["ALGORITHMS", "path_is_valid", "solve"]
 
@@ -39,7 +40,7 @@ def solve(
             ``settings.resolution``.
         goals: lazily samples valid goal configurations from the goal regions.
         start: the start configuration.
-        settings: planner settings (``algorithm``: "rrt" or "bidirectional").
+        settings: planner settings (``algorithm``: a key of :data:`ALGORITHMS`).
         rng: the only source of randomness.
         seed: recorded in the result (the caller made ``rng`` from it).
         keep_tree: keep the trees and failed-extension origins for visualisation.
@@ -93,7 +94,7 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
         q_new, reached = space.steer(q_near, q_towards, settings.step_size)
         if gi is not None and (near, gi) in blocked:
             q_new = None  # the same edge as before: its answer has not changed
-        elif gi is not None and settings.goal_extension == "partial":
+        elif gi is not None and settings.goal_extension is GoalExtension.PARTIAL:
             # the authors' RRTGoalRegion: a blocked goal step keeps its free part and counts as progress
             t = edge_fraction(space, checker, q_near, q_new, resolution)
             if t < 1.0:
@@ -111,7 +112,7 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
         if gi is None:
             continue
         # "connect" keeps stepping towards the goal sample while the steps are free
-        while settings.goal_extension == "connect" and not reached and s.time_left():
+        while settings.goal_extension is GoalExtension.CONNECT and not reached and s.time_left():
             q_next, r = space.steer(q_new, q_towards, settings.step_size)
             if not edge_free(space, checker, q_new, q_next, resolution):
                 break
@@ -131,4 +132,4 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
     return None
 
 
-ALGORITHMS = {"rrt": grow_rrt, "bidirectional": grow_bidirectional}
+ALGORITHMS = {Algorithm.RRT: grow_rrt, Algorithm.BIDIRECTIONAL: grow_bidirectional}

@@ -13,6 +13,8 @@ from typing import Callable, Protocol
 
 import numpy as np
 
+from lazyground.settings import Strategy, coerce
+
 
 @dataclass(frozen=True)
 class StrategySettings:
@@ -122,15 +124,17 @@ class Random(Consecutive):
         return self._order[int(rng.integers(len(self._order)))]
 
 
-STRATEGIES: dict[str, Callable[[StrategySettings], GoalSelector]] = {
-    "reward-penalty": RewardPenalty,
-    "consecutive": Consecutive,
-    "random": Random,
+STRATEGIES: dict[Strategy, Callable[[StrategySettings], GoalSelector]] = {
+    Strategy.REWARD_PENALTY: RewardPenalty,
+    Strategy.CONSECUTIVE: Consecutive,
+    Strategy.RANDOM: Random,
 }
 
 
 def make_strategy(name: str, settings: StrategySettings = StrategySettings()) -> GoalSelector:
-    try:
-        return STRATEGIES[name](settings)
-    except KeyError:
-        raise ValueError(f"unknown strategy {name!r} (known: {', '.join(STRATEGIES)})") from None
+    """The goal selector registered for ``name``.
+
+    Raises:
+        ValueError: ``name`` is not a known strategy (the message lists them).
+    """
+    return STRATEGIES[coerce("strategy", name)](settings)

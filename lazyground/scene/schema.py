@@ -7,16 +7,13 @@ grounding module and the CLI's input checks use this without Drake.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, make_dataclass
 
 from lazyground.geometry import Pose
-from lazyground.planning.car import KINEMATICS
-from lazyground.planning.problem import GOAL_EXTENSIONS
-from lazyground.scene.typed_yaml import checked, in_range, non_negative, positive
+from lazyground.scene.typed_yaml import checked, in_range, positive
+from lazyground.settings import BY_NAME, Algorithm, Layer, Setting, declared
 
 OBJECT_TYPES_HINT = "can, box, cup, bottle, table, shelf, parking_spot, ..."
-STRATEGIES = ("reward-penalty", "consecutive", "random")
-ALGORITHM_NAMES = ("rrt", "bidirectional")
 
 
 @dataclass(frozen=True)
@@ -128,59 +125,39 @@ class RobotSpec:
         return None
 
 
-@dataclass(frozen=True)
-class AlgorithmSpec:
-    """Settings that apply only when one algorithm runs; keys left out keep the scene's."""
-
-    step_size: float | None = checked(positive, default=None)
-    edge_resolution: float | None = checked(positive, default=None)
-    goal_extension: str | None = None
-
-    def validate(self) -> str | None:
-        return _goal_extension_problem(self.goal_extension)
+def _spec_field(s: Setting, per_algorithm: bool):
+    """A scene field for setting ``s``: names as str (the planner converts them), numbers checked."""
+    tp = str if s.choices else s.type
+    optional = per_algorithm or s.optional
+    default = None if per_algorithm else s.default
+    return (s.name, tp | None if optional else tp, checked(s.problem, default=default))
 
 
-def _goal_extension_problem(name: str | None) -> str | None:
-    if name is not None and name not in GOAL_EXTENSIONS:
-        return f"goal_extension: unknown goal extension {name!r} (known: {', '.join(GOAL_EXTENSIONS)})"
+AlgorithmSpec = make_dataclass(
+    "AlgorithmSpec", [_spec_field(s, True) for s in declared(Layer.PER_ALGORITHM)], frozen=True,
+    namespace={"__module__": __name__, "__doc__": "Settings that apply only when one algorithm runs; keys left out keep the scene's."},
+)
+
+
+def _planner_problem(self) -> str | None:
+    for name in self.per_algorithm:
+        if name not in tuple(Algorithm):
+            return f"per_algorithm.{name}: unknown algorithm (known: {', '.join(Algorithm)})"
     return None
 
 
-@dataclass(frozen=True)
-class PlannerSpec:
-    """Planner defaults for this scene; the CLI and API may override each.
+PlannerSpec = make_dataclass(
+    "PlannerSpec",
+    [_spec_field(s, False) for s in declared(Layer.SCENE)]
+    + [("per_algorithm", dict[str, AlgorithmSpec], field(default_factory=dict))],
+    frozen=True,
+    namespace={"__module__": __name__, "validate": _planner_problem, "__doc__": """Planner defaults for this scene; the CLI and API may override each.
 
-    ``per_algorithm`` holds settings for one algorithm only, e.g. the one-tree
-    planner's longer step on the Fetch scenes: ``{rrt: {step_size: 2.65}}``.
-    """
-
-    strategy: str = "reward-penalty"
-    algorithm: str = "rrt"  # "rrt" (Algorithm 1) or "bidirectional" (start tree + goal forest)
-    goal_bias: float = checked(in_range(0.0, 1.0), default=0.05)
-    step_size: float = checked(positive, default=0.5)
-    edge_resolution: float | None = checked(positive, default=None)  # collision-check spacing; default step_size / 10
-    time_limit: float = checked(positive, default=10.0)
-    max_iterations: int = checked(positive, default=10_000_000)
-    seed: int = checked(non_negative, default=0)
-    initial_goal_samples: int = checked(positive, default=10)
-    resample_threshold: float = checked(in_range(0.0, 1.0), default=0.2)
-    resample_count: int = checked(positive, default=10)
-    collision_padding: float = checked(non_negative, default=0.0)
-    goal_extension: str = "partial"
-    kinematics: str = "holonomic"  # car scenes: holonomic, reeds-shepp or dubins (lazyground/planning/car.py)
-    per_algorithm: dict[str, AlgorithmSpec] = field(default_factory=dict)
-
-    def validate(self) -> str | None:
-        if self.strategy not in STRATEGIES:
-            return f"strategy: unknown strategy {self.strategy!r} (known: {', '.join(STRATEGIES)})"
-        if self.algorithm not in ALGORITHM_NAMES:
-            return f"algorithm: unknown algorithm {self.algorithm!r} (known: {', '.join(ALGORITHM_NAMES)})"
-        for name in self.per_algorithm:
-            if name not in ALGORITHM_NAMES:
-                return f"per_algorithm.{name}: unknown algorithm (known: {', '.join(ALGORITHM_NAMES)})"
-        if self.kinematics not in KINEMATICS:
-            return f"kinematics: unknown kinematics {self.kinematics!r} (known: {', '.join(KINEMATICS)})"
-        return _goal_extension_problem(self.goal_extension)
+    Fields come from :data:`lazyground.settings.SETTINGS` (scene layer). ``per_algorithm``
+    holds settings for one algorithm only, e.g. the one-tree planner's longer step on the
+    Fetch scenes: ``{rrt: {step_size: 2.65}}``.
+    """},
+)
 
 
 @dataclass(frozen=True)
@@ -192,9 +169,9 @@ class Expectation:
     success_rate: float = checked(in_range(0.0, 1.0), default=0.9)
     seeds: int = checked(positive, default=10)
     time_limit: float | None = checked(positive, default=None)
-    strategy: str | None = None
-    algorithm: str | None = None
-    goal_bias: float | None = None
+    strategy: str | None = checked(BY_NAME["strategy"].problem, default=None)
+    algorithm: str | None = checked(BY_NAME["algorithm"].problem, default=None)
+    goal_bias: float | None = checked(BY_NAME["goal_bias"].problem, default=None)
     reachable: tuple[str, ...] | None = None  # objects a solution may reach; None = any
 
 

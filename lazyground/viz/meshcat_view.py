@@ -6,9 +6,8 @@ What is drawn (colours from :mod:`lazyground.viz.style`, as in the paper's Figs.
   ``DrakeWorld``), the robot animated along the path in a Meshcat recording;
   a pick-and-place report animates its ``steps`` one after the other, each in
   its own world, only the current one visible: the pick, then the lift-off and
-  the place with the object riding on the gripper (``lazyground.place`` puts
-  ``picked``, ``grasp.X_GO`` and ``lift.path`` in the report's ``extra``; a
-  step may instead carry its own ``Attachment`` as ``extra["attached"]``);
+  the place with the object riding on the gripper (each step's ``grasp`` says
+  what it carries; the outcome's ``lift`` leads into the place step);
 * the goal regions, translucent green: the object's box for configuration
   regions (a parking spot), the region's box in its frame for workspace and
   placement regions;
@@ -35,7 +34,6 @@ from pydrake.perception import BaseField, Fields, PointCloud
 
 from grounding.regions import END_EFFECTOR
 from lazyground.drake.world import PARKED_CAR_SIZE, Attachment, DrakeWorld, rigid_transform
-from lazyground.geometry import Pose
 from lazyground.viz.style import (
     FAILED_RGBA, GOAL_BIASED_RGBA, PATH_DARK_RGBA, PATH_RGBA, REGION_RGBA, REVERSE_RGBA, TREE_RGBA, weight_rgba,
 )
@@ -114,19 +112,16 @@ class _Segment:
 def _segments(report, scene) -> list[_Segment]:
     """The steps to replay: one for a plain plan; pick, then lift and place (carrying) for pick and place."""
     if not report.steps:
-        return [_Segment(report, report.extra.get("attached"), report.result.path)]
-    out = [_Segment(report.steps[0], None, report.steps[0].result.path)]
-    carried = None
-    if "picked" in report.extra:  # lazyground.place: the grasp and the lift-off are in the parent's extra
-        X_GO = report.extra["grasp"]["X_GO"]
-        frame = scene.robot.end_effector or END_EFFECTOR
-        carried = Attachment(scene.object(report.extra["picked"]), frame, Pose(tuple(X_GO["xyz"]), tuple(X_GO["rpy"])))
-    for step in report.steps[1:]:
+        return [_Segment(report, None, report.result.path)]
+    out = []
+    lift = report.outcome.lift
+    for k, step in enumerate(report.steps):
+        g = step.grasp
+        carried = Attachment(scene.object(g.object_id), g.frame, g.X_GO) if g is not None else None
         motion = step.result.path
-        lift = report.extra.get("lift", {}).get("path")
-        if motion is not None and lift is not None and step is report.steps[1]:
-            motion = np.vstack([np.asarray(lift, float), motion[1:]])
-        out.append(_Segment(step, step.extra.get("attached", carried), motion))
+        if k == 1 and motion is not None and lift is not None:  # the lift-off leads into the place step
+            motion = np.vstack([lift.path, motion[1:]])
+        out.append(_Segment(step, carried, motion))
     return out
 
 

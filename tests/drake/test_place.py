@@ -13,19 +13,22 @@ from grounding.model import Grounding, Interpretation  # noqa: E402
 from grounding.regions import regions_for  # noqa: E402
 from lazyground import api  # noqa: E402
 from lazyground.geometry import rpy_to_matrix  # noqa: E402
-from lazyground.place import plan_pick_and_place, validate_pick_and_place  # noqa: E402
+from lazyground import place  # noqa: E402
+from lazyground.place import validate_pick_and_place  # noqa: E402
+from lazyground.plan_report import PlanReport  # noqa: E402
 from lazyground.report import report_to_json  # noqa: E402
 from lazyground.scene import load_scene, parse_scene  # noqa: E402
+from lazyground.tasks import Worlds  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 KITCHEN = ROOT / "yaml_scenes/kitchen_put_cup_on_table.yaml"
 
 
 def on_surface_upright(scene, report, clearance=0.01, tol=0.006):
-    obj = scene.object(report.extra["picked"])
-    target = scene.object(report.extra["placement"]["target"])
-    X = report.extra["placement"]["X_WO"]
-    p, R = np.array(X["xyz"]), rpy_to_matrix(X["rpy"])
+    obj = scene.object(report.outcome.picked)
+    target = scene.object(report.outcome.placement.target)
+    X = report.outcome.placement.X_WO
+    p, R = np.array(X.xyz), rpy_to_matrix(X.rpy)
     hx, hy, hz = target.geometry.half_extents()
     top = target.pose.xyz[2] + hz
     assert abs(p[2] - (top + clearance + obj.geometry.half_extents()[2])) < tol
@@ -46,8 +49,8 @@ def test_put_a_cup_on_the_table():
     scene = load_scene(KITCHEN)
     report = solved_report(scene, "put a cup on the table")
     assert [s.result.status.value for s in report.steps] == ["solved", "solved"]
-    assert report.extra["picked"].startswith("cup_")
-    assert report.chosen.id == f"place:{report.extra['picked']}:table"
+    assert report.chosen_object.startswith("cup_") and report.steps[1].attached == report.chosen_object
+    assert report.chosen.id == f"place:{report.chosen_object}:table"
     assert validate_pick_and_place(report, scene, report.settings.resolution / 10) == []
     on_surface_upright(scene, report)
     doc = report_to_json(report)
@@ -87,12 +90,35 @@ def test_fallback_when_the_picked_cup_cannot_be_placed():
     settings = api.planner_settings(scene, time_limit=90.0)
     fell_back = 0
     for seed in range(2):
-        report = plan_pick_and_place(scene, g, settings, seed, 0.0)
+        outcome = place.run(scene, g, settings, np.random.default_rng(seed), Worlds(scene), seed=seed)
+        report = PlanReport(g.request, scene.name, seed, settings, g, outcome.result, outcome.joint_names, 0.0, 0.0, outcome)
         if not report.result.solved:
             continue
-        assert report.extra["picked"] == "cup_green"
+        assert report.outcome.picked == "cup_green"
         assert validate_pick_and_place(report, scene, settings.resolution / 10) == []
-        if report.extra["fallbacks"]:
+        if report.outcome.fallbacks:
             fell_back += 1
             assert any("picked cup_red but could not place it" in n for n in report.notes)
     assert fell_back >= 1
+
+
+def test_place_plans_in_the_callers_world(monkeypatch):
+    """A world passed to api.plan is used for the pick (only the carrying world is built),
+    and set-up time is not planning time, as for pick and park."""
+    import lazyground.drake.world as drake_world
+
+    scene = load_scene(KITCHEN)
+    world = drake_world.DrakeWorld(scene)
+    built = []
+
+    class Counting(drake_world.DrakeWorld):
+        def __init__(self, *args, **kwargs):
+            built.append(kwargs.get("attached"))
+            super().__init__(*args, **kwargs)
+
+    monkeypatch.setattr(drake_world, "DrakeWorld", Counting)
+    report = solved_report(scene, "put a cup on the table", world=world)
+    assert built and all(a is not None for a in built)  # never the robot's own world again
+    assert report.steps[1].grasp.object_id == report.chosen_object
+    assert report.steps[0].setup_s == 0.0 and 0.0 < report.steps[1].setup_s <= report.setup_s
+    assert report.time_s == pytest.approx(report.grounding_s + report.result.time_s)

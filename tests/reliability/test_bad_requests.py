@@ -3,7 +3,7 @@
 Each entry is run as ``lazyground.cli.main(["plan", scene, request])``. The
 request must be refused by grounding (or by the argument parser) before any
 Drake world is built or the planner is started: ``grounding.ground`` is
-wrapped to record what it did and ``lazyground.api.solve`` is replaced by a
+wrapped to record what it did and ``lazyground.tasks.run`` is replaced by a
 function that fails the test.
 """
 
@@ -66,7 +66,7 @@ def test_bad_request(case, monkeypatch, capsys):
         raise AssertionError("planning started for a request that should have been refused")
 
     monkeypatch.setattr(grounding, "ground", recording_ground)
-    monkeypatch.setattr(api, "solve", no_planning)
+    monkeypatch.setattr(api.tasks, "run", no_planning)  # every task starts here
     monkeypatch.setattr(api, "make_goal_source", no_planning)
     t0 = time.perf_counter()
     code = cli.main(["plan", scene, text])

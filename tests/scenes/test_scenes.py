@@ -50,7 +50,7 @@ def test_scene_expectation(path, k):
         solved += 1
         fine = report.settings.resolution / 10
         if report.steps:  # pick and place: both steps, the carried object included
-            assert report.extra["picked"] in (expect.reachable or [report.extra["picked"]])
+            assert report.chosen_object in (expect.reachable or [report.chosen_object])
             assert validate_pick_and_place(report, scene, fine) == [], f"seed {seed}"
             continue
         if expect.reachable is not None:

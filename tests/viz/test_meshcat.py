@@ -74,7 +74,7 @@ FETCH_SCENE = """\
 
 def _step(world, g, q0, q1, regions, seed=0):
     """A hand-made solved step from q0 to q1 (no planning: the drawing is under test)."""
-    from lazyground.api import PlanReport
+    from lazyground.plan_report import PlanReport
     from lazyground.planning.problem import GoalSample, PlannerSettings, PlanResult, PlanStatus
 
     mid = (q0 + q1) / 2
@@ -106,10 +106,11 @@ def test_pick_and_place_steps_replay_in_turn_with_the_carried_object(tmp_path):
     pick, place = _step(world, g, q0, q1, regions), _step(world, g, lift[-1], q2, regions)
     from dataclasses import replace
 
-    report = replace(pick, steps=(pick, place), extra={
-        "picked": "can1", "grasp": {"X_GO": Pose((0.0, 0.0, 0.0), (0.0, 0.0, 0.0)).to_json()},
-        "lift": {"path": lift.tolist()},
-    })
+    from lazyground.tasks import Grasp, Lift, Outcome, Step
+
+    grasp = Grasp("can1", regions[0].id, regions[0].label, "gripper_link", Pose(), Pose())
+    steps = (Step("pick can1", pick.result), Step("place can1", place.result, grasp=grasp))
+    report = replace(pick, outcome=Outcome(pick.result, steps, world.space.names, lift=Lift(lift, 0.05)))
     segments = meshcat_view._segments(report, scene)
     assert [s.attached.object.id if s.attached else None for s in segments] == [None, "can1"]
     assert np.allclose(segments[1].motion[0], lift[0]) and np.allclose(segments[1].motion[-1], q2)

@@ -1,0 +1,67 @@
+"""PlanReport: one request planned on one scene (what ``api.plan`` returns)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from grounding.model import Grounding, Interpretation
+from lazyground.planning.problem import PlannerSettings, PlanResult, PlanStatus
+from lazyground.tasks.outcome import Outcome, Step
+
+
+@dataclass(frozen=True)
+class PlanReport:
+    """One request planned on one scene: the grounding, the task's outcome and where the time went.
+
+    ``result`` is the outcome's combined result; ``time_s`` counts grounding and planning,
+    ``setup_s`` the worlds built for it (zero when the caller passed one), for every task alike.
+    """
+
+    request: str
+    scene: str
+    seed: int
+    settings: PlannerSettings
+    grounding: Grounding
+    result: PlanResult
+    joint_names: tuple[str, ...]
+    grounding_s: float
+    setup_s: float  # building the Drake world(s)
+    outcome: Outcome | None = None  # None: a bare result (e.g. a viewer test)
+
+    @property
+    def steps(self) -> tuple[Step, ...]:
+        """The task's steps when it has more than one (pick and place); empty otherwise."""
+        return self.outcome.steps if self.outcome is not None and len(self.outcome.steps) > 1 else ()
+
+    @property
+    def notes(self) -> tuple[str, ...]:
+        return self.outcome.notes if self.outcome is not None else ()
+
+    @property
+    def status(self) -> PlanStatus:
+        return self.result.status
+
+    @property
+    def time_s(self) -> float:
+        """Planning time as a user experiences it: grounding + goal sampling + search."""
+        return self.grounding_s + self.result.time_s
+
+    @property
+    def chosen(self) -> Interpretation | None:
+        region = self.result.goal_region
+        if region is None:
+            return None
+        return next(i for i in self.grounding.interpretations if i.id == region.interpretation)
+
+    @property
+    def chosen_object(self) -> str | None:
+        """The object acted on: the spot parked in, the object picked (also for pick and place)."""
+        picked = self.outcome.picked if self.outcome is not None else None
+        if picked is not None:
+            return picked
+        return self.result.goal_region.object if self.result.goal_region else None
+
+    def step_report(self, step: Step) -> "PlanReport":
+        """``step`` as a report of its own (the JSON output's ``steps`` entries)."""
+        return PlanReport(step.label, self.scene, self.seed, self.settings, self.grounding, step.result,
+                          self.joint_names, 0.0, step.setup_s)

@@ -1,0 +1,40 @@
+"""Tasks: one registry keyed by the grounding's action, one signature.
+
+    outcome = tasks.run(scene, grounding, settings, rng, worlds, seed=seed)
+
+Every task is ``run(scene, grounding, settings, rng, worlds, *, seed, keep_tree) -> Outcome``
+(:mod:`lazyground.tasks.outcome`). Entries name their module, imported on first use, so
+importing this package does not import pydrake. A new task is one module plus one line here.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+from lazyground.tasks.outcome import Grasp, Lift, Outcome, Placement, Step
+from lazyground.tasks.worlds import Worlds
+
+TASKS: dict[str, str] = {
+    "park": "lazyground.tasks.reach",
+    "pick": "lazyground.tasks.reach",
+    "place": "lazyground.place",  # pick and place, with fallback to another object
+}
+
+__all__ = ["TASKS", "Grasp", "Lift", "Outcome", "Placement", "Step", "Worlds", "run", "task"]
+
+
+def task(action: str):
+    """The ``run`` function registered for ``action``.
+
+    Raises:
+        ValueError: no task is registered for ``action``.
+    """
+    module = TASKS.get(action)
+    if module is None:
+        raise ValueError(f"no task for action {action!r} (known: {', '.join(TASKS)})")
+    return importlib.import_module(module).run
+
+
+def run(scene, grounding, settings, rng, worlds: Worlds, *, seed: int | None = None, keep_tree: bool = False) -> Outcome:
+    """Run the task registered for ``grounding.action`` (see the module docstring)."""
+    return task(grounding.action)(scene, grounding, settings, rng, worlds, seed=seed, keep_tree=keep_tree)

@@ -1,0 +1,89 @@
+"""What a task returns: typed steps, each with its PlanResult, and what was carried.
+
+No untyped dictionaries: a consumer (JSON output, viewers, validators) reads the
+fields below, in process, as numpy arrays and :class:`~lazyground.geometry.Pose`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from lazyground.geometry import Pose
+from lazyground.planning.problem import PlanResult
+
+
+@dataclass(frozen=True)
+class Grasp:
+    """How an object is held: the gripper frame's pose when it was reached, and the object in it."""
+
+    object_id: str
+    region: str  # the grasp region's id
+    label: str  # the grasp region's label ("top", "side", ...)
+    frame: str  # the gripper frame the object rides on
+    X_WG: Pose  # gripper frame in world at the grasp
+    X_GO: Pose  # object in gripper frame (fixed while carried)
+
+
+@dataclass(frozen=True)
+class Lift:
+    """The lift-off after grasping: waypoints from the grasp to a collision-free pose above it."""
+
+    path: np.ndarray
+    height: float
+
+    @property
+    def q_lift(self) -> np.ndarray:
+        return self.path[-1]
+
+
+@dataclass(frozen=True)
+class Placement:
+    """Where a carried object was put down."""
+
+    region: str
+    target: str  # the surface's object id
+    X_WO: Pose  # the object in world when released
+
+
+@dataclass(frozen=True)
+class Step:
+    """One planned motion of a task."""
+
+    label: str  # e.g. "park", "pick cup_red", "place cup_red"
+    result: PlanResult
+    setup_s: float = 0.0  # building the world this step planned in
+    grasp: Grasp | None = None  # the object carried during this step, and how; None: nothing carried
+    trajectory: object | None = None  # a timed trajectory along result.path (issue #16)
+
+    @property
+    def attached(self) -> str | None:
+        """The id of the object carried during this step."""
+        return self.grasp.object_id if self.grasp else None
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """A task's result: its steps in order, the combined result, and pick-and-place data.
+
+    ``result`` is the one PlanResult a caller looks at first: the only step's for one-step
+    tasks; for pick and place the steps combined (summed counts, the whole path).
+    """
+
+    result: PlanResult
+    steps: tuple[Step, ...]
+    joint_names: tuple[str, ...]
+    notes: tuple[str, ...] = ()
+    lift: Lift | None = None
+    placement: Placement | None = None
+    fallbacks: int = 0  # objects given up on before the one that was placed
+
+    @property
+    def grasp(self) -> Grasp | None:
+        """The grasp of the (last) carried object, if a step carried one."""
+        return next((s.grasp for s in reversed(self.steps) if s.grasp is not None), None)
+
+    @property
+    def picked(self) -> str | None:
+        return self.grasp.object_id if self.grasp else None

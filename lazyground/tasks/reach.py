@@ -1,0 +1,42 @@
+"""One-step tasks (pick, park): plan from the start to any goal region of the grounding."""
+
+from __future__ import annotations
+
+from lazyground.planning.rrt import solve
+from lazyground.robots.car import planning_space
+from lazyground.tasks.outcome import Outcome, Step
+
+
+def make_goal_source(world, regions):
+    """The goal sampler for these regions: C-space boxes directly, workspace regions by IK."""
+    kinds = {r.kind for r in regions}
+    if kinds == {"config"}:
+        from lazyground.goals import ConfigGoalSource
+
+        return ConfigGoalSource(regions, world.space, world)
+    from lazyground.drake.ik import IKGoalSource
+
+    return IKGoalSource(regions, world)
+
+
+def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, keep_tree: bool = False) -> Outcome:
+    """Plan to whichever of ``grounding``'s goal regions is reachable first.
+
+    Args:
+        scene: the Scene.
+        grounding: the request's Grounding (its ``goal_regions``).
+        settings: PlannerSettings.
+        rng: the only source of randomness.
+        worlds: a :class:`~lazyground.tasks.worlds.Worlds` for ``scene``.
+        seed: recorded in the result.
+        keep_tree: keep the search tree (for viewers).
+
+    Returns:
+        An Outcome with one step.
+    """
+    world = worlds.get()
+    setup_s = worlds.setup_s
+    source = make_goal_source(world, grounding.goal_regions)
+    space = planning_space(scene, world.space, settings.kinematics)  # a car's curves, or world.space
+    result = solve(space, world, source, world.start, settings, rng, seed=seed, keep_tree=keep_tree)
+    return Outcome(result, (Step(grounding.action, result, setup_s),), world.space.names)

@@ -1,0 +1,47 @@
+"""Worlds for one scene: the caller's prebuilt world, or built on demand, and the time it took.
+
+Every task gets its worlds from here, so a world passed to ``api.plan(..., world=)`` is
+used by every task (place included), and set-up time is counted the same way for all.
+"""
+
+from __future__ import annotations
+
+import time
+
+
+class Worlds:
+    """Builds or returns the DrakeWorld of one scene, optionally carrying an object.
+
+    Worlds carrying an object are cached by (object, frame, grasp pose) for the life of
+    this factory (one request), so a fallback that grasps the same object the same way
+    does not rebuild it.
+    """
+
+    def __init__(self, scene, world=None, visual: bool = True):
+        """Args:
+            scene: the Scene.
+            world: a prebuilt DrakeWorld of ``scene`` without an attachment (optional).
+            visual: build worlds with visual geometry (viewers need it).
+        """
+        self.scene = scene
+        self._visual = visual
+        self._cache: dict[tuple, object] = {} if world is None else {(): world}
+        self.setup_s = 0.0  # seconds spent building worlds so far
+
+    def get(self, grasp=None):
+        """The world without an attachment, or carrying ``grasp.object_id`` at ``grasp.X_GO``.
+
+        Args:
+            grasp: a :class:`~lazyground.tasks.outcome.Grasp`, or None.
+        """
+        key = () if grasp is None else (grasp.object_id, grasp.frame, grasp.X_GO.xyz, grasp.X_GO.rpy)
+        world = self._cache.get(key)
+        if world is None:
+            from lazyground.drake.world import Attachment, DrakeWorld
+
+            t0 = time.perf_counter()
+            attached = None if grasp is None else Attachment(self.scene.object(grasp.object_id), grasp.frame, grasp.X_GO)
+            world = DrakeWorld(self.scene, attached=attached, visual=self._visual)
+            self.setup_s += time.perf_counter() - t0
+            self._cache[key] = world
+        return world
