@@ -19,7 +19,7 @@ from dataclasses import replace
 from grounding.lexicon import Lexicon, load_lexicon, plural
 from grounding.model import Grounding, GroundingError, Interpretation
 from grounding.parse import NounPhrase, Phrase, parse
-from grounding.regions import regions_for
+from grounding.regions import check_types, regions_for
 from grounding.resolve import Resolver, inventory
 from lazyground.scene.schema import Scene, SceneObject
 
@@ -36,9 +36,11 @@ def ground(request: str, scene: Scene, lexicon: Lexicon | None = None) -> Ground
 
     Raises:
         GroundingError: one line saying which word found nothing, what is not
-            supported, or what the scene holds instead.
+            supported, or what the scene holds instead; or an object type that
+            neither ``types.yaml`` nor the scene's ``grasp_types`` defines.
     """
     text = _check_text(request)
+    check_types(scene)
     lex = (lexicon or load_lexicon()).for_scene(scene)
     phrase = parse(lex.tokens(text), lex, inventory(scene))
     res = Resolver(scene, lex)

@@ -6,6 +6,7 @@
 
 from __future__ import annotations
 
+import difflib
 import os
 import re
 from dataclasses import dataclass, field
@@ -31,7 +32,9 @@ FLAT = {
 MAPPED = {
     "verbs": "verb", "nouns": "noun", "determiners": "determiner", "colours": "colour", "sizes": "size",
     "positions": "position", "superlatives": "superlative", "states": "state", "prepositions": "preposition",
+    "ordinals": "ordinal",
 }
+SPLIT = re.compile(r"[a-z]+|[0-9]+")
 
 
 @dataclass(frozen=True)
@@ -90,7 +93,37 @@ class Lexicon:
             key = tuple(WORD.findall(obj.id.lower()))
             if key and key not in phrases:
                 phrases[key] = Entry("id", obj.id)
+        # "can 2" and "spot b1" name Can2 and spot_b1; a spelling two ids share names neither
+        spelt: dict[tuple, set[str]] = {}
+        for obj in scene.objects:
+            for key in id_spellings(obj.id):
+                spelt.setdefault(key, set()).add(obj.id)
+        for key, ids in spelt.items():
+            if len(ids) == 1 and key not in phrases:
+                phrases[key] = Entry("id", ids.pop())
         return Lexicon(phrases, self.data)
+
+    def hint(self, word: str, cat: str | None = None) -> str:
+        """"; did you mean 'pick'?" and "; ids with 'b1': spot_b1, ..." for an unknown word ("" if none).
+
+        Args:
+            cat: a category the word should have had (e.g. "verb"): its words are suggested first.
+        """
+        close: list[str] = []
+        for only in ((cat,) if cat else ()) + (None,):  # ids are listed by ids_with, not guessed at
+            known = sorted({w for key, e in self.phrases.items() if e.cat != "id" and only in (None, e.cat)
+                            for w in key if not w.isdigit() and w != word})
+            swapped = [w for w in known if sorted(w) == sorted(word)]  # "pikc", "cna": two letters swapped
+            near = [w for w in difflib.get_close_matches(word, known, n=3, cutoff=0.75)
+                    if w not in swapped and abs(len(w) - len(word)) <= 2]  # a typo, not a longer or shorter word
+            close = close or (swapped + near)[:3]
+        out = f"; did you mean {' or '.join(repr(w) for w in close)}?" if close else ""
+        return out + self.ids_with(word)
+
+    def ids_with(self, word: str) -> str:
+        """"; ids with 'b1': spot_b1, spot_b10" when ``word`` is part of scene ids ("" if none)."""
+        ids = sorted({e.value for e in self.phrases.values() if e.cat == "id" and word in e.value.lower() and word != e.value.lower()})
+        return f"; ids with {word!r}: {', '.join(ids[:6])}{', ...' if len(ids) > 6 else ''}" if ids else ""
 
     def tokens(self, text: str) -> list[Token]:
         """Greedy longest-phrase segmentation of lower-cased ``text``."""
@@ -107,6 +140,14 @@ class Lexicon:
                 out.append(Token(words[i], _number(words[i])))
                 i += 1
         return out
+
+
+def id_spellings(object_id: str) -> set[tuple[str, ...]]:
+    """Other ways to type an id: split at underscores ("spot b1"), and between letters and digits ("can 2")."""
+    low = object_id.lower()
+    parts = tuple(p for p in low.split("_") if p)
+    pieces = tuple(SPLIT.findall(low))
+    return {k for k in (parts, pieces) if k and k != (low,)}
 
 
 def _number(word: str) -> Entry | None:

@@ -6,8 +6,11 @@ particles such as "up" are dropped first):
     request  := VERB [choice] pp*
     choice   := np ("or" np)*
     np       := [DET] modifier* [HEAD]          HEAD: noun | object id | wildcard | robot | floor | "one"
-    modifier := COLOUR | SIZE | POSITION | SUPERLATIVE | STATE | unknown-word (a scene attribute value)
+    modifier := COLOUR | SIZE | POSITION | SUPERLATIVE | ORDINAL | STATE | unknown-word (a scene attribute value)
     pp       := PREP choice
+
+A noun may be followed by "nearest"/"farthest" [to] np ("the can nearest the
+table"): the superlative then measures from that object, not the robot.
 
 A prepositional phrase without a noun that only holds positions ("the can on
 the left") joins the phrase before it. "VERB X and put it PP" reads as "put X
@@ -23,18 +26,23 @@ from grounding.lexicon import Lexicon, Token, plural
 from grounding.model import GroundingError
 
 DROPPED = {"polite", "filler", "particle"}
-MODIFIERS = {"colour", "size", "position", "superlative", "state"}
+MODIFIERS = {"colour", "size", "position", "superlative", "ordinal", "state"}
+DISTANCES = {"near", "far"}
 HEADS = {"noun", "id", "wildcard", "robot", "floor", "pronoun"}
 NP_START = MODIFIERS | HEADS | {"determiner", "unknown"}
 
 
 @dataclass(frozen=True)
 class Modifier:
-    """A word narrowing a noun: kind (colour, size, position, ...), canonical value, the word typed."""
+    """A word narrowing a noun: kind (colour, size, position, ...), canonical value, the word typed.
+
+    ``landmark`` is the object a distance superlative measures from ("nearest the table"); None = the robot.
+    """
 
     kind: str
     value: str
     word: str
+    landmark: "NounPhrase | None" = None
 
 
 @dataclass(frozen=True)
@@ -94,9 +102,9 @@ def parse(tokens: list[Token], lexicon: Lexicon, things: str) -> Phrase:
     toks = _splice_put_it(toks)
     verb = toks[0]
     if verb.cat != "verb":
-        hint = f"unknown word {verb.text!r}" if verb.cat == "unknown" else f"a request starts with a verb, not {verb.text!r}"
+        hint = f"unknown word {verb.text!r}{lexicon.hint(verb.text, 'verb')}" if verb.cat == "unknown" else f"a request starts with a verb, not {verb.text!r}"
         raise GroundingError(f"{hint}; supported verbs: {verb_list(lexicon)} (see docs/requests.md)")
-    _refuse_unsupported(toks, parking=verb.value == "park")
+    _refuse_unsupported(toks, lexicon, parking=verb.value == "park")
     cur = _Cursor(toks[1:], lexicon, things)
     obj = cur.choice()
     pps = []
@@ -121,8 +129,11 @@ def _splice_put_it(toks: list[Token]) -> list[Token]:
     return toks
 
 
-def _refuse_unsupported(toks: list[Token], parking: bool) -> None:
+def _refuse_unsupported(toks: list[Token], lexicon: Lexicon, parking: bool) -> None:
     for i, t in enumerate(toks):
+        if t.cat == "multiple" and t.text.isdigit() and i > 0 and toks[i - 1].cat == "noun":  # "can 7": an id, not a count
+            said = f"{toks[i - 1].text} {t.text}"
+            raise GroundingError(f"no {said!r} in this scene{lexicon.ids_with(toks[i - 1].text)}")
         if t.cat == "negation":
             raise GroundingError(f"not supported: negation ({t.text!r}); describe the object you want instead, e.g. 'the red can'")
         if t.cat == "multiple":
@@ -162,7 +173,7 @@ class _Cursor:
 
     def unexpected(self, t: Token) -> GroundingError:
         if t.cat == "unknown":
-            return GroundingError(f"unknown word {t.text!r}; objects here: {self.things}; verbs: {verb_list(self.lexicon)}")
+            return GroundingError(f"unknown word {t.text!r}{self.lexicon.hint(t.text)}; objects here: {self.things}; verbs: {verb_list(self.lexicon)}")
         if t.cat == "verb":
             return GroundingError(f"not supported: a second verb {t.text!r}; ask for one action at a time")
         return GroundingError(f"unexpected {t.text!r} after '{' '.join(x.text for x in self.toks[:self.i])}'")
@@ -204,6 +215,8 @@ class _Cursor:
             raise self.unexpected(head)
         else:
             np = NounPhrase("")
+        if np.head and self.peek is not None and self.peek.cat == "superlative" and self.peek.value in DISTANCES:
+            mods.append(self._distance())
         if det is None and not mods and not np.head:
             return None
         if not mods and not np.head:  # "pick up the": a dangling article must not mean "anything"
@@ -211,6 +224,14 @@ class _Cursor:
         text = " ".join(x.text for x in self.toks[start + (det is not None):self.i])
         return replace(np, text=text, determiner=det.value if det else "", determiner_word=det.text if det else "",
                        modifiers=tuple(mods))
+
+    def _distance(self) -> Modifier:
+        """ "nearest [to] the table" after a noun: the superlative and the object it measures from."""
+        word = self.take()
+        if self.peek is not None and self.peek.cat == "preposition" and self.peek.text == "to":
+            self.take()
+        landmark = self.np()
+        return Modifier("superlative", word.value, word.text, landmark)
 
 
 def _continues(t: Token) -> bool:

@@ -7,6 +7,7 @@ live in ``types.yaml``; the templates below say what they mean.
 
 from __future__ import annotations
 
+import difflib
 import math
 from functools import lru_cache
 from pathlib import Path
@@ -15,8 +16,9 @@ import yaml
 
 from grounding.model import GroundingError
 from lazyground.geometry import Pose
-from lazyground.regions import GoalRegion
-from lazyground.scene.schema import Scene, SceneObject
+from lazyground.regions import ConfigRegion, GoalRegion, PlacementRegion, WorkspaceRegion
+from lazyground.scene.schema import Geometry, Scene, SceneObject
+from lazyground.scene.typed_yaml import SceneError, load_dataclass
 
 TYPES_FILE = Path(__file__).with_name("types.yaml")
 DEG = math.pi / 180
@@ -34,6 +36,40 @@ def type_definitions(scene: Scene | None) -> dict:
     if scene is not None and scene.grasp_types:
         types.update(scene.grasp_types)
     return types
+
+
+def occupant_geometry(obj: SceneObject, scene: Scene | None = None) -> Geometry | None:
+    """What an occupied ``obj`` holds: its own ``occupant``, else its type's; None if neither says.
+
+    Raises:
+        GroundingError: the type's ``occupant`` entry is not a geometry.
+    """
+    if obj.occupant is not None:
+        return obj.occupant
+    spec = type_definitions(scene).get(obj.type, {}).get("occupant")
+    if spec is None:
+        return None
+    try:
+        return load_dataclass(spec, Geometry, f"{obj.type}.occupant")
+    except SceneError as exc:
+        raise GroundingError(f"grounding/types.yaml: {exc}") from None
+
+
+def check_types(scene: Scene) -> None:
+    """Every object type must be defined (``types.yaml``) or declared by the scene (``grasp_types: {pillar: {}}``).
+
+    A misspelt type would otherwise turn a goal into a plain obstacle without a word.
+
+    Raises:
+        GroundingError: the first undefined type, with the closest defined names.
+    """
+    known = type_definitions(scene)
+    for obj in scene.objects:
+        if obj.type not in known:
+            close = difflib.get_close_matches(obj.type, sorted(known), n=2, cutoff=0.6)
+            hint = f"did you mean {' or '.join(repr(c) for c in close)}? " if close else ""
+            raise GroundingError(f"object {obj.id!r}: unknown type {obj.type!r}; {hint}(types: grounding/types.yaml; "
+                                 f"a scene declares its own under grasp_types, e.g. 'grasp_types: {{{obj.type}: {{}}}}')")
 
 
 def regions_for(obj: SceneObject, role: str, interpretation: str, scene: Scene | None = None) -> tuple[GoalRegion, ...]:
@@ -71,20 +107,16 @@ def _approach(spec, axis: int, sign: float) -> tuple[float, float, float]:
     return tuple(v)
 
 
-def _region(obj, interpretation, label, kind, lower, upper, frame, X_WR, X_SE=Pose(), wrap=(), approach=(0.0, 0.0, 0.0)):
-    return GoalRegion(
+def _region(cls, obj, interpretation, label, lower, upper, **fields):
+    """A region of class ``cls`` on ``obj``, named ``<object id>/<label>``."""
+    return cls(
         id=f"{obj.id}/{label}",
         interpretation=interpretation,
         object=obj.id,
-        kind=kind,
         lower=tuple(float(v) for v in lower),
         upper=tuple(float(v) for v in upper),
-        frame=frame,
-        X_WR=X_WR,
-        X_SE=X_SE,
-        wrap=wrap,
         label=label,
-        approach=approach,
+        **fields,
     )
 
 
@@ -93,7 +125,7 @@ def top(obj, spec, interpretation, ee):
     d0, d1 = spec["depth"]
     X_WR = obj.pose.pose().compose(Pose((0.0, 0.0, _top_z(obj)), (0.0, math.pi / 2, 0.0)))
     # R.x points down, so "above the face" is negative x in R.
-    return [_region(obj, interpretation, "top", "workspace", (-d1, 0, 0, -math.pi, 0, 0), (-d0, 0, 0, math.pi, 0, 0), ee, X_WR,
+    return [_region(WorkspaceRegion, obj, interpretation, "top", (-d1, 0, 0, -math.pi, 0, 0), (-d0, 0, 0, math.pi, 0, 0), frame=ee, X_WR=X_WR,
                     approach=_approach(spec, 0, -1.0))]
 
 
@@ -111,7 +143,7 @@ def side_faces(obj, spec, interpretation, ee):
         offset = [0.0, 0.0, 0.0]
         offset[axis] = sign * (hx, hy)[axis]
         X_WR = obj.pose.pose().compose(Pose(tuple(offset), (0.0, 0.0, yaw)))
-        out.append(_region(obj, interpretation, f"face {name}", "workspace", (d0, l0, -h, 0, 0, 0), (d1, l1, h, 0, 0, 0), ee, X_WR,
+        out.append(_region(WorkspaceRegion, obj, interpretation, f"face {name}", (d0, l0, -h, 0, 0, 0), (d1, l1, h, 0, 0, 0), frame=ee, X_WR=X_WR,
                            approach=_approach(spec, 0, -1.0)))
     return out
 
@@ -126,7 +158,7 @@ def side_around(obj, spec, interpretation, ee):
     X_SE = Pose((-(r - (d0 + d1) / 2), 0.0, 0.0), (0.0, 0.0, 0.0))
     lo_z, hi_z = -hz + 2 * hz * f0, -hz + 2 * hz * f1
     half_depth = (d1 - d0) / 2
-    return [_region(obj, interpretation, "side", "workspace", (-half_depth, 0, lo_z, 0, 0, -math.pi), (half_depth, 0, hi_z, 0, 0, math.pi), ee, X_WR, X_SE,
+    return [_region(WorkspaceRegion, obj, interpretation, "side", (-half_depth, 0, lo_z, 0, 0, -math.pi), (half_depth, 0, hi_z, 0, 0, math.pi), frame=ee, X_WR=X_WR, X_SE=X_SE,
                     approach=_approach(spec, 0, -1.0))]
 
 
@@ -136,7 +168,7 @@ def surface(obj, spec, interpretation, ee):
     m = spec["margin"]
     X_WR = obj.pose.pose().compose(Pose((0.0, 0.0, hz), (0.0, 0.0, 0.0)))
     c = spec["clearance"]
-    return [_region(obj, interpretation, "surface", "placement", (-(hx - m), -(hy - m), c, 0, 0, -math.pi), (hx - m, hy - m, c, 0, 0, math.pi), "", X_WR,
+    return [_region(PlacementRegion, obj, interpretation, "surface", (-(hx - m), -(hy - m), c, 0, 0, -math.pi), (hx - m, hy - m, c, 0, 0, math.pi), X_WR=X_WR,
                     approach=_approach(spec, 2, 1.0))]
 
 
@@ -149,7 +181,7 @@ def parking(obj, spec, interpretation, ee):
     for label, heading in (("forwards", yaw), ("reversing", yaw + math.pi)):
         lo_h = math.remainder(heading - htol, 2 * math.pi)
         hi_h = math.remainder(heading + htol, 2 * math.pi)
-        out.append(_region(obj, interpretation, label, "config", (x - tol, y - tol, lo_h), (x + tol, y + tol, hi_h), "", Pose(), wrap=(2,)))
+        out.append(_region(ConfigRegion, obj, interpretation, label, (x - tol, y - tol, lo_h), (x + tol, y + tol, hi_h), wrap=(2,)))
     return out
 
 

@@ -1,7 +1,7 @@
 """Noun phrases -> the scene objects they can mean, with errors that say which word found nothing.
 
 Filters apply in a fixed order — location, colour, attribute, size, position,
-superlative — each to what the previous ones kept, so a message can say "no red
+superlative, ordinal — each to what the previous ones kept, so a message can say "no red
 can on the table; cans on the table are: blue x2". Sizes compare an object with
 all objects of its type (a small box stays small wherever it is); positions of
 furniture compare whole units; other positions compare the objects still in
@@ -23,7 +23,7 @@ from grounding.regions import type_definitions
 from lazyground.scene.schema import Scene, SceneObject
 
 ROLE_VERB = {"pick": "pick up", "support": "put things on", "park": "park in", None: "find"}
-ORDER = {"colour": 1, "attribute": 2, "size": 3, "position": 4, "superlative": 5, "state": 0}
+ORDER = {"colour": 1, "attribute": 2, "size": 3, "position": 4, "superlative": 5, "ordinal": 6, "state": 0}
 VERTICAL = {"top", "bottom"}
 HORIZONTAL = {"left", "right"}
 DIMENSION = {"left": HORIZONTAL, "right": HORIZONTAL, "top": VERTICAL | {"middle"}, "bottom": VERTICAL | {"middle"},
@@ -132,7 +132,7 @@ class Resolver:
             landmarks |= {spatial.FLOOR} if alt.head == "floor" else {o.id for o in self.choice((alt,), None)}
         labels = {o.id: self.support(o) for o in objs}
         kept = [o for o in objs if labels[o.id] in landmarks]
-        return kept, {k: f"on {v}" if v else "not on a surface" for k, v in labels.items()}
+        return kept, {k: f"on {self.name(v)}" if v else "not on a surface" for k, v in labels.items()}
 
     def _colour(self, objs, m: Modifier, np):
         labels = {o.id: self.colour(o) or "unknown colour" for o in objs}
@@ -140,7 +140,7 @@ class Resolver:
 
     def _attribute(self, objs, m: Modifier, np):
         if not any(m.word in _values(o) for o in self.scene.objects):
-            raise GroundingError(f"unknown word {m.word!r}: not a colour, size or position, and no object here has it as an attribute")
+            raise GroundingError(f"unknown word {m.word!r}: not a colour, size or position, and no object here has it as an attribute{self.lexicon.hint(m.word)}")
         return [o for o in objs if m.word in _values(o)], {o.id: f"not {m.word!r}" for o in objs}
 
     def _size(self, objs, m: Modifier, np):
@@ -158,6 +158,9 @@ class Resolver:
         return [o for o in objs if m.value in labels[o.id]], {k: "/".join(sorted(v)) or "unplaced" for k, v in labels.items()}
 
     def _superlative(self, objs, m: Modifier, np):
+        if m.value in ("near", "far"):
+            values, tol = self.distances(objs, m.landmark), 0.01
+            return [o for o in objs if o.id in spatial.extremes(values, m.value == "far", tol)], {}
         if m.value in ("small", "large"):
             values = {o.id: o.geometry.volume() for o in objs}
             tol = 0.01 * max(values.values())
@@ -168,12 +171,38 @@ class Resolver:
         best = spatial.extremes(values, m.value in ("large", "left", "top"), tol)
         return [o for o in objs if o.id in best], {}
 
+    def _ordinal(self, objs, m: Modifier, np):
+        n = int(m.value)
+        if n > len(objs):
+            raise GroundingError(f"no {np.describe()}: there {'is' if len(objs) == 1 else 'are'} only {len(objs)} "
+                                 f"{_plural_word(np, objs) if len(objs) > 1 else np.word or objs[0].type}")
+        return [objs[n - 1 if n > 0 else n]], {}
+
     # -- facts about objects -----------------------------------------------------------------
 
     def support(self, obj: SceneObject) -> str | None:
         if obj.id not in self._support:
             self._support[obj.id] = spatial.support_of(obj, self.scene)
         return self._support[obj.id]
+
+    def distances(self, objs: list[SceneObject], landmark: NounPhrase | None) -> dict[str, float]:
+        """Distance of each object from the robot's base, or from the nearest object ``landmark`` names."""
+        if landmark is None:
+            return {o.id: spatial.distance_to_point(o, spatial.robot_position(self.scene)) for o in objs}
+        marks = self.choice((landmark,), None)
+        return {o.id: min((spatial.distance_between(o, m) for m in marks if m.id != o.id), default=math.inf) for o in objs}
+
+    def name(self, object_id: str) -> str:
+        """Words that name an object in a request: "the table", "the middle shelf", else its id."""
+        if object_id == spatial.FLOOR:
+            return "the floor"
+        obj = self.scene.object(object_id)
+        noun = obj.type.replace("_", " ")
+        peers = self.scene.objects_of_type(obj.type)
+        if len(peers) == 1:
+            return f"the {noun}"
+        words = sorted(self.positions(peers)[obj.id], key=lambda w: w not in VERTICAL | {"middle"})
+        return f"the {' '.join(words)} {noun}" if words else obj.id
 
     def colour(self, obj: SceneObject) -> str | None:
         if not obj.color:

@@ -121,3 +121,23 @@ def extremes(values: dict[str, float], high: bool, tol: float) -> set[str]:
         return set()
     best = max(values.values()) if high else min(values.values())
     return {k for k, v in values.items() if abs(v - best) <= tol}
+
+
+def robot_position(scene: Scene) -> np.ndarray:
+    """Where distances are measured from: the robot's base pose, else its start (x, y) (``*_x``/``*_y`` joints)."""
+    if scene.robot.base is not None:
+        return np.asarray(scene.robot.base.xyz, float)
+    xs = [v for k, v in scene.robot.start.items() if k.endswith("_x") or k == "x"]
+    ys = [v for k, v in scene.robot.start.items() if k.endswith("_y") or k == "y"]
+    return np.array([xs[0] if xs else 0.0, ys[0] if ys else 0.0, 0.0])
+
+
+def distance_to_point(obj: SceneObject, p: np.ndarray) -> float:
+    """Distance in the ground plane from the point to the object's bounds (0 inside)."""
+    lo, hi = world_box(obj)
+    return float(np.linalg.norm((np.clip(p, lo, hi) - p)[:2]))
+
+
+def distance_between(a: SceneObject, b: SceneObject) -> float:
+    """Ground-plane distance from ``a``'s centre to ``b``'s bounds ("the can nearest the table")."""
+    return distance_to_point(b, np.asarray(a.pose.xyz, float))

@@ -1,7 +1,5 @@
 """``python3 -m lazyground`` is the ``lazyground`` command."""
 
-import sys
+from lazyground.entry import run
 
-from lazyground.cli import main
-
-sys.exit(main())
+run()

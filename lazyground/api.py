@@ -1,7 +1,7 @@
 """The Python API: a scene and a text request in, a planned grounding out.
 
     from lazyground import api
-    report = api.plan("yaml_scenes/parking_1.yaml", "park", seed=3)
+    report = api.plan("parking_1", "park", seed=3)   # a bundled scene's name, or a path
     print(report.result.status, report.chosen_object)
 
 Data flow: request → :func:`grounding.ground` → the task registered for its action

@@ -10,10 +10,12 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import signal
 import sys
 import traceback
 from pathlib import Path
 
+from lazyground.interrupt import work_begins
 from lazyground.settings import add_cli_options, cli_values
 
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
@@ -91,8 +93,6 @@ def cmd_ground(args) -> int:
 def _import_drake() -> None:
     """Import the Drake side with Ctrl-C held back until done: pydrake logs a stack trace and
     fails to import when interrupted midway. A Ctrl-C pressed meanwhile is raised right after."""
-    import signal
-
     pressed = []
     old = signal.signal(signal.SIGINT, lambda *_: pressed.append(True))
     try:
@@ -107,6 +107,7 @@ def _import_drake() -> None:
 
 def cmd_plan(args) -> int:
     from lazyground import api
+    from lazyground.outputs import output_problem
     from lazyground.report import report_lines, report_to_json
     from lazyground.scene import load_scene
 
@@ -115,8 +116,12 @@ def cmd_plan(args) -> int:
         overrides = cli_values(args)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
+    problem = output_problem(scene, args.html, args.plot, args.animate)
+    if problem:
+        raise UsageError(problem)
     visual = bool(args.html or args.meshcat or args.plot or args.animate)
     _import_drake()
+    work_begins()
     report = api.plan(scene, args.request, keep_tree=visual, **overrides)
     if args.json:
         print(json.dumps(report_to_json(report)))
@@ -155,6 +160,7 @@ def _write_visuals(report, scene, args) -> None:
 def cmd_demo(args) -> int:
     from lazyground.viz.demo import run_demo
 
+    work_begins()
     return run_demo(Path(args.out), seed=args.seed)
 
 
@@ -170,6 +176,7 @@ def cmd_import_moveit(args) -> int:
 def cmd_bench(args) -> int:
     from lazyground.bench.cli import main as bench_main
 
+    work_begins()
     return bench_main(args.bench_args)
 
 
@@ -183,6 +190,8 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:  # Ctrl-C while the imports below were still running
         print("interrupted", file=sys.stderr)
         code = EXIT_INTERRUPTED
+    if as_program:  # the work is done: a Ctrl-C during interpreter shutdown must not turn the exit code into -2
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
     if code == EXIT_INTERRUPTED and as_program:
         # CPython exits by SIGINT (status -2, not 130) when the Ctrl-C landed in code an
         # extension module ran through PyRun_* (pydrake's imports), even once handled.

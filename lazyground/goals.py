@@ -4,18 +4,25 @@
 (round-robin over regions, per-region statistics, giving up on a region that
 never yields a valid sample); subclasses say how one attempt on one region
 goes. :class:`ConfigGoalSource` covers C-space regions (parking); the Drake IK
-sampler for workspace regions lives in :mod:`lazyground.drake.ik`.
+sampler for workspace and placement regions lives in :mod:`lazyground.drake.ik`.
+
+Which source samples which region kind is a registry, as OMPL's
+``GoalSampleableRegion`` family: :func:`register_goal_source` maps a kind to a
+factory ``(regions, world) -> source``; :func:`goal_source_for` looks it up.
+The config source registers here; the IK source when :mod:`lazyground.drake`
+is imported (any ``DrakeWorld`` has imported it).
 """
 
 from __future__ import annotations
 
 import time
+from typing import Callable
 
 import numpy as np
 
 from lazyground.planning.problem import GoalSample, RegionStats, ValidityChecker
 from lazyground.planning.space import ConfigSpace
-from lazyground.regions import GoalRegion
+from lazyground.regions import REGION_KINDS, ConfigRegion, GoalRegion
 
 
 class RoundRobinGoalSource:
@@ -80,7 +87,7 @@ class ConfigGoalSource(RoundRobinGoalSource):
     def __init__(self, regions, space: ConfigSpace, checker: ValidityChecker, **kwargs):
         super().__init__(regions, **kwargs)
         for r in self.regions:
-            if r.kind != "config" or len(r.lower) != space.dim:
+            if not isinstance(r, ConfigRegion) or len(r.lower) != space.dim:
                 raise ValueError(f"region {r.id} is not a {space.dim}-D configuration region")
         self._space = space
         self._checker = checker
@@ -92,3 +99,49 @@ class ConfigGoalSource(RoundRobinGoalSource):
         if not self._checker.config_free(q):
             return None, "in collision"
         return GoalSample(q=q, region=j), ""
+
+
+GOAL_SOURCES: dict[str, Callable[..., RoundRobinGoalSource]] = {}  # region kind -> factory(regions, world)
+
+
+def register_goal_source(kinds: tuple[str, ...], factory: Callable[..., RoundRobinGoalSource]) -> None:
+    """Make ``factory(regions, world)`` the goal source of regions of ``kinds``.
+
+    Raises:
+        ValueError: a kind is not a registered region kind.
+    """
+    for kind in kinds:
+        if kind not in REGION_KINDS:
+            raise ValueError(f"unknown goal region kind {kind!r} (known: {', '.join(REGION_KINDS)})")
+        GOAL_SOURCES[kind] = factory
+
+
+def goal_source_for(regions: tuple[GoalRegion, ...], world) -> RoundRobinGoalSource:
+    """The goal source registered for these regions' kind, built over ``world``.
+
+    Args:
+        regions: the goal regions, all sampled by one source.
+        world: the world to sample in (a DrakeWorld, or any object the factory accepts).
+
+    Raises:
+        ValueError: no regions, a kind without a registered source, or kinds needing different sources.
+    """
+    if not regions:
+        raise ValueError("no goal regions to sample")
+    factories = []
+    for kind in dict.fromkeys(r.kind for r in regions):
+        factory = GOAL_SOURCES.get(kind)
+        if factory is None:
+            raise ValueError(f"no goal source registered for region kind {kind!r} (workspace and placement: import lazyground.drake)")
+        if factory not in factories:
+            factories.append(factory)
+    if len(factories) > 1:
+        raise ValueError(f"regions of kinds {', '.join(sorted({r.kind for r in regions}))} need different goal sources")
+    return factories[0](tuple(regions), world)
+
+
+def _config_source(regions, world) -> ConfigGoalSource:
+    return ConfigGoalSource(regions, world.space, world)
+
+
+register_goal_source((ConfigRegion.kind,), _config_source)

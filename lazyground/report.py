@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from lazyground.plan_report import PlanReport
 from lazyground.settings import Algorithm, Kinematics
+from lazyground.tolerance import goal_tolerance_json
 
 
 def _r(x: float, nd: int = 6) -> float:
@@ -37,6 +38,7 @@ def report_to_json(report: PlanReport) -> dict:
             "goal_sample": res.goal.q.round(9).tolist() if res.goal is not None else None,
             "goal_configuration": res.goal.end.round(9).tolist() if res.goal is not None else None,
         },
+        "goal_tolerance": goal_tolerance_json(res.regions),  # IK goals: the error allowed from the region (docs/fetch.md)
         "joint_names": list(report.joint_names),
         "path": res.path.round(9).tolist() if res.path is not None else None,
         "path_length": _r(res.path_length),

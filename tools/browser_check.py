@@ -224,6 +224,45 @@ def _shot(chrome: Chromium) -> np.ndarray:
     return chrome.screenshot()
 
 
+def load_replay(chrome: Chromium, html: str | Path, timeout: float) -> tuple[int, int]:
+    """Open ``html``, wait until its scene stops growing and its recording is in, stop at the end.
+
+    Returns:
+        (objects drawn, animation tracks).
+
+    Raises:
+        TimeoutError: the replay did not load within ``timeout`` seconds.
+    """
+    chrome.call("Page.enable")
+    chrome.call("Network.enable")
+    chrome.call("Page.navigate", url=Path(html).resolve().as_uri())
+    deadline = time.monotonic() + timeout
+    last, stable_since = -2, time.monotonic()
+    while True:  # wait until the scene stops growing and the recording is in
+        n = chrome.evaluate(MESH_COUNT_JS)
+        tracks = chrome.evaluate(ANIMATION_JS)
+        now = time.monotonic()
+        if n != last:
+            last, stable_since = n, now
+        if n > 0 and tracks and tracks > 0 and now - stable_since > 1.0:
+            break
+        if now > deadline:
+            raise TimeoutError(f"the replay did not load within {timeout:g} s (objects {n}, tracks {tracks})")
+        time.sleep(0.2)
+    chrome.evaluate(STOP_AT_END_JS)
+    return last, tracks
+
+
+def shot(chrome: Chromium) -> np.ndarray:
+    """A screenshot after a few frames are rendered."""
+    return _shot(chrome)
+
+
+def changed_pixels(a: np.ndarray, b: np.ndarray) -> int:
+    """How many pixels differ between two screenshots."""
+    return int(_changed(a, b).sum())
+
+
 def check_replay(html: str | Path, robot: list[str], target: list[str] = (), out: str | Path | None = None,
                  timeout: float = 40.0) -> dict:
     """Load a Meshcat replay, wait for it, stop it at its end and measure what it draws.
@@ -243,24 +282,8 @@ def check_replay(html: str | Path, robot: list[str], target: list[str] = (), out
     """
     t0 = time.monotonic()
     with Chromium(timeout=timeout) as chrome:
-        chrome.call("Page.enable")
-        chrome.call("Network.enable")
-        chrome.call("Page.navigate", url=Path(html).resolve().as_uri())
-        deadline = t0 + timeout
-        last, stable_since = -2, time.monotonic()
-        while True:  # wait until the scene stops growing and the recording is in
-            n = chrome.evaluate(MESH_COUNT_JS)
-            tracks = chrome.evaluate(ANIMATION_JS)
-            now = time.monotonic()
-            if n != last:
-                last, stable_since = n, now
-            if n > 0 and tracks and tracks > 0 and now - stable_since > 1.0:
-                break
-            if now > deadline:
-                raise TimeoutError(f"the replay did not load within {timeout:g} s (objects {n}, tracks {tracks})")
-            time.sleep(0.2)
+        last, tracks = load_replay(chrome, html, timeout)
         load_s = time.monotonic() - t0
-        chrome.evaluate(STOP_AT_END_JS)
         shots = [_shot(chrome)]
         for group in (robot, target, ["/drake"]):
             for path in group:

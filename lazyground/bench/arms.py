@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from lazyground.regions import GoalRegion
+from lazyground.regions import ConfigRegion
 from lazyground.scene.schema import Cylinder, Geometry, Obstacle, PlannerSpec, PoseSpec, RobotSpec, Scene
 
 DOFS = (8, 12, 16, 24, 32)
@@ -151,7 +151,7 @@ def tip_position(q: np.ndarray) -> np.ndarray:
     return (REACH / dof) * np.array([np.cos(heading).sum(), np.sin(heading).sum()])
 
 
-def goal_regions(dof: int, config_free) -> tuple[GoalRegion, ...]:
+def goal_regions(dof: int, config_free) -> tuple[ConfigRegion, ...]:
     """C-space box goal regions; ``config_free(q)`` labels each one free or blocked."""
     out = []
     for k, c in enumerate(goal_centres(dof)):
@@ -159,8 +159,8 @@ def goal_regions(dof: int, config_free) -> tuple[GoalRegion, ...]:
         lo = np.clip(c - GOAL_HALF_WIDTH, -joint_limit(dof), joint_limit(dof))
         hi = np.clip(c + GOAL_HALF_WIDTH, -joint_limit(dof), joint_limit(dof))
         lo[0], hi[0] = c[0] - GOAL_HALF_WIDTH, c[0] + GOAL_HALF_WIDTH
-        out.append(GoalRegion(
-            id=f"goal_{k}/{label}", interpretation=f"reach:goal_{k}", object=f"goal_{k}", kind="config",
+        out.append(ConfigRegion(
+            id=f"goal_{k}/{label}", interpretation=f"reach:goal_{k}", object=f"goal_{k}",
             lower=tuple(float(v) for v in lo), upper=tuple(float(v) for v in hi), label=label,
         ))
     return tuple(out)

@@ -20,7 +20,7 @@ import numpy as np
 from lazyground.goals import ConfigGoalSource
 from lazyground.planning import ConfigSpace, PlannerSettings, solve
 from lazyground.planning.nn import NearestNeighbors
-from lazyground.regions import GoalRegion
+from lazyground.regions import ConfigRegion
 
 DIM = 8
 WINDOW = 1000
@@ -79,7 +79,7 @@ def measure(sizes=(1_000, 10_000, 100_000), seed: int = 0) -> Scaling:
 
     space = ConfigSpace(tuple(f"q{i}" for i in range(DIM)), np.zeros(DIM), np.ones(DIM))
     checker = _ToyChecker()
-    region = GoalRegion(id="corner", interpretation="toy", object="corner", kind="config", lower=(0.9,) * DIM, upper=(1.0,) * DIM)
+    region = ConfigRegion(id="corner", interpretation="toy", object="corner", lower=(0.9,) * DIM, upper=(1.0,) * DIM)
     settings = PlannerSettings(goal_bias=0.0, step_size=0.05, time_limit=600.0, max_iterations=top, initial_goal_samples=1)
     result = solve(space, checker, ConfigGoalSource((region,), space, checker), np.full(DIM, 0.05), settings, rng, seed=seed)
     # Edges into the ball are rejected, so tree size lags iterations slightly; index by iteration.

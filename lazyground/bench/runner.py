@@ -10,6 +10,7 @@ write them at once and keep them when interrupted.
 
 from __future__ import annotations
 
+import functools
 import signal
 import time
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
@@ -88,13 +89,12 @@ class Problem:
         return g.goal_regions, time.perf_counter() - t0
 
 
-_PROBLEMS: dict[str, Problem] = {}
+PROBLEM_CACHE_SIZE = 16  # scene keys kept per process: more than any one bench run sweeps (Table II: 3, DOF sweep: 5)
 
 
+@functools.lru_cache(maxsize=PROBLEM_CACHE_SIZE)
 def load_problem(key: str) -> Problem:
-    """The problem for a scene key, built once per process and cached."""
-    if key in _PROBLEMS:
-        return _PROBLEMS[key]
+    """The problem for a scene key (a scene file or ``arm:<dof>``), built once per process and cached by the key."""
     from lazyground.drake.world import DrakeWorld
 
     dof = arms.parse_arm_key(key)
@@ -108,7 +108,6 @@ def load_problem(key: str) -> Problem:
         scene = load_scene(key)
         request = scene.expect[0].request if scene.expect else None
         problem = Problem(scene.name, scene, DrakeWorld(scene, visual=False), request)
-    _PROBLEMS[key] = problem
     return problem
 
 

@@ -1,1 +1,7 @@
-"""The Drake side: scene → plant + SceneGraph, collision checking, IK goal sampling."""
+"""The Drake side: scene → diagram, coordinates, collision checking, kinematics, IK goal sampling.
+
+Importing this package registers the IK goal source for pose regions
+(workspace, placement) with :func:`lazyground.goals.register_goal_source`.
+"""
+
+from lazyground.drake import ik  # noqa: F401  (registers IKGoalSource by region kind)

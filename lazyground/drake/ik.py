@@ -12,7 +12,7 @@ iteration limit after a few milliseconds, and collisions are checked after.
 from __future__ import annotations
 
 import time
-import weakref
+from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,10 +23,11 @@ from pydrake.solvers import IpoptSolver, SnoptSolver, SolverOptions
 from scipy.spatial import cKDTree
 
 from lazyground.geometry import Pose
-from lazyground.goals import RoundRobinGoalSource
+from lazyground.goals import RoundRobinGoalSource, register_goal_source
 from lazyground.planning.problem import GoalSample
-from lazyground.regions import GoalRegion
+from lazyground.regions import PlacementRegion, PoseRegion, WorkspaceRegion
 from lazyground.scene.typed_yaml import SceneError
+from lazyground.tolerance import ORIENTATION_TOLERANCE, POSITION_TOLERANCE, accepted_error
 
 
 APPROACH_RESOLUTION = 0.01  # rad (or m): spacing of the collision checks along an approach segment
@@ -47,8 +48,8 @@ class IKSettings:
     reward-penalty at bias 0.5: 1 of 6 seeds within 30 s warm, 4 of 6 random).
     """
 
-    position_tolerance: float = 0.002  # m, half-width of the box around the target point
-    orientation_tolerance: float = 0.01  # rad, angle between target and solved orientation
+    position_tolerance: float = POSITION_TOLERANCE  # m, half-width of the box around the target point
+    orientation_tolerance: float = ORIENTATION_TOLERANCE  # rad, angle between target and solved orientation
     restarts: int = 3
     attempt_budget: float = 0.25  # s per attempt (also bounded by the planner's deadline)
     major_iterations: int = 60  # SNOPT major iterations; IPOPT max_iter is 3x this
@@ -80,11 +81,11 @@ class IKCounters:
 
 
 class IKGoalSource(RoundRobinGoalSource):
-    """Valid goal configurations for workspace (and placement) regions, by IK.
+    """Valid goal configurations for pose regions (workspace, placement), by IK.
 
     Args:
-        regions: goal regions of kind ``workspace`` (or ``placement`` when the
-            world carries an attached object).
+        regions: :class:`~lazyground.regions.PoseRegion` goal regions (placement
+            regions need a world carrying an attached object).
         world: the :class:`~lazyground.drake.world.DrakeWorld` to solve in.
         settings: IK tolerances and per-attempt limits.
         **kwargs: :class:`RoundRobinGoalSource` options.
@@ -92,19 +93,21 @@ class IKGoalSource(RoundRobinGoalSource):
     A sample records ``extra = {"X_WG": Pose, "v": 6-vector, "frame": name}``.
     """
 
-    def __init__(self, regions: tuple[GoalRegion, ...], world, settings: IKSettings = IKSettings(), **kwargs):
+    def __init__(self, regions: tuple[PoseRegion, ...], world, settings: IKSettings = IKSettings(), **kwargs):
         super().__init__(regions, **kwargs)
+        attached = getattr(world, "attached", None)
         for r in self.regions:
-            if r.kind == "config":
-                raise ValueError(f"region {r.id} is a configuration region; use ConfigGoalSource")
-            if r.kind == "workspace" and not world.plant.HasFrameNamed(r.frame):  # a scene/request mismatch, not a bug
-                raise SceneError(f"{world.scene.source}: robot: no frame {r.frame!r} to reach goal region {r.id} with (set robot.end_effector)")
+            if not isinstance(r, PoseRegion):
+                raise ValueError(f"region {r.id} is a {r.kind} region, not a pose region; use its registered goal source")
+            frame = r.robot_target(r.X_WR, attached)[0]  # raises for a placement without a carried object
+            if not world.plant.HasFrameNamed(frame):  # a scene/request mismatch, not a bug
+                raise SceneError(f"{world.scene.source}: robot: no frame {frame!r} to reach goal region {r.id} with (set robot.end_effector)")
         self.world = world
         self.settings = settings
         self.counters = IKCounters()
         self.region_counters = [IKCounters() for _ in self.regions]
         self._plant = world.plant
-        self._context = self._plant.CreateDefaultContext()
+        self._kinematics = world.kinematics
         self._planned = np.asarray(world.planned, int)
         self._lower = world.q_full.copy()
         self._upper = world.q_full.copy()
@@ -122,25 +125,20 @@ class IKGoalSource(RoundRobinGoalSource):
             self._options.SetOption(IpoptSolver.id(), "print_level", 0)
 
     # --- hooks -------------------------------------------------------------------------------
-    def target_pose_for(self, region: GoalRegion, v: np.ndarray, approach: bool = False) -> tuple[str, Pose]:
+    def target_pose_for(self, region: PoseRegion, v: np.ndarray, approach: bool = False) -> tuple[str, Pose]:
         """The robot frame to constrain and its target pose X_WT for a draw ``v`` of ``region``.
 
-        Workspace: the region's end-effector frame at ``region.pose_in_world(v)``.
-        Placement: the body carrying the world's attached object, placed so that
-        the object lands at ``region.pose_in_world(v)``. With ``approach``, the
-        pre-pose: the target moved by ``region.approach`` in its own axes.
+        The region says which frame (:meth:`PoseRegion.robot_target`): a workspace
+        region its end-effector frame, a placement region the body carrying the
+        world's attached object. With ``approach``, the pre-pose: the target moved
+        by ``region.approach`` in its own axes.
         """
         X_WT = region.pose_in_world(v)
         if approach:
             X_WT = X_WT.compose(Pose(tuple(region.approach)))
-        if region.kind == "workspace":
-            return region.frame, X_WT
-        attached = getattr(self.world, "attached", None)
-        if attached is None:
-            raise ValueError(f"placement region {region.id} needs a world with an attached object")
-        return attached.body, X_WT.compose(attached.X_BO.inverse())
+        return region.robot_target(X_WT, getattr(self.world, "attached", None))
 
-    def approach_from(self, region: GoalRegion, v: np.ndarray, q_full: np.ndarray, scale: float = 1.0) -> np.ndarray | None:
+    def approach_from(self, region: PoseRegion, v: np.ndarray, q_full: np.ndarray, scale: float = 1.0) -> np.ndarray | None:
         """The pre-pose configuration for a goal at ``q_full``, if its straight approach is free.
 
         The pre-pose is ``scale`` times the region's approach away. It is solved
@@ -219,8 +217,8 @@ class IKGoalSource(RoundRobinGoalSource):
         ok = bool(np.all(np.isfinite(q_sol)))
         if ok:  # judge the answer by forward kinematics, not by the solver's status
             dp, angle = self.pose_error(frame, q_sol, X_WT)
-            # the solver meets constraints to its feasibility tolerance: allow 10 % slack
-            ok = dp <= 1.1 * s.position_tolerance * np.sqrt(3) and angle <= 1.1 * s.orientation_tolerance
+            max_dp, max_angle = accepted_error(s.position_tolerance, s.orientation_tolerance)
+            ok = dp <= max_dp and angle <= max_angle
         dt = time.perf_counter() - t0
         for c in (self.counters, counters):
             if c is not None:
@@ -234,8 +232,7 @@ class IKGoalSource(RoundRobinGoalSource):
     # --- kinematics helpers ------------------------------------------------------------------
     def frame_pose(self, frame: str, q_full: np.ndarray) -> np.ndarray:
         """World pose (4x4) of a frame at full plant positions ``q_full``."""
-        self._plant.SetPositions(self._context, q_full)
-        return self._plant.CalcRelativeTransform(self._context, self._plant.world_frame(), self._plant.GetFrameByName(frame)).GetAsMatrix4()
+        return self._kinematics.matrix(frame, q_full)
 
     def pose_error(self, frame: str, q_full: np.ndarray, X_WT: Pose) -> tuple[float, float]:
         """(position error in m, rotation angle in rad) of ``frame`` at ``q_full`` from ``X_WT``."""
@@ -255,22 +252,19 @@ class IKGoalSource(RoundRobinGoalSource):
         return {"all": self.counters.to_json(), **{r.id: c.to_json() for r, c in zip(self.regions, self.region_counters)}}
 
 
-def region_coordinates(region: GoalRegion, X_WG: np.ndarray) -> np.ndarray:
-    """The end-effector pose ``X_WG`` (4x4) as a 6-vector in the region's sampled frame S.
+def region_coordinates(region: PoseRegion, X_WG: np.ndarray) -> np.ndarray:
+    """The end-effector pose ``X_WG`` (4x4) as a 6-vector in the region's sampled frame (:meth:`PoseRegion.coordinates_of`)."""
+    return region.coordinates_of(X_WG)
 
-    Inverse of :meth:`GoalRegion.pose_in_world`: X_RS = X_WR^-1 · X_WG · X_SE^-1.
-    Callers test ``region.contains(v, tol)`` on the result.
-    """
-    X_RS = np.linalg.inv(region.X_WR.matrix()) @ X_WG @ np.linalg.inv(region.X_SE.matrix())
-    p = Pose.from_matrix(X_RS)
-    return np.array(p.xyz + p.rpy)
 
+register_goal_source((WorkspaceRegion.kind, PlacementRegion.kind), IKGoalSource)
 
 
 # --- a cheap reachability filter ------------------------------------------------------------
 REACH_SAMPLES = 10000
 REACH_SEED = 20190520  # the map is a deterministic property of the robot, not of a plan's rng
-_REACH_MAPS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+REACH_CACHE_SIZE = 8  # reach maps kept at once (robots x end-effector frames); ~0.3 MB each
+_REACH_MAPS: "OrderedDict[tuple, ReachMap]" = OrderedDict()  # reach_key -> map, least recently used first
 
 
 @dataclass(frozen=True)
@@ -295,42 +289,52 @@ class ReachMap:
         return bool(distance <= margin)
 
 
+def reach_key(world, frame: str) -> tuple:
+    """What a reach map depends on: the model, its base weld, the planned coordinates
+    (names, limits, wrapping), the held positions and the frame."""
+    robot, space = world.scene.robot, world.space
+    base = robot.base.pose() if robot.base is not None else None
+    return (robot.model, robot.base_link, base, space.names, tuple(space.lower), tuple(space.upper), tuple(space.wrap),
+            tuple(world.q_full), frame)
+
+
 def reach_map(world, frame: str) -> ReachMap:
-    """The (cached) reach map of ``frame`` in ``world``."""
-    maps = _REACH_MAPS.setdefault(world, {})
-    if frame not in maps:
-        maps[frame] = _build_reach_map(world, frame)
-    return maps[frame]
+    """The reach map of ``frame`` in ``world``, cached by :func:`reach_key` (at most REACH_CACHE_SIZE kept)."""
+    key = reach_key(world, frame)
+    if key in _REACH_MAPS:
+        _REACH_MAPS.move_to_end(key)
+        return _REACH_MAPS[key]
+    _REACH_MAPS[key] = m = _build_reach_map(world, frame)
+    while len(_REACH_MAPS) > REACH_CACHE_SIZE:
+        _REACH_MAPS.popitem(last=False)
+    return m
 
 
 def _build_reach_map(world, frame: str) -> ReachMap:
-    plant = world.plant
-    context = plant.CreateDefaultContext()
-    plant.SetPositions(context, world.q_full)
-    E = plant.GetFrameByName(frame)
-    X_WE = plant.CalcRelativeTransform(context, plant.world_frame(), E)
-    joints = _joints_to_root(plant, E.body())
+    kin = world.kinematics
+    E = kin.frame(frame)
+    X_WE = kin.X_WF(E, world.q_full)
+    joints = _joints_to_root(kin.plant, E.body())
     # W: the child-side origin of the last movable joint; one joint further up while
     # that joint's origin lies on the axis of the joint below it (a spherical-ish wrist).
     W = joints[0].frame_on_child() if joints else E
     for below, above in zip(joints, joints[1:]):
         if not isinstance(below, RevoluteJoint):
             break
-        X_Wb = plant.CalcRelativeTransform(context, plant.world_frame(), below.frame_on_child())
+        X_Wb = kin.X_WF(below.frame_on_child(), world.q_full)
         axis = X_Wb.rotation() @ below.revolute_axis()
-        o = plant.CalcRelativeTransform(context, plant.world_frame(), above.frame_on_child()).translation()
+        o = kin.X_WF(above.frame_on_child(), world.q_full).translation()
         r = o - X_Wb.translation()
         if np.linalg.norm(r - axis * (r @ axis)) > 1e-6:
             break
         W = above.frame_on_child()
-    p_EW = X_WE.inverse() @ plant.CalcRelativeTransform(context, plant.world_frame(), W).translation()
+    p_EW = X_WE.inverse() @ kin.X_WF(W, world.q_full).translation()
     rng = np.random.default_rng(REACH_SEED)
     q = world.q_full.copy()
     points = np.empty((REACH_SAMPLES, 3))
     for k in range(REACH_SAMPLES):
         q[world.planned] = world.space.sample(rng)
-        plant.SetPositions(context, q)
-        points[k] = plant.CalcRelativeTransform(context, plant.world_frame(), W).translation()
+        points[k] = kin.X_WF(W, q).translation()
     return ReachMap(frame, np.asarray(p_EW), cKDTree(points))
 
 

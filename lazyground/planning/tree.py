@@ -85,4 +85,6 @@ class Tree:
                 self._label_nn[label][0].remove(sorted(local))
 
     def arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        return np.array(self.nodes), np.array(self.parents), np.array(self.goal_biased)
+        """Nodes (n x dim), parents (int) and goal-biased flags (bool), typed even for an empty goal tree."""
+        nodes = np.array(self.nodes, float).reshape(len(self.nodes), self.space.dim)
+        return nodes, np.array(self.parents, int), np.array(self.goal_biased, bool)

@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
+from lazyground.bundled import bundled_scene, data_dir, scene_names
 from lazyground.scene.schema import Scene, SceneObject
 from lazyground.scene.typed_yaml import SceneError, load_dataclass
 
@@ -19,7 +20,7 @@ REPO_ROOT = Path(__file__).resolve().parents[2]
 def models_dirs() -> list[Path]:
     """Where bundled model names are looked up: $LAZYGROUND_MODELS, then the repo's models/."""
     dirs = [Path(p) for p in os.environ.get("LAZYGROUND_MODELS", "").split(os.pathsep) if p]
-    return dirs + [REPO_ROOT / "models"]
+    return dirs + [data_dir("models")]
 
 
 def resolve_model(model: str, scene_dir: Path | None) -> Path | None:
@@ -63,14 +64,17 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
 
 
 def load_scene(path: str | os.PathLike) -> Scene:
-    """Load and validate a scene file.
+    """Load and validate a scene file; a bare name (``parking_1``) means the bundled scene.
 
     Raises:
         SceneError: with one line naming the file, the key path and the problem.
     """
     path = Path(path)
     if not path.is_file():
-        raise SceneError(f"{path}: no such scene file")
+        path = bundled_scene(str(path)) or path  # a bare name: the bundled scene, from any directory
+    if not path.is_file():
+        hint = f" (bundled scenes: {', '.join(scene_names())})" if Path(path).name == str(path) else ""
+        raise SceneError(f"{path}: no such scene file{hint}")
     size = path.stat().st_size
     if size > MAX_SCENE_BYTES:
         raise SceneError(f"{path}: file is {size / 1e6:.0f} MB; scenes are limited to {MAX_SCENE_BYTES // 2**20} MiB")

@@ -93,6 +93,7 @@ class SceneObject:
     size: str | None = None
     occupied: bool = False
     collision: bool | None = None  # default: every type but parking_spot collides
+    occupant: Geometry | None = None  # what an occupied object holds (default: its type's `occupant` in grounding/types.yaml)
     attributes: dict[str, str] = field(default_factory=dict)
 
     @property

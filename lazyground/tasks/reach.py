@@ -2,21 +2,15 @@
 
 from __future__ import annotations
 
+from lazyground.goals import goal_source_for
 from lazyground.planning.rrt import solve
 from lazyground.robots.car import planning_space
 from lazyground.tasks.outcome import Outcome, Step
 
 
 def make_goal_source(world, regions):
-    """The goal sampler for these regions: C-space boxes directly, workspace regions by IK."""
-    kinds = {r.kind for r in regions}
-    if kinds == {"config"}:
-        from lazyground.goals import ConfigGoalSource
-
-        return ConfigGoalSource(regions, world.space, world)
-    from lazyground.drake.ik import IKGoalSource
-
-    return IKGoalSource(regions, world)
+    """The goal sampler registered for these regions' kind (:func:`lazyground.goals.goal_source_for`)."""
+    return goal_source_for(tuple(regions), world)
 
 
 def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, keep_tree: bool = False) -> Outcome:

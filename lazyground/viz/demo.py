@@ -10,10 +10,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from lazyground import api
+from lazyground.bundled import data_dir
 from lazyground.report import report_lines
 from lazyground.scene import load_scene
 
-SCENES = Path(__file__).resolve().parents[2] / "yaml_scenes"
+SCENES = data_dir("yaml_scenes")  # also when installed without the source tree
 
 
 @dataclass(frozen=True)

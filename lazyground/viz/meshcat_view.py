@@ -33,9 +33,12 @@ from pydrake.math import RigidTransform
 from pydrake.perception import BaseField, Fields, PointCloud
 
 from grounding.regions import END_EFFECTOR
-from lazyground.drake.world import PARKED_CAR_SIZE, Attachment, DrakeWorld, rigid_transform
+from lazyground.drake.world import Attachment, DrakeWorld, rigid_transform
+from lazyground.viz.replay_page import Layout, decorate
+from lazyground.viz.shapes import draw_tube
 from lazyground.viz.style import (
-    FAILED_RGBA, GOAL_BIASED_RGBA, PATH_DARK_RGBA, PATH_RGBA, REGION_RGBA, REVERSE_RGBA, TREE_RGBA, weight_rgba,
+    CAR_FOOTPRINT, FAILED_RGBA, GOAL_BIASED_RGBA, PATH_DARK_RGBA, PATH_RGBA, REGION_RGBA, REVERSE_RGBA, TREE_RGBA,
+    weight_rgba,
 )
 from lazyground.viz.trace import resample_path, tree_edges
 
@@ -43,6 +46,9 @@ FPS = 30
 STEP_SECONDS = 4.0  # animation length of one planned step
 PAUSE_SECONDS = 0.5  # hold at the end of a step
 ROOT = "/lazyground"
+CAMERA_DISTANCE = 1.75  # x the drawn extent's radius; the page's side panel leaves the view ~70 % of the width
+TREE_SHOWN_MAX = 1000  # nodes: a larger parking tree starts hidden in the HTML replay
+TREE_SHOWN_MAX_ARM = 60  # an arm's tree is drawn at the gripper, around the objects: hidden sooner
 EXTERNAL_SCRIPT = re.compile(r"<script[^>]*\bsrc\s*=\s*[\"']?(https?:)?//", re.IGNORECASE)
 
 
@@ -53,10 +59,11 @@ def write_html(report, scene, path) -> int:
         RuntimeError: Meshcat's page refers to an external script (it would not open offline).
     """
     meshcat = Meshcat()
-    draw(report, scene, meshcat)
+    layout = draw_layout(report, scene, meshcat)
     html = meshcat.StaticHtml()
     if EXTERNAL_SCRIPT.search(html):
         raise RuntimeError("Meshcat's static HTML refers to an external script")
+    html = decorate(html, report, layout)  # title and the explaining side panel (replay_page)
     data = html.encode("utf-8")
     Path(path).write_bytes(data)
     return len(data)
@@ -78,17 +85,27 @@ def show_live(report, scene, loop_once: bool, out) -> None:
 
 def draw(report, scene, meshcat: Meshcat) -> float:
     """Draw ``report`` into ``meshcat`` and record the robot's motion; returns the replay length in seconds."""
+    return draw_layout(report, scene, meshcat).seconds
+
+
+def draw_layout(report, scene, meshcat: Meshcat) -> Layout:
+    """:func:`draw`, returning what the page's side panel needs (step windows, tree paths)."""
     meshcat.Delete()
     meshcat.DeleteRecording()
     meshcat.StartRecording(frames_per_second=FPS, set_visualizations_while_recording=True)
-    views = [_StepView(s, scene, meshcat, f"robot{k}") for k, s in enumerate(_segments(report, scene))]
+    segments = _segments(report, scene)
+    views = [_StepView(s, scene, meshcat, f"robot{k}") for k, s in enumerate(segments)]
+    nodes = sum(len(v.report.result.tree[0]) for v in views if v.report.result.tree is not None)
+    hide_tree = nodes > (TREE_SHOWN_MAX_ARM if views[0].tracer.arm else TREE_SHOWN_MAX)
     for k, view in enumerate(views):
-        view.draw_overlays(f"{ROOT}/step{k}")
-    t = 0.0
+        view.draw_overlays(f"{ROOT}/step{k}", hide_tree)
+    t, windows = 0.0, []
     for k, view in enumerate(views):
         for j, other in enumerate(views if len(views) > 1 else []):  # only the current step's world is visible
             meshcat.SetProperty(f"/drake/{other.prefix}", "visible", j == k, time_in_recording=t)
-        t = view.animate(t) + PAUSE_SECONDS
+        end = view.animate(t)
+        windows.append((step_label(report, k, len(views)), t, end))
+        t = end + PAUSE_SECONDS
     meshcat.StopRecording()
     animation = meshcat.get_mutable_recording()
     animation.set_loop_mode(MeshcatAnimation.LoopMode.kLoopRepeat)
@@ -96,8 +113,9 @@ def draw(report, scene, meshcat: Meshcat) -> float:
     meshcat.PublishRecording()
     if not views[0].tracer.arm:  # a 10 m grid at the origin only clutters a parking lot
         meshcat.SetProperty("/Grid", "visible", False)
-    _set_camera(meshcat, views)
-    return t
+    _set_camera(meshcat, views, report)
+    trees = tuple(f"{ROOT}/step{k}/tree" for k, v in enumerate(views) if v.report.result.tree is not None)
+    return Layout(t, tuple(windows), trees, nodes, hide_tree and bool(trees), views[0].tracer.arm)
 
 
 @dataclass(frozen=True)
@@ -156,12 +174,9 @@ class _StepView:
     # --- kinematics ----------------------------------------------------------------------
     def poses(self, qs) -> list[RigidTransform]:
         """World poses of the tracer point at planned configurations ``qs``."""
-        plant, out = self.world.plant, []
-        for q in self.world.full(np.atleast_2d(qs)):
-            plant.SetPositions(self.plant_context, q)
-            X_WB = plant.EvalBodyPoseInWorld(self.plant_context, self.tracer.body)
-            out.append(X_WB.multiply(RigidTransform(self.tracer.p_BT)))
-        return out
+        frame = self.tracer.body.body_frame()
+        X_BT = RigidTransform(self.tracer.p_BT)
+        return [self.world.kinematics.X_WF(frame, q).multiply(X_BT) for q in self.world.full(np.atleast_2d(qs))]
 
     def points(self, qs) -> np.ndarray:
         """(3, n) tracer positions at ``qs``."""
@@ -170,7 +185,7 @@ class _StepView:
         return np.array([X.translation() for X in self.poses(qs)]).T
 
     # --- drawing -------------------------------------------------------------------------
-    def draw_overlays(self, path: str) -> None:
+    def draw_overlays(self, path: str, hide_tree: bool = False) -> None:
         res = self.report.result
         self._draw_regions(f"{path}/goal_regions", res.regions)
         self._draw_samples(f"{path}/goal_samples", res.goal_samples)
@@ -185,12 +200,19 @@ class _StepView:
             self._points(f"{path}/tree/goal_biased", p[:, np.asarray(goal_biased, bool)], GOAL_BIASED_RGBA, 1.0)
             if res.failed_from is not None:
                 self._points(f"{path}/tree/failed_goal_biased_from", p[:, np.unique(res.failed_from)], FAILED_RGBA, 1.5)
+            if hide_tree:  # a large tree covers the objects; the page's button shows it
+                self.meshcat.SetProperty(f"{path}/tree", "visible", False)
         if self.motion is not None:
             car = self.report.result.cusps is not None  # a car's path is already its curves, densely sampled
-            dense = self.motion if car else resample_path(self.motion, 200, self.world.space.wrap)
-            self.meshcat.SetLine(f"{path}/path", self.points(dense), 4.0, Rgba(*PATH_RGBA))
+            qs = self.motion if car else resample_path(self.motion, 200, self.world.space.wrap)
+            dense = self.points(qs)
+            self.meshcat.SetLine(f"{path}/path", dense, 4.0, Rgba(*PATH_RGBA))
+            # browsers draw WebGL lines one pixel wide whatever the width: a tube makes the path stand out
+            stride = max(4, dense.shape[1] // 50)  # ~50 cylinders, however densely a car's path is sampled
+            tube = np.column_stack([dense[:, ::stride], dense[:, -1:]]) if dense.shape[1] > 4 else dense
+            draw_tube(self.meshcat, f"{path}/path_tube", tube, 0.5 * self.scale, Rgba(*PATH_RGBA))
             if car:
-                self._draw_travel(f"{path}/direction_of_travel", dense)
+                self._draw_travel(f"{path}/direction_of_travel", qs)
 
     def animate(self, t0: float) -> float:
         """Record the robot along the path from time ``t0``; returns the end time."""
@@ -238,22 +260,13 @@ class _StepView:
     def _draw_regions(self, path: str, regions) -> None:
         drawn = set()
         for region in regions:
-            if region.kind == "config":
-                if region.object in drawn:  # one box per object (a spot's forwards and reversing regions)
-                    continue
-                drawn.add(region.object)
-                obj = self.scene.object(region.object)
-                hx, hy, hz = obj.geometry.half_extents()
-                shape = Box(2 * hx, 2 * hy, max(2 * hz, 1.0))
-                X = rigid_transform(obj.pose.pose()).multiply(RigidTransform([0, 0, shape.depth() / 2]))
-            else:
-                lo, hi = np.asarray(region.lower[:3]), np.asarray(region.upper[:3])
-                size = np.maximum(hi - lo, 0.03)  # a point-like region (a top grasp) stays visible
-                shape = Box(*size)
-                X = rigid_transform(region.X_WR).multiply(RigidTransform((lo + hi) / 2))
-            name = f"{path}/{_safe(region.object if region.kind == 'config' else region.id)}"
-            self.meshcat.SetObject(name, shape, Rgba(*REGION_RGBA))
-            self.meshcat.SetTransform(name, X)
+            d = region.drawing(self.scene)
+            if d.name in drawn:  # one box per drawing (a spot's forwards and reversing regions)
+                continue
+            drawn.add(d.name)
+            name = f"{path}/{_safe(d.name)}"
+            self.meshcat.SetObject(name, Box(*d.size), Rgba(*REGION_RGBA))
+            self.meshcat.SetTransform(name, rigid_transform(d.X_WB))
 
     def _draw_samples(self, path: str, samples) -> None:
         if not samples:
@@ -264,7 +277,7 @@ class _StepView:
             name = f"{path}/{i}"
             self.meshcat.SetObject(f"{name}/point", Sphere(self.scale * 0.6), rgba)
             if not self.tracer.arm:  # the car's footprint at the sample, translucent
-                x, y, _ = PARKED_CAR_SIZE
+                x, y = CAR_FOOTPRINT
                 self.meshcat.SetObject(f"{name}/footprint", Box(x, y, 0.04), Rgba(*weight_rgba(s.weight, 0.35)))
             length = self.scale * (4.0 if self.tracer.arm else 10.0)
             head = np.array([[length, 0, 0], [0.7 * length, 0.2 * length, 0], [0.7 * length, -0.2 * length, 0]]).T
@@ -272,6 +285,14 @@ class _StepView:
             end = np.array([head[:, 0], head[:, 1], head[:, 2]]).T
             self.meshcat.SetLineSegments(f"{name}/arrow", start, end, 2.0, rgba)
             self.meshcat.SetTransform(name, X)
+
+
+def step_label(report, k: int, n: int) -> str:
+    """What step ``k`` of ``n`` does, for the page: "1. pick Can3", "2. place Can3 on table", or the chosen goal."""
+    if n == 1:
+        return report.chosen.id if report.chosen is not None else report.request
+    placement = report.outcome.placement if k == n - 1 else None
+    return f"{k + 1}. {report.steps[k].label}" + (f" on {placement.target}" if placement is not None else "")
 
 
 def _tracer(world: DrakeWorld, scene) -> _Tracer:
@@ -284,11 +305,21 @@ def _tracer(world: DrakeWorld, scene) -> _Tracer:
     return _Tracer(base, np.array([0.0, 0.0, 0.1]), arm=False)
 
 
-def _set_camera(meshcat: Meshcat, views: list[_StepView]) -> None:
-    """Look at everything that was drawn: a car's lot from the south and above, an arm from behind its shoulder."""
+def _set_camera(meshcat: Meshcat, views: list[_StepView], report) -> None:
+    """A car's lot from the south and above (tree and samples in view); an arm from behind its shoulder,
+    framing the robot, its path and the chosen object (every interpretation's object when nothing was reached)."""
     pts = [v.points(np.atleast_2d(v.start)) for v in views]
+    focus = []  # the objects the arm goes for: the camera looks from their side
     for v in views:
         res = v.report.result
+        if v.tracer.arm:  # the robot, its path and the object(s) it goes for; an arm's tree would zoom out too far
+            if v.motion is not None:
+                pts.append(v.points(v.motion))
+            chosen = [res.goal_region.object] if res.goal_region is not None else \
+                [o for i in report.grounding.interpretations for o in i.objects]
+            focus.append(np.array([v.scene.object(o).pose.xyz for o in chosen], float).T.reshape(3, -1))
+            pts.append(focus[-1])
+            continue
         if res.tree is not None:
             pts.append(v.points(res.tree[0]))
         if res.goal_samples:
@@ -302,12 +333,15 @@ def _set_camera(meshcat: Meshcat, views: list[_StepView]) -> None:
         lo, hi = np.minimum(lo, p_WB), np.maximum(hi, p_WB)  # include the robot's base
         yaw = base.rpy[2] if base else 0.0
         c, s = np.cos(yaw), np.sin(yaw)
-        direction = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]]) @ np.array([-1.0, 0.9, 0.9])
+        R_WB = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+        # from behind the shoulder on the side where the work is, so the torso does not hide the arm
+        side = 1.0 if (R_WB.T @ (focus[0].mean(axis=1) - p_WB))[1] >= 0 else -1.0
+        direction = R_WB @ np.array([-0.8, side * 1.0, 1.0])
     else:
         direction = np.array([0.0, -0.7, 1.6])
     target = (lo + hi) / 2
-    radius = max(float(np.linalg.norm(hi - lo)) / 2, 0.6)
-    camera = target + 1.4 * radius * direction / np.linalg.norm(direction)
+    radius = max(float(np.linalg.norm(hi - lo)) / 2, 1.0 if views[0].tracer.arm else 0.6)  # an arm's own size
+    camera = target + CAMERA_DISTANCE * radius * direction / np.linalg.norm(direction)
     meshcat.SetCameraPose(camera, target)
 
 

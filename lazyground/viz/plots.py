@@ -20,8 +20,10 @@ from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.colors import ListedColormap  # noqa: E402
 from matplotlib.patches import Circle, Polygon  # noqa: E402
 
-from lazyground.drake.world import PARKED_CAR_SIZE  # noqa: E402
+from grounding.regions import occupant_geometry  # noqa: E402
+from lazyground.viz.legend import HANDLER_MAP, LABEL_STYLE, parking_handles  # noqa: E402
 from lazyground.viz.style import (  # noqa: E402
+    CAR_FOOTPRINT,
     CAR_RGBA,
     FAILED_RGBA,
     GOAL_BIASED_RGBA,
@@ -35,7 +37,6 @@ from lazyground.viz.style import (  # noqa: E402
 )
 from lazyground.viz.trace import planar_indices, rect_corners, resample_path, tree_edges  # noqa: E402
 
-CAR_FOOTPRINT = PARKED_CAR_SIZE[:2]  # models/car/car.urdf: the planned car has the parked cars' size
 WEIGHT_CMAP = ListedColormap([weight_rgba(w) for w in np.linspace(0, 1, 256)], name="goal_weight")
 GROW_FRAMES, DRIVE_FRAMES, HOLD_FRAMES = 24, 40, 8
 
@@ -74,7 +75,10 @@ def animate_parking(report, scene, path, fps: int = 12) -> None:
     trail, = ax.plot([], [], color=PATH_RGBA, lw=2.5, zorder=6, animated=True)
     car = Polygon(view.footprint(view.start), closed=True, fc=CAR_RGBA, ec="black", lw=1.0, zorder=8, animated=True)
     ax.add_patch(car)
-    view.finish(fig, ax)
+    view.finish(fig, ax, outlines=False)
+    labels = list(ax.texts)  # spot labels: redrawn over the moving car, never under it
+    for label in labels:
+        label.set_animated(True)
     fig.canvas.draw()
     background = fig.canvas.copy_from_bbox(fig.bbox)
     segments = view.tree_segments()
@@ -90,7 +94,7 @@ def animate_parking(report, scene, path, fps: int = 12) -> None:
             trail.set_data(xy[:, 0], xy[:, 1])
             car.set_xy(view.footprint(drive[k]))
         fig.canvas.restore_region(background)
-        for artist in (tree, trail, car):
+        for artist in (tree, trail, car, *labels):
             ax.draw_artist(artist)
         frames.append(Image.fromarray(np.asarray(fig.canvas.buffer_rgba())[..., :3].copy()))
     plt.close(fig)
@@ -145,10 +149,13 @@ class _View:
             spot = rect_corners(x, y, yaw, lx, ly)
             if obj.occupied:
                 ax.add_patch(Polygon(spot, closed=True, fc="none", ec=(0.5, 0.5, 0.5), lw=0.8, zorder=1))
-                ax.add_patch(Polygon(rect_corners(x, y, yaw, *CAR_FOOTPRINT), closed=True, fc=OBSTACLE_RGBA, ec="black", lw=0.5, zorder=2))
+                occupant = occupant_geometry(obj, self.scene)
+                if occupant is not None:  # the footprint of what stands in the spot (a parked car)
+                    hx, hy, _ = occupant.half_extents()
+                    ax.add_patch(Polygon(rect_corners(x, y, yaw, 2 * hx, 2 * hy), closed=True, fc=OBSTACLE_RGBA, ec="black", lw=0.5, zorder=2))
             else:
                 ax.add_patch(Polygon(spot, closed=True, fc=REGION_RGBA, ec=REGION_RGBA[:3], lw=1.2, zorder=1))
-                ax.text(x, y, obj.id, ha="center", va="center", fontsize=6, color=(0, 0.35, 0.1), rotation=0, zorder=1)
+                ax.text(x, y, obj.id, **LABEL_STYLE)
         ax.add_patch(Polygon(self.footprint(self.start), closed=True, fc="none", ec="black", lw=1.0, ls="--", zorder=7))
         return fig, ax
 
@@ -204,8 +211,10 @@ class _View:
             ax.add_patch(Polygon(self.footprint(q), closed=True, fc="none", ec=PATH_RGBA, lw=0.8, zorder=6))
         ax.add_patch(Polygon(self.footprint(self.path[-1]), closed=True, fc=CAR_RGBA, ec="black", lw=1.0, zorder=8))
 
-    def finish(self, fig, ax) -> None:
+    def finish(self, fig, ax, outlines: bool = True) -> None:
         lo, hi = _extent(self.scene)
+        car = np.concatenate([self.footprint(self.start)] + ([self.path[:, list(self.ix[:2])]] if self.path is not None else []))
+        lo, hi = np.minimum(lo, car.min(axis=0)), np.maximum(hi, car.max(axis=0))  # the start may lie outside the geometry
         ax.set_xlim(lo[0] - 1, hi[0] + 1)
         ax.set_ylim(lo[1] - 1, hi[1] + 1)
         ax.set_aspect("equal")
@@ -217,8 +226,11 @@ class _View:
                      f"{len(res.goal_samples)} goal samples", fontsize=9)
         sm = plt.cm.ScalarMappable(cmap=WEIGHT_CMAP, norm=plt.Normalize(0, 1))
         fig.colorbar(sm, ax=ax, fraction=0.03, pad=0.02).set_label("goal-sample weight", fontsize=8)
-        if ax.get_legend_handles_labels()[0]:
-            ax.legend(loc="upper right", fontsize=6, framealpha=0.8)
+        handles = parking_handles(res.tree is not None, res.failed_from is not None and len(res.failed_from) > 0,
+                                  self.path is not None, any(o.occupied for o in self.scene.objects), outlines)
+        # below the lot, never over it
+        ax.legend(handles=handles, handler_map=HANDLER_MAP, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=3,
+                  fontsize=6, frameon=False)
         fig.tight_layout()
 
 

@@ -14,7 +14,7 @@ from lazyground.drake.ik import IKGoalSource, IKSettings, reach_map, region_coor
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.geometry import Pose  # noqa: E402
 from lazyground.planning.rrt import path_is_valid  # noqa: E402
-from lazyground.regions import GoalRegion  # noqa: E402
+from lazyground.regions import PlacementRegion, WorkspaceRegion  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 
 SCENES = Path(__file__).resolve().parents[2] / "yaml_scenes"
@@ -87,9 +87,9 @@ def test_reach_filter_keeps_reachable_and_rejects_far_targets(cans1):
 
 
 def _far_region(frame="gripper_link"):
-    return GoalRegion(id="far/top", interpretation="pick:far", object="far", kind="workspace",
-                      lower=(0, 0, 0, -np.pi, 0, 0), upper=(0, 0, 0, np.pi, 0, 0), frame=frame,
-                      X_WR=Pose((1.6, 0.0, 0.8), (0.0, np.pi / 2, 0.0)), label="top")
+    return WorkspaceRegion(id="far/top", interpretation="pick:far", object="far",
+                           lower=(0, 0, 0, -np.pi, 0, 0), upper=(0, 0, 0, np.pi, 0, 0), frame=frame,
+                           X_WR=Pose((1.6, 0.0, 0.8), (0.0, np.pi / 2, 0.0)), label="top")
 
 
 def test_failed_attempts_are_bounded_in_time(cans1):
@@ -112,8 +112,8 @@ def test_failed_attempts_are_bounded_in_time(cans1):
 
 def test_placement_regions_need_an_attached_object(cans1):
     _, world = cans1
-    region = GoalRegion(id="table/surface", interpretation="place", object="table_right", kind="placement",
-                        lower=(0, 0, 0, 0, 0, 0), upper=(0, 0, 0, 0, 0, 0))
+    region = PlacementRegion(id="table/surface", interpretation="place", object="table_right",
+                             lower=(0, 0, 0, 0, 0, 0), upper=(0, 0, 0, 0, 0, 0))
     with pytest.raises(ValueError, match="attached"):
         IKGoalSource((region,), world).target_pose_for(region, np.zeros(6))
 

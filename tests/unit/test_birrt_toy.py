@@ -92,3 +92,12 @@ def test_a_failing_approach_segment_retires_its_sample(algorithm):
     res = solve(SPACE, world, _BadApproach(goal_source(world, [REACHABLE])), START, settings, np.random.default_rng(1))
     assert res.status is PlanStatus.TIMEOUT
     assert res.invalid_paths_rejected >= 1
+
+
+def test_keep_tree_without_any_valid_goal_is_a_planning_failure():
+    # #20: the empty goal forest made the tree arrays float and '|' raised TypeError (exit 3 under --html)
+    world = BoxWorld(WALLS)
+    res = solve(SPACE, world, goal_source(world, [INVALID]), START, BI, np.random.default_rng(0), keep_tree=True)
+    assert res.status is PlanStatus.NO_VALID_GOAL
+    nodes, parents, goal_side = res.tree
+    assert nodes.shape == (1, SPACE.dim) and parents.tolist() == [-1] and goal_side.dtype == bool

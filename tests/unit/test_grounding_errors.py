@@ -17,7 +17,7 @@ ERRORS = [
     ("kitchen", "pick up the yellow can", "no yellow can; cans here are: red x2, blue x1, green x1, unknown colour x1"),
     ("kitchen", "pick up the red can on the top shelf", "no red can on the top shelf; cans on the top shelf are: green x1"),
     ("kitchen", "grab a box on the table on the left", None),  # table: 'left' does not narrow -> grounds
-    ("kitchen", "pick up a can from the floor", "no can from the floor; cans here are: on table_1 x2, on shelf_l_top x1, on shelf_l_mid x1, on shelf_r_low x1"),
+    ("kitchen", "pick up a can from the floor", "no can from the floor; cans here are: on the table x2, on the top left shelf x1, on the middle left shelf x1, on the bottom right shelf x1"),
     ("kitchen", "put a can on the middle shelf on the right", "no middle shelf on the right; middle shelves here are: left/middle x1"),
     ("cafe", "pick up the small cup", "no small cup; cups here are: unknown size x2, large x1"),
     ("cafe", "pick up the shiny cup", "unknown word 'shiny': not a colour, size or position, and no object here has it as an attribute"),

@@ -8,7 +8,7 @@ import numpy as np
 
 from lazyground.goals import ConfigGoalSource
 from lazyground.planning.space import ConfigSpace
-from lazyground.regions import GoalRegion
+from lazyground.regions import ConfigRegion
 
 
 class BoxWorld:
@@ -67,8 +67,8 @@ START = np.array([1.0, 1.0])
 
 
 def region(name, x, y, half=0.3):
-    return GoalRegion(id=name, interpretation=f"go:{name}", object=name, kind="config",
-                      lower=(x - half, y - half), upper=(x + half, y + half))
+    return ConfigRegion(id=name, interpretation=f"go:{name}", object=name,
+                        lower=(x - half, y - half), upper=(x + half, y + half))
 
 
 REACHABLE = region("open", 8.0, 9.0)

@@ -1,0 +1,143 @@
+"""Scene → Drake diagram: the robot model, the environment's geometry and a carried object.
+
+Only geometry is decided here; colours come from :mod:`lazyground.viz.style`
+and what an occupied parking spot holds from the type data
+(:func:`grounding.regions.occupant_geometry`).
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+
+import numpy as np
+from pydrake.geometry import Box, Cylinder, Sphere
+from pydrake.math import RigidTransform, RollPitchYaw
+from pydrake.multibody.plant import CoulombFriction
+from pydrake.planning import RobotDiagramBuilder
+
+from grounding.regions import occupant_geometry
+from lazyground.geometry import Pose
+from lazyground.scene.schema import Geometry, Scene, SceneObject
+from lazyground.scene.typed_yaml import SceneError
+from lazyground.viz.style import OBSTACLE_SCENE_RGBA, OCCUPANT_RGBA, object_rgba
+
+logging.getLogger("drake").setLevel(logging.WARNING)  # silence "Allocating contexts ..." INFO lines
+
+
+@dataclass(frozen=True)
+class Attachment:
+    """An object carried by a robot body: its geometry rides along at X_BO."""
+
+    object: SceneObject
+    body: str
+    X_BO: Pose
+
+
+def drake_shape(g: Geometry):
+    """The Drake shape of a scene geometry."""
+    if g.box:
+        return Box(*g.box)
+    if g.cylinder:
+        return Cylinder(g.cylinder.radius, g.cylinder.length)
+    return Sphere(g.sphere.radius)
+
+
+def rigid_transform(pose: Pose) -> RigidTransform:
+    """A scene pose as a Drake RigidTransform."""
+    return RigidTransform(RollPitchYaw(*pose.rpy), np.asarray(pose.xyz, float))
+
+
+def build_diagram(scene: Scene, attached: Attachment | None = None, visual: bool = True, extend_builder=None):
+    """The scene's RobotDiagram and the robot's model instance.
+
+    Args:
+        scene: the loaded scene.
+        attached: an object carried by the robot (removed from the environment).
+        visual: also register visual geometry (for Meshcat).
+        extend_builder: called with the RobotDiagramBuilder just before Build().
+
+    Returns:
+        (diagram, robot): the built RobotDiagram and the robot's ModelInstanceIndex.
+
+    Raises:
+        SceneError: the model cannot be parsed or its base cannot be welded as the scene says.
+    """
+    builder = RobotDiagramBuilder(time_step=0.0)
+    plant = builder.plant()
+    try:
+        (robot,) = builder.parser().AddModels(scene.robot.model)
+    except Exception as exc:  # Drake's parser raises RuntimeError with multi-line text
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise SceneError(f"{scene.source}: robot.model: cannot parse {scene.robot.model}: {first}") from None
+    if scene.robot.base is not None:
+        try:
+            base = plant.GetFrameByName(scene.robot.base_link, robot)
+        except Exception:
+            raise SceneError(f"{scene.source}: robot.base_link: no link {scene.robot.base_link!r} in the model") from None
+        try:
+            plant.WeldFrames(plant.world_frame(), base, rigid_transform(scene.robot.base.pose()))
+        except RuntimeError:  # e.g. the link already hangs on a joint to the world (a planar car)
+            raise SceneError(f"{scene.source}: robot.base: cannot weld {scene.robot.base_link!r} to the world: it is already jointed to it") from None
+    _add_environment(plant, scene, attached, visual)
+    if attached is not None:
+        _attach(plant, robot, attached, visual)
+    if extend_builder is not None:
+        extend_builder(builder)
+    return builder.Build(), robot
+
+
+def environment_items(scene: Scene, attached: Attachment | None = None) -> list[tuple[str, Geometry, Pose, tuple]]:
+    """(name, geometry, pose, rgba) of every colliding environment body."""
+    items = [(o.id, o.geometry, o.pose.pose(), OBSTACLE_SCENE_RGBA) for o in scene.obstacles]
+    carried = attached.object.id if attached else None
+    for obj in scene.objects:
+        occupant = occupant_geometry(obj, scene) if obj.occupied else None
+        if occupant is not None:
+            # no "/" in geometry names: Meshcat would nest the occupant under the spot's transform
+            items.append((f"{obj.id}.parked_car", occupant, on_ground(obj, occupant), OCCUPANT_RGBA))
+        elif obj.collides and obj.id != carried:
+            items.append((obj.id, obj.geometry, obj.pose.pose(), object_rgba(obj)))
+    return items
+
+
+def on_ground(obj: SceneObject, occupant: Geometry) -> Pose:
+    """The pose of what occupies ``obj``: resting on the ground at its x, y and heading."""
+    x, y, _ = obj.pose.xyz
+    return Pose((x, y, occupant.half_extents()[2]), (0.0, 0.0, obj.pose.rpy[2]))
+
+
+def _add_environment(plant, scene: Scene, attached: Attachment | None, visual: bool) -> None:
+    world = plant.world_body()
+    for name, geometry, pose, rgba in environment_items(scene, attached):
+        X = rigid_transform(pose)
+        shape = drake_shape(geometry)
+        plant.RegisterCollisionGeometry(world, X, shape, name, _friction())
+        if visual:
+            plant.RegisterVisualGeometry(world, X, shape, name, np.array(rgba))
+    if visual:  # non-colliding objects (parking spots) are still drawn
+        for obj in scene.objects:
+            if not obj.collides:
+                plant.RegisterVisualGeometry(world, rigid_transform(obj.pose.pose()), drake_shape(_flat_geometry(obj)), obj.id, np.array(object_rgba(obj)))
+
+
+def _attach(plant, robot, attached: Attachment, visual: bool) -> None:
+    body = plant.GetBodyByName(attached.body, robot)
+    X = rigid_transform(attached.X_BO)
+    shape = drake_shape(attached.object.geometry)
+    name = f"carried/{attached.object.id}"
+    plant.RegisterCollisionGeometry(body, X, shape, name, _friction())
+    if visual:
+        plant.RegisterVisualGeometry(body, X, shape, name, np.array(object_rgba(attached.object)))
+
+
+def _friction() -> CoulombFriction:
+    return CoulombFriction(0.5, 0.5)
+
+
+def _flat_geometry(obj: SceneObject) -> Geometry:
+    """Non-colliding markers (parking spots) are drawn as thin slabs on their pose."""
+    if obj.geometry.box:
+        x, y, _ = obj.geometry.box
+        return Geometry(box=(x, y, 0.01))
+    return obj.geometry

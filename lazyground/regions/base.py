@@ -1,0 +1,134 @@
+"""The goal-region base class, its drawing description and the registry of kinds.
+
+A goal region GR_j of an interpretation I_i (paper Definition 2) is a box of
+bounds over some coordinates; each kind says which coordinates (planned joint
+values, or a pose in a reference frame), how it is drawn and serialised.
+Goal sources are looked up by kind in :mod:`lazyground.goals`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import ClassVar
+
+import numpy as np
+
+from lazyground.geometry import Pose, wrap_angle
+
+REGION_KINDS: dict[str, type["GoalRegion"]] = {}  # kind -> class, filled by @register_region
+
+
+def register_region(cls: type["GoalRegion"]) -> type["GoalRegion"]:
+    """Class decorator: make ``cls`` the region class of its ``kind``.
+
+    Raises:
+        ValueError: another class already has that kind.
+    """
+    other = REGION_KINDS.get(cls.kind)
+    if other is not None and other is not cls:
+        raise ValueError(f"goal region kind {cls.kind!r} is already {other.__name__}")
+    REGION_KINDS[cls.kind] = cls
+    return cls
+
+
+@dataclass(frozen=True)
+class RegionDrawing:
+    """How a viewer draws a region: a translucent box, in the viewer's region colour.
+
+    Regions whose drawings share a ``name`` are drawn once (a spot's forwards and
+    reversing regions are one box).
+    """
+
+    name: str
+    size: tuple[float, float, float]
+    X_WB: Pose  # the box centre in world
+
+
+@dataclass(frozen=True)
+class GoalRegion:
+    """One goal region: bounds ``lower``/``upper`` over the kind's coordinates.
+
+    Coordinates listed in ``wrap`` are angles; their bounds may cross pi.
+    Subclasses set ``kind``, are registered with :func:`register_region`, and
+    implement :meth:`drawing`.
+    """
+
+    kind: ClassVar[str] = ""
+
+    id: str
+    interpretation: str
+    object: str
+    lower: tuple[float, ...]
+    upper: tuple[float, ...]
+    label: str = ""  # e.g. "top grasp", "face +x", "forwards"
+    wrap: tuple[int, ...] = ()
+    attributes: dict = field(default_factory=dict, compare=False)
+
+    def __post_init__(self):
+        if len(self.lower) != len(self.upper):
+            raise ValueError("lower and upper bounds differ in length")
+        for i, (lo, hi) in enumerate(zip(self.lower, self.upper)):
+            if lo > hi and i not in self.wrap:
+                raise ValueError(f"region {self.id}: lower > upper on axis {i}")
+
+    @staticmethod
+    def make(kind: str, **fields) -> "GoalRegion":
+        """A region of the registered class for ``kind``.
+
+        Raises:
+            ValueError: no class is registered for ``kind``.
+        """
+        cls = REGION_KINDS.get(kind)
+        if cls is None:
+            raise ValueError(f"unknown goal region kind {kind!r} (known: {', '.join(REGION_KINDS)})")
+        return cls(**fields)
+
+    def sample(self, rng: np.random.Generator) -> np.ndarray:
+        """A uniform draw in the bounds (angles wrap where listed)."""
+        lo, hi = np.asarray(self.lower, float), np.asarray(self.upper, float)
+        span = hi - lo
+        for i in self.wrap:
+            if span[i] < 0:  # a wrapped interval such as [3.0, -3.0]
+                span[i] += 2 * np.pi
+        v = lo + rng.random(len(lo)) * span
+        if self.wrap:
+            idx = list(self.wrap)
+            v[idx] = wrap_angle(v[idx])
+        return v
+
+    def contains(self, v: np.ndarray, tol: float = 1e-6) -> bool:
+        """Whether a vector of the kind's coordinates lies in the bounds."""
+        v = np.asarray(v, float)
+        for i, (x, lo, hi) in enumerate(zip(v, self.lower, self.upper)):
+            if i in self.wrap:
+                mid = lo + wrap_angle(hi - lo) / 2 if hi >= lo else lo + (hi - lo + 2 * np.pi) / 2
+                half = (hi - lo) / 2 if hi >= lo else (hi - lo + 2 * np.pi) / 2
+                if abs(wrap_angle(x - mid)) > half + tol:
+                    return False
+            elif not lo - tol <= x <= hi + tol:
+                return False
+        return True
+
+    def to_json(self) -> dict:
+        """The region as JSON-ready data (bounds rounded to 1e-6)."""
+        return {
+            "id": self.id,
+            "kind": self.kind,
+            "label": self.label,
+            "object": self.object,
+            "lower": [round(x, 6) for x in self.lower],
+            "upper": [round(x, 6) for x in self.upper],
+            **self._json_fields(),
+        }
+
+    def _json_fields(self) -> dict:
+        """The kind's own fields for :meth:`to_json`."""
+        return {}
+
+    def drawing(self, scene) -> RegionDrawing:
+        """What a viewer draws for this region in ``scene`` (a :class:`lazyground.scene.Scene`)."""
+        raise NotImplementedError
+
+    def reached(self, q: np.ndarray, world, tol: float = 1e-6) -> bool:
+        """Whether planned configuration ``q`` of ``world`` (a DrakeWorld or any world the kind needs) is in the region."""
+        raise NotImplementedError

@@ -1,0 +1,175 @@
+"""Goal regions as classes: registry by kind, sampling, JSON, drawing, and goal sources looked up by kind."""
+
+from dataclasses import dataclass
+from textwrap import dedent
+
+import numpy as np
+import pytest
+
+from grounding.regions import occupant_geometry
+from lazyground import goals
+from lazyground.geometry import Pose
+from lazyground.goals import ConfigGoalSource, goal_source_for, register_goal_source
+from lazyground.regions import REGION_KINDS, ConfigRegion, GoalRegion, PlacementRegion, RegionDrawing, WorkspaceRegion, register_region
+from lazyground.regions import base as regions_base
+from lazyground.scene import parse_scene
+from tests.unit.toy import SPACE, WALLS, BoxWorld
+
+LOT = dedent("""
+    name: lot
+    robot: {model: car, start: {}}
+    objects:
+      - {id: spot_1, type: parking_spot, geometry: {box: [5.0, 2.5, 0.05]}, pose: {xyz: [10, 5, 0], rpy: [0, 0, 1.5708]}}
+      - {id: spot_2, type: parking_spot, occupied: true, geometry: {box: [5.0, 2.5, 0.05]}, pose: {xyz: [10, 8, 0]}}
+      - {id: spot_3, type: parking_spot, occupied: true, occupant: {box: [3.0, 1.5, 1.2]}, geometry: {box: [5.0, 2.5, 0.05]}, pose: {xyz: [10, 11, 0]}}
+""")
+
+
+def _pose_fields():
+    return dict(interpretation="pick:c", object="c", lower=(-0.1, 0, 0.2, -np.pi, 0, 0), upper=(0.1, 0, 0.2, np.pi, 0, 0),
+                X_WR=Pose((1.0, 2.0, 0.5), (0.0, np.pi / 2, 0.3)), X_SE=Pose((-0.05, 0.0, 0.0)))
+
+
+def test_every_kind_has_one_class_and_make_builds_it():
+    assert REGION_KINDS == {"config": ConfigRegion, "workspace": WorkspaceRegion, "placement": PlacementRegion}
+    r = GoalRegion.make("config", id="a", interpretation="i", object="a", lower=(0.0,), upper=(1.0,))
+    assert type(r) is ConfigRegion and r.kind == "config"
+    with pytest.raises(ValueError, match="unknown goal region kind 'cone'"):
+        GoalRegion.make("cone", id="a", interpretation="i", object="a", lower=(0.0,), upper=(1.0,))
+    with pytest.raises(ValueError, match="x, y, z, roll, pitch, yaw"):
+        WorkspaceRegion(id="w", interpretation="i", object="o", lower=(0, 0), upper=(1, 1))
+
+
+def test_config_sampling_wraps_and_stays_inside():
+    r = ConfigRegion(id="s/forwards", interpretation="park:s", object="s", lower=(0.0, 0.0, 3.0), upper=(1.0, 1.0, -3.0), wrap=(2,))
+    rng = np.random.default_rng(7)
+    for _ in range(200):
+        v = r.sample(rng)
+        assert r.contains(v) and -np.pi <= v[2] < np.pi
+        assert abs(v[2]) >= 3.0 - 1e-12  # the short arc across pi, never through 0
+    assert not r.contains(np.array([0.5, 0.5, 0.0]))
+
+
+def test_same_seed_same_samples_for_every_kind():
+    regions = [ConfigRegion(id="c", interpretation="i", object="c", lower=(0, 0), upper=(1, 2)),
+               WorkspaceRegion(id="w", frame="ee", **_pose_fields()), PlacementRegion(id="p", **_pose_fields())]
+    for r in regions:
+        a, b = np.random.default_rng(3), np.random.default_rng(3)
+        assert np.array_equal(r.sample(a), r.sample(b))
+
+
+def test_pose_coordinates_invert_pose_in_world():
+    r = WorkspaceRegion(id="w", frame="ee", **_pose_fields())
+    rng = np.random.default_rng(1)
+    for _ in range(20):
+        v = r.sample(rng)
+        back = r.coordinates_of(r.pose_in_world(v).matrix())
+        assert np.allclose(back, v, atol=1e-9) and r.contains(back)
+
+
+def test_json_keys_per_kind():
+    c = ConfigRegion(id="c", interpretation="i", object="c", lower=(0, 0), upper=(1, 2), label="forwards")
+    assert list(c.to_json()) == ["id", "kind", "label", "object", "lower", "upper"]
+    w = WorkspaceRegion(id="w", frame="ee", approach=(-0.08, 0, 0), **_pose_fields())
+    j = w.to_json()
+    assert list(j) == ["id", "kind", "label", "object", "lower", "upper", "frame", "X_WR", "X_SE", "approach"]
+    assert j["kind"] == "workspace" and j["frame"] == "ee" and j["approach"] == [-0.08, 0, 0]
+    assert PlacementRegion(id="p", **_pose_fields()).to_json()["kind"] == "placement"
+
+
+def test_drawings_say_what_to_draw_without_a_switch_in_the_viewer():
+    scene = parse_scene(LOT)
+    fwd = ConfigRegion(id="spot_1/forwards", interpretation="park:spot_1", object="spot_1", lower=(0, 0, 0), upper=(1, 1, 1))
+    rev = ConfigRegion(id="spot_1/reversing", interpretation="park:spot_1", object="spot_1", lower=(0, 0, 0), upper=(1, 1, 1))
+    d = fwd.drawing(scene)
+    assert d == rev.drawing(scene) and d.name == "spot_1"  # one box per spot
+    assert np.allclose(d.size, (5.0, 2.5, 1.0)) and np.allclose(d.X_WB.xyz, (10, 5, 0.5))
+    w = WorkspaceRegion(id="c/top", frame="ee", **_pose_fields())
+    dw = w.drawing(scene)
+    assert dw.name == "c/top" and np.allclose(dw.size, (0.2, 0.03, 0.03))  # a thin axis stays visible
+    assert np.allclose(dw.X_WB.matrix(), w.X_WR.compose(Pose((0.0, 0.0, 0.2))).matrix())
+
+
+def test_goal_sources_are_looked_up_by_kind():
+    world = BoxWorld(WALLS)
+    world.space = SPACE
+    r = ConfigRegion(id="c", interpretation="i", object="c", lower=(8.0, 8.0), upper=(9.0, 9.0))
+    assert isinstance(goal_source_for((r,), world), ConfigGoalSource)
+    with pytest.raises(ValueError, match="no goal regions"):
+        goal_source_for((), world)
+
+
+def test_a_new_kind_is_one_class_plus_its_registration(monkeypatch):
+    monkeypatch.setattr(regions_base, "REGION_KINDS", dict(REGION_KINDS))
+    monkeypatch.setattr(goals, "REGION_KINDS", regions_base.REGION_KINDS)
+    monkeypatch.setattr(goals, "GOAL_SOURCES", dict(goals.GOAL_SOURCES))
+
+    @register_region
+    @dataclass(frozen=True)
+    class DiscRegion(GoalRegion):
+        kind = "disc"
+
+        def drawing(self, scene):
+            return RegionDrawing(self.id, (1.0, 1.0, 0.01), Pose())
+
+    built = []
+    register_goal_source(("disc",), lambda regions, world: built.append(regions) or "disc source")
+    disc = GoalRegion.make("disc", id="d", interpretation="i", object="d", lower=(0.0, 0.0), upper=(1.0, 1.0))
+    assert isinstance(disc, DiscRegion) and goal_source_for((disc,), object()) == "disc source" and built == [(disc,)]
+    cfg = ConfigRegion(id="c", interpretation="i", object="c", lower=(0.0,), upper=(1.0,))
+    with pytest.raises(ValueError, match="need different goal sources"):
+        goal_source_for((disc, cfg), object())
+    with pytest.raises(ValueError, match="unknown goal region kind 'cone'"):
+        register_goal_source(("cone",), lambda regions, world: None)
+
+
+def test_a_kind_without_a_source_is_one_clear_error(monkeypatch):
+    monkeypatch.setattr(goals, "GOAL_SOURCES", {})
+    r = ConfigRegion(id="c", interpretation="i", object="c", lower=(0.0,), upper=(1.0,))
+    with pytest.raises(ValueError, match="no goal source registered for region kind 'config'"):
+        goal_source_for((r,), object())
+
+
+def test_what_an_occupied_spot_holds_is_type_data_overridable_per_object():
+    scene = parse_scene(LOT)
+    assert occupant_geometry(scene.object("spot_2"), scene).box == (4.5, 1.8, 1.5)  # grounding/types.yaml
+    assert occupant_geometry(scene.object("spot_3"), scene).box == (3.0, 1.5, 1.2)  # the object's own
+    assert occupant_geometry(scene.object("spot_1"), scene).box == (4.5, 1.8, 1.5)  # asked only when occupied
+
+
+def test_an_occupant_override_is_checked_by_the_strict_loader():
+    with pytest.raises(ValueError, match=r"objects\[0\]\.occupant\.box"):
+        parse_scene(LOT.replace("occupant: {box: [3.0, 1.5, 1.2]}", "occupant: {box: [3.0, -1.5, 1.2]}").replace(
+            "  - {id: spot_1", "  - {id: spot_0, type: parking_spot, occupied: true, occupant: {box: [3.0, -1.5, 1.2]}, geometry: {box: [5.0, 2.5, 0.05]}, pose: {xyz: [0, 20, 0]}}\n  - {id: spot_1", 1))
+
+
+class _StubWorld:
+    """Forward kinematics by table: frame -> pose, whatever q is; optionally carrying an object."""
+
+    def __init__(self, poses, attached=None):
+        self.poses, self.attached = poses, attached
+
+    def frame_pose(self, frame, q):
+        return self.poses[frame]
+
+
+@dataclass(frozen=True)
+class _Attached:
+    body: str
+    X_BO: Pose
+
+
+def test_reached_asks_each_kind_its_own_question():
+    c = ConfigRegion(id="c", interpretation="i", object="c", lower=(0, 0), upper=(1, 2))
+    assert c.reached(np.array([0.5, 1.5]), None) and not c.reached(np.array([1.5, 1.5]), None)
+    w = WorkspaceRegion(id="w", frame="ee", **_pose_fields())
+    v = w.sample(np.random.default_rng(4))
+    inside = w.pose_in_world(v)
+    assert w.reached(None, _StubWorld({"ee": inside}), tol=1e-6)
+    assert not w.reached(None, _StubWorld({"ee": inside.compose(Pose((0.0, 0.0, 0.05)))}), tol=0.01)
+    p = PlacementRegion(id="p", **_pose_fields())
+    X_BO = Pose((0.0, 0.0, 0.1), (0.0, 0.0, 0.4))
+    X_WB = p.pose_in_world(v).compose(X_BO.inverse())  # the hand where the object lands inside
+    assert p.reached(None, _StubWorld({"hand": X_WB}, _Attached("hand", X_BO)), tol=1e-6)
+    with pytest.raises(ValueError, match="attached"):
+        p.reached(None, _StubWorld({"hand": X_WB}))
