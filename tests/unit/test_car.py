@@ -207,13 +207,13 @@ def test_planned_car_paths_are_drivable(kinematics):
     from lazyground.goals import ConfigGoalSource
     from lazyground.planning import solve
     from lazyground.planning.problem import PlannerSettings
-    from lazyground.regions import GoalRegion
+    from lazyground.regions import ConfigRegion
     from tests.unit.toy import BoxWorld  # checks x and y only: a point car
 
     space = make_space(BASE, kinematics, R, OFFSET)
     world = BoxWorld([(18.0, 0.0, 20.0, 22.0)])  # a wall with a gap at the top
-    goal = GoalRegion(id="bay", interpretation="park:bay", object="bay", kind="config",
-                      lower=(30.0, 5.0, -0.15), upper=(30.5, 5.5, 0.15), wrap=(2,))
+    goal = ConfigRegion(id="bay", interpretation="park:bay", object="bay",
+                        lower=(30.0, 5.0, -0.15), upper=(30.5, 5.5, 0.15), wrap=(2,))
     settings = PlannerSettings(step_size=2.0, edge_resolution=0.1, time_limit=1e6, max_iterations=20_000,
                                goal_bias=0.1, goal_extension="connect", kinematics=kinematics)
     solved = 0
