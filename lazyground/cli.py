@@ -59,11 +59,11 @@ def build_parser() -> argparse.ArgumentParser:
     d.add_argument("--seed", type=int, default=0)
     d.add_argument("--debug", action="store_true", help="show tracebacks")
 
-    m = sub.add_parser("import-moveit", help="convert a MoveIt planning-scene YAML into a lazyground scene")
-    m.add_argument("file")
-    m.add_argument("--robot", default="fetch")
-    m.add_argument("-o", "--output", required=True)
-    m.add_argument("--debug", action="store_true", help="show tracebacks")
+    from lazyground.moveit.cli import add_import_options
+    from lazyground.moveit.start import add_start_options
+
+    add_start_options(p)
+    add_import_options(sub.add_parser("import-moveit", help="convert a MoveIt planning-scene YAML into a lazyground scene"))
 
     b = sub.add_parser("bench", help="benchmark strategies and peers (see benchmarks/RESULTS.md)", add_help=False)
     b.add_argument("bench_args", nargs=argparse.REMAINDER)
@@ -107,11 +107,14 @@ def _import_drake() -> None:
 
 def cmd_plan(args) -> int:
     from lazyground import api
+    from lazyground.moveit.start import override_scene_start, start_options
     from lazyground.outputs import output_problem
     from lazyground.report import report_lines, report_to_json
     from lazyground.scene import load_scene
 
-    scene = load_scene(args.scene)
+    scene, start_warnings = override_scene_start(load_scene(args.scene), start_options(args))
+    for line in start_warnings:
+        print(f"warning: {line}", file=sys.stderr)
     try:
         overrides = cli_values(args)
     except ValueError as exc:
@@ -132,6 +135,10 @@ def cmd_plan(args) -> int:
         print(f"interrupted after {report.time_s:.1f} s: {res.iterations} iterations, tree {res.tree_size}, "
               f"{len(res.goal_samples)} goal samples", file=sys.stderr)
         return EXIT_INTERRUPTED
+    if res.status.value == "invalid_start":  # #15: say which start would do
+        from lazyground.drake.start_check import start_hint
+
+        print(f"hint: {start_hint(scene)}", file=sys.stderr)
     _write_visuals(report, scene, args)
     return EXIT_OK if res.solved else EXIT_FAILED
 
@@ -165,12 +172,9 @@ def cmd_demo(args) -> int:
 
 
 def cmd_import_moveit(args) -> int:
-    from lazyground.moveit import import_moveit_file
+    from lazyground.moveit.cli import cmd_import_moveit as run
 
-    for warning in import_moveit_file(args.file, args.robot, args.output):
-        print(f"warning: {warning}", file=sys.stderr)
-    print(f"wrote {args.output}")
-    return EXIT_OK
+    return run(args)
 
 
 def cmd_bench(args) -> int:

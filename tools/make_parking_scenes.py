@@ -109,7 +109,8 @@ def parking_1() -> dict:
         "planner": planner(time_limit=10.0),
         "expect": [
             {"request": "park", "interpretations": ["park:spot_b1", "park:spot_b9", "park:spot_t10", "park:spot_t3"],
-             "success_rate": 0.9, "seeds": 10, "reachable": ["spot_b9", "spot_t10"]},
+             "success_rate": 0.9, "seeds": 10, "max_iterations": 2000, "time_limit": 300.0,
+             "reachable": ["spot_b9", "spot_t10"]},
         ],
     }
 
@@ -147,7 +148,8 @@ def parking_2() -> dict:
         "planner": planner(time_limit=20.0),
         "expect": [
             {"request": "park", "interpretations": ["park:spot_a2", "park:spot_b1", "park:spot_b4", "park:spot_c1", "park:spot_c2"],
-             "success_rate": 0.9, "seeds": 10, "reachable": ["spot_b1", "spot_c1", "spot_c2"]},
+             "success_rate": 0.9, "seeds": 10, "max_iterations": 20000, "time_limit": 300.0,
+             "reachable": ["spot_b1", "spot_c1", "spot_c2"]},
         ],
     }
 

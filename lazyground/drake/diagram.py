@@ -36,6 +36,10 @@ class Attachment:
 
 def drake_shape(g: Geometry):
     """The Drake shape of a scene geometry."""
+    if g.mesh:  # #15: imported MoveIt meshes (OBJ, or STL converted in memory)
+        from lazyground.drake.mesh_shape import mesh_shape
+
+        return mesh_shape(g.mesh)
     if g.box:
         return Box(*g.box)
     if g.cylinder:

@@ -37,6 +37,7 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
     s.trees = [ts, tg]
     rooted = 0
     start_turn = True
+    closest: dict[int, float] = {}  # goal sample -> the smallest gap its subtree has left to the start tree
     while s.time_left():
         if not s.have_samples():
             if s.goals.exhausted():
@@ -57,21 +58,34 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
             gi = s.select() if rng.random() < s.settings.goal_bias else None
             near = tg.nearest(q_rand, label=gi)
             b = _extend(s, tg, near, q_rand) if near >= 0 else -1
-            if gi is not None:
-                if b < 0:
-                    if near >= 0:
-                        s.failed_from.append((1, near))
-                    s.penalize(gi)
-                else:
-                    s.reward(gi)
             if b >= 0:
                 a, reached = _connect(s, ts, tg.nodes[b])
+            if gi is not None:
+                if b < 0 and near >= 0:
+                    s.failed_from.append((1, near))
+                _credit(s, gi, closest, -1.0 if b < 0 else s.space.distance(ts.nodes[a], tg.nodes[b]))
         if reached:  # the connection reached the other tree's new node: a is b
             found = _join(s, ts, a, tg, b)
             if found is not None:
                 return found
         start_turn = not start_turn
     return None
+
+
+def _credit(s: Search, gi: int, closest: dict[int, float], gap: float) -> None:
+    """Reward goal sample gi's subtree for progress towards the start tree, penalise it otherwise.
+
+    A free step that leaves the trees no closer than before (e.g. growing sideways
+    inside a shelf slot) is not progress: rewarding it kept a stuck goal tree on top
+    of the reward-penalty heap. ``gap`` < 0 means the step was blocked. Resampling
+    waits until every goal sample is below the threshold: a goal tree that is stuck
+    costs IK for new samples only when no other goal tree is making progress.
+    """
+    if 0.0 <= gap < closest.get(gi, np.inf):
+        closest[gi] = gap
+        s.reward(gi)
+    else:
+        s.penalize(gi, only_if_all_stuck=True)
 
 
 def _extend(s: Search, tree: Tree, near: int, q_towards: np.ndarray) -> int:

@@ -113,9 +113,15 @@ class Search:
         self.samples[gi].rewards += 1
         self.selector.reward(gi)
 
-    def penalize(self, gi: int) -> None:
+    def penalize(self, gi: int, only_if_all_stuck: bool = False) -> None:
+        """Count a failure of goal sample gi; draw more samples when the strategy asks for them
+        (with ``only_if_all_stuck``, only once every live sample's weight is below the threshold)."""
         self.samples[gi].penalties += 1
-        if self.selector.penalize(gi):
+        wants_more = self.selector.penalize(gi)
+        if wants_more and only_if_all_stuck:
+            threshold = self.settings.resample_threshold
+            wants_more = all(self.selector.weight(i) < threshold for i in range(len(self.samples)) if i not in self.dead)
+        if wants_more:
             self.resamplings += 1
             self.draw(self.settings.resample_count)
 

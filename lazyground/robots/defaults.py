@@ -81,6 +81,9 @@ class RobotDefaults:
     def validate(self) -> str | None:
         if self.start is not None and self.start not in self.named_poses:
             return f"start: no named pose {self.start!r} (named: {', '.join(self.named_poses) or 'none'})"
+        problem = _planner_problem(self.planner)
+        if problem:
+            return problem
         for kind, table in (("acceleration_limits", self.acceleration_limits), ("velocity_limits", self.velocity_limits)):
             for joint, value in table.items():
                 if not value > 0:
@@ -97,6 +100,17 @@ class RobotDefaults:
 
     def acceleration_limit(self, joint: str) -> float | None:
         return self.acceleration_limits.get(joint, self.default_acceleration)
+
+
+def _planner_problem(planner: dict) -> str | None:
+    """The robot's planner block checked as a scene's (the declarations of lazyground.settings), or None."""
+    from lazyground.scene.schema import PlannerSpec  # late: scene loading imports this module
+
+    try:
+        load_dataclass(planner, PlannerSpec, "planner")
+    except SceneError as exc:
+        return str(exc)
+    return None
 
 
 def defaults_for_model(model_file: str | Path) -> RobotDefaults | None:

@@ -50,17 +50,20 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
         raise SceneError(f"{source}: YAML syntax error{where}: {problem}") from None
     if data is None:
         raise SceneError(f"{source}: the scene is empty")
+    from lazyground.scene.robot_fill import fill_from_robot_defaults  # late: it imports robots.defaults
+
     try:
+        data = fill_from_robot_defaults(data, lambda model: resolve_model(model, scene_dir))
         scene = load_dataclass(data, Scene, "")
     except SceneError as exc:
         raise SceneError(f"{source}: {exc}") from None
     model = resolve_model(scene.robot.model, scene_dir)
     if model is None:
         raise SceneError(f"{source}: robot.model: model file {scene.robot.model!r} not found (bundled: {_bundled()})")
-    problem = _overlap_problem(scene.objects)
+    problem = _overlap_problem(scene.objects) or _mesh_problem(scene, scene_dir)
     if problem:
         raise SceneError(f"{source}: {problem}")
-    return replace(scene, robot=replace(scene.robot, model=str(model)), source=source)
+    return replace(scene, robot=replace(scene.robot, model=str(model)), obstacles=_absolute_meshes(scene.obstacles, scene_dir), source=source)
 
 
 def load_scene(path: str | os.PathLike) -> Scene:
@@ -104,3 +107,26 @@ def _overlap_problem(objects: tuple[SceneObject, ...]) -> str | None:
                 idx = objects.index(a)
                 return f"objects[{idx}].pose: {a.id!r} is inside {b.id!r}"
     return None
+
+
+def _mesh_path(file: str, scene_dir: Path | None) -> Path:
+    path = Path(file)
+    return path if path.is_absolute() or scene_dir is None else scene_dir / path
+
+
+def _mesh_problem(scene: Scene, scene_dir: Path | None) -> str | None:
+    for i, o in enumerate(scene.obstacles):
+        if o.geometry.mesh is not None and not _mesh_path(o.geometry.mesh.file, scene_dir).is_file():
+            return f"obstacles[{i}].geometry.mesh.file: {o.id!r}: no such file {o.geometry.mesh.file!r}"
+    return None
+
+
+def _absolute_meshes(obstacles, scene_dir: Path | None):
+    """Mesh files resolved against the scene's folder: Drake opens them later from any cwd."""
+    out = []
+    for o in obstacles:
+        m = o.geometry.mesh
+        if m is not None:
+            o = replace(o, geometry=replace(o.geometry, mesh=replace(m, file=str(_mesh_path(m.file, scene_dir).resolve()))))
+        out.append(o)
+    return tuple(out)

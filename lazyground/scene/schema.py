@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, make_dataclass
+from pathlib import Path
 
 from lazyground.geometry import Pose
 from lazyground.scene.typed_yaml import checked, in_range, positive
@@ -39,22 +40,42 @@ class Sphere:
 
 
 @dataclass(frozen=True)
+class MeshFile:
+    """A mesh file (OBJ or STL; relative paths are relative to the scene file), scaled per axis.
+    Drake collides with its convex hull."""
+
+    file: str
+    scale: tuple[float, float, float] = checked(positive, default=(1.0, 1.0, 1.0))
+
+    def validate(self) -> str | None:
+        if Path(self.file).suffix.lower() not in MESH_SUFFIXES:
+            return f"file: {self.file!r}: mesh files must be {' or '.join(MESH_SUFFIXES)}"
+        return None
+
+
+MESH_SUFFIXES = (".obj", ".stl")
+SHAPES = ("box", "cylinder", "sphere", "mesh")
+
+
+@dataclass(frozen=True)
 class Geometry:
-    """Exactly one of ``box: [x, y, z]``, ``cylinder: {radius, length}``, ``sphere: {radius}``."""
+    """Exactly one of ``box: [x, y, z]``, ``cylinder: {radius, length}``, ``sphere: {radius}``,
+    ``mesh: {file, scale}`` (obstacles only)."""
 
     box: tuple[float, float, float] | None = checked(positive, default=None)
     cylinder: Cylinder | None = None
     sphere: Sphere | None = None
+    mesh: MeshFile | None = None
 
     def validate(self) -> str | None:
-        given = [k for k in ("box", "cylinder", "sphere") if getattr(self, k) is not None]
+        given = [k for k in SHAPES if getattr(self, k) is not None]
         if len(given) != 1:
-            return f"shape: give exactly one of box, cylinder, sphere (got {', '.join(given) or 'none'})"
+            return f"shape: give exactly one of {', '.join(SHAPES)} (got {', '.join(given) or 'none'})"
         return None
 
     @property
     def kind(self) -> str:
-        return "box" if self.box else "cylinder" if self.cylinder else "sphere"
+        return next(k for k in SHAPES if getattr(self, k) is not None)
 
     def half_extents(self) -> tuple[float, float, float]:
         """Half sizes of the shape's axis-aligned box in its own frame."""
@@ -62,6 +83,8 @@ class Geometry:
             return (self.box[0] / 2, self.box[1] / 2, self.box[2] / 2)
         if self.cylinder:
             return (self.cylinder.radius, self.cylinder.radius, self.cylinder.length / 2)
+        if self.mesh:  # typed objects cannot be meshes (Scene.validate); no caller needs a mesh's size
+            raise ValueError("a mesh has no primitive extents")
         r = self.sphere.radius
         return (r, r, r)
 
@@ -174,6 +197,9 @@ class Expectation:
     algorithm: str | None = checked(BY_NAME["algorithm"].problem, default=None)
     goal_bias: float | None = checked(BY_NAME["goal_bias"].problem, default=None)
     reachable: tuple[str, ...] | None = None  # objects a solution may reach; None = any
+    # per planning run: the outcome of a seed then depends on nothing else, not on the machine's load
+    # (time_limit becomes a backstop); tests/scenes requires it in every bundled scene
+    max_iterations: int | None = checked(positive, default=None)
 
 
 @dataclass(frozen=True)
@@ -197,6 +223,9 @@ class Scene:
                 if item.id in seen:
                     return f"{kind}[{i}].id: duplicate id {item.id!r} (also in {seen[item.id]})"
                 seen[item.id] = kind
+        for i, obj in enumerate(self.objects):
+            if obj.geometry.mesh is not None:
+                return f"objects[{i}].geometry.mesh: {obj.id!r}: meshes can only be obstacles"
         return None
 
     def object(self, object_id: str) -> SceneObject:

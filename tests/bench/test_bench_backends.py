@@ -51,7 +51,7 @@ def test_generated_arm_urdf_and_regions():
     regions = arms.goal_regions(12, world.config_free)
     assert len(regions) == arms.GOALS and {r.label for r in regions} <= {"free", "blocked"}
     assert any(r.label == "free" for r in regions)
-    row = run(RunSpec(arms.arm_key(8), "lazyground", "reward-penalty", 0.05, 0, 5.0))
+    row = run(RunSpec(arms.arm_key(8), "lazyground", "reward-penalty", 0.05, 0, 300.0))  # a backstop: the seed decides
     assert row["status"] == "solved", row["message"]
     assert row["interpretation"].startswith("reach:goal_") and row["grounding_s"] == 0.0
 

@@ -141,10 +141,10 @@ def test_ctrl_c_keeps_finished_runs(tmp_path):
            "--runs", "500", "--time-limit", "0.5", "--jobs", "1", "--out", str(out)]
     proc = subprocess.Popen(cmd, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=with_ctrl_c)
     try:
-        deadline = time.time() + 40
+        deadline = time.time() + 300  # a hang backstop only: the test waits for finished runs, however slow
         while not ((out / "results.csv").is_file() and len(_rows(out)) >= 2):
             assert proc.poll() is None, proc.stderr.read()
-            assert time.time() < deadline, "no finished runs within 40 s"
+            assert time.time() < deadline, "no finished runs within 300 s"
             time.sleep(0.2)
         proc.send_signal(signal.SIGINT)
         _, err = proc.communicate(timeout=30)

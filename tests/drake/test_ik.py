@@ -1,5 +1,6 @@
 """IK goal sampling (lazyground.drake.ik) on the Fetch scenes."""
 
+import math
 import time
 from pathlib import Path
 
@@ -16,6 +17,8 @@ from lazyground.geometry import Pose  # noqa: E402
 from lazyground.planning.rrt import path_is_valid  # noqa: E402
 from lazyground.regions import PlacementRegion, WorkspaceRegion  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
+
+NO_DEADLINE = math.inf  # goal sampling bounded by attempts and restarts, never by the clock
 
 SCENES = Path(__file__).resolve().parents[2] / "yaml_scenes"
 
@@ -64,15 +67,17 @@ def _check_samples(source, world, samples, settings):
         dp, angle = source.pose_error(region.frame, q_full, s.extra["X_WG"])
         assert dp <= 1.1 * np.sqrt(3) * settings.position_tolerance and angle <= 1.1 * settings.orientation_tolerance
         v = region_coordinates(region, X)  # the solved pose lies in the region, within the IK tolerance
-        assert region.contains(v, tol=0.01), (region.id, v)
+        # the IK's contract: orientation within 1.1 x its tolerance (the 10 % solver slack); 0.01 flat failed a
+        # legitimate 0.0101 rad yaw once cans got side grasps (#15) and the draws changed
+        assert region.contains(v, tol=1.1 * settings.orientation_tolerance), (region.id, v)
         assert world.space.within_bounds(s.end) and world.config_free(s.end)
 
 
 def test_ik_solutions_satisfy_their_regions(cans1, boxes3):
-    settings = IKSettings()
+    settings = IKSettings(attempt_budget=None)  # restarts only: the samples depend on the seed, not the load
     for (scene, world), request_text in ((cans1, "pick up a can"), (boxes3, "pick up a box")):
         source = IKGoalSource(grounding.ground(request_text, scene).goal_regions, world, settings)
-        samples = source.draw(6, np.random.default_rng(3), time.perf_counter() + 30)
+        samples = source.draw(6, np.random.default_rng(3), NO_DEADLINE)
         _check_samples(source, world, samples, settings)
         assert {s.region for s in samples} != {samples[0].region} or len(samples) == 1  # round robin spreads them
 
@@ -92,22 +97,21 @@ def _far_region(frame="gripper_link"):
                            X_WR=Pose((1.6, 0.0, 0.8), (0.0, np.pi / 2, 0.0)), label="top")
 
 
-def test_failed_attempts_are_bounded_in_time(cans1):
+def test_failed_attempts_are_bounded_by_counts(cans1):
     _, world = cans1
     rng = np.random.default_rng(0)
     filtered = IKGoalSource((_far_region(),), world)
-    t0 = time.perf_counter()
-    assert filtered.attempt(0, rng, time.perf_counter() + 10) == (None, "out of reach")
-    assert time.perf_counter() - t0 < 1.0  # the reach map is built once (~0.2 s), then a lookup
-    slow = IKGoalSource((_far_region(),), world, IKSettings(reach_check=False, attempt_budget=0.2))
-    for _ in range(3):
-        t0 = time.perf_counter()
-        sample, reason = slow.attempt(0, rng, time.perf_counter() + 10)
-        assert sample is None and reason in ("ik failed", "time")
-        assert time.perf_counter() - t0 < 1.5  # budget 0.2 s plus at most one solve
-    t0 = time.perf_counter()  # an expired deadline stops before any solve
-    assert slow.attempt(0, rng, time.perf_counter() - 1.0) == (None, "time")
-    assert time.perf_counter() - t0 < 0.1
+    assert filtered.attempt(0, rng, NO_DEADLINE) == (None, "out of reach")
+    assert filtered.counters.solves == 0  # the reach map answers without a solve
+    settings = IKSettings(reach_check=False, attempt_budget=None)
+    slow = IKGoalSource((_far_region(),), world, settings)
+    for k in range(1, 4):  # without a time budget an attempt is exactly `restarts` solves
+        assert slow.attempt(0, rng, NO_DEADLINE) == (None, "ik failed")
+        assert slow.counters.solves == k * settings.restarts and slow.counters.successes == 0
+    # the time budget and the deadline cut an attempt short; an expired one before any solve
+    for budget, deadline in ((0.0, NO_DEADLINE), (None, time.perf_counter() - 1.0)):
+        cut = IKGoalSource((_far_region(),), world, IKSettings(reach_check=False, attempt_budget=budget))
+        assert cut.attempt(0, rng, deadline) == (None, "time") and cut.counters.solves == 0
 
 
 def test_placement_regions_need_an_attached_object(cans1):
@@ -120,7 +124,7 @@ def test_placement_regions_need_an_attached_object(cans1):
 
 def test_pick_up_a_can_end_to_end(cans1):
     scene, world = cans1
-    report = api.plan(scene, "pick up a can", seed=3, world=world, time_limit=40.0)
+    report = api.plan(scene, "pick up a can", seed=3, world=world, time_limit=1e6, max_iterations=12_000)  # seed 3: 301
     res = report.result
     assert res.solved, res.message
     assert report.chosen_object in ("Can3", "Can4")  # Can1/Can2 sit deep in shelf 1
@@ -137,7 +141,7 @@ def test_samples_of_one_region_are_not_copies_of_one_ik_branch(boxes3):
     scene, world = boxes3
     regions = grounding.ground("pick up a box", scene).goal_regions
     source = IKGoalSource(regions, world)
-    samples = source.draw(40, np.random.default_rng(0), time.perf_counter() + 60)
+    samples = source.draw(40, np.random.default_rng(0), NO_DEADLINE)
     nearest = []
     for j in {s.region for s in samples}:
         q = np.array([s.q for s in samples if s.region == j])

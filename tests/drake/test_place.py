@@ -37,9 +37,12 @@ def on_surface_upright(scene, report, clearance=0.01, tol=0.006):
     assert R[:, 2] @ np.array([0, 0, 1.0]) > np.cos(0.03)  # upright within 0.03 rad
 
 
+BY_ITERATIONS = {"time_limit": 1e6, "max_iterations": 10_000}  # each step bounded by iterations, never by the clock
+
+
 def solved_report(scene, request, seeds=range(3), **kw):
     for seed in seeds:
-        report = api.plan(scene, request, seed=seed, **kw)
+        report = api.plan(scene, request, seed=seed, **{**BY_ITERATIONS, **kw})
         if report.result.solved:
             return report
     pytest.fail(f"{request!r} not solved for seeds {list(seeds)}")
@@ -87,7 +90,7 @@ def test_fallback_when_the_picked_cup_cannot_be_placed():
         interps.append(Interpretation(iid, "place", (cup.id,), target.id, regions_for(cup, "pick", iid, scene),
                                       regions_for(target, "support", iid, scene)))
     g = Grounding("put a cup somewhere", "place", tuple(interps))
-    settings = api.planner_settings(scene, time_limit=90.0)
+    settings = api.planner_settings(scene, **BY_ITERATIONS)
     fell_back = 0
     for seed in range(2):
         outcome = place.run(scene, g, settings, np.random.default_rng(seed), Worlds(scene), seed=seed)

@@ -9,15 +9,13 @@ function that fails the test.
 
 from __future__ import annotations
 
-import time
-
 import pytest
 import yaml
 
 import grounding
 from grounding.model import GroundingError
 from lazyground import api, cli
-from tests.reliability.conftest import CORPUS, scene_path
+from tests.reliability.conftest import CORPUS, HAS_DRAKE, scene_path
 
 SCENE_FILES = {
     "parking": scene_path("parking_1"),
@@ -68,16 +66,15 @@ def test_bad_request(case, monkeypatch, capsys):
     monkeypatch.setattr(grounding, "ground", recording_ground)
     monkeypatch.setattr(api.tasks, "run", no_planning)  # every task starts here
     monkeypatch.setattr(api, "make_goal_source", no_planning)
-    t0 = time.perf_counter()
+    if HAS_DRAKE:  # refused before any Drake work: the refusal is cheap (asserted by what runs, not by the clock)
+        monkeypatch.setattr("lazyground.drake.world.DrakeWorld", no_planning)
     code = cli.main(["plan", scene, text])
-    elapsed = time.perf_counter() - t0
     captured = capsys.readouterr()
     err = captured.err.splitlines()
     assert code == cli.EXIT_BAD_INPUT, (code, captured.err)
     assert len(err) == 1 and err[0].startswith("error: "), captured.err
     assert "Traceback" not in captured.err and captured.out == ""
     assert case["error"] in err[0], err[0]
-    assert elapsed < 2.0, f"refusing took {elapsed:.2f} s"
     if case.get("class", "GroundingError") == "GroundingError":
         assert len(outcomes) == 1 and isinstance(outcomes[0], GroundingError), outcomes
     else:

@@ -3,7 +3,8 @@
 * start in collision -> ``invalid_start`` naming the colliding pair;
 * every goal region infeasible -> ``no_valid_goal`` with the reason per region
   (IK never succeeds: a can 3 m away; every IK answer collides: a caged can);
-* goals that exist but cannot be reached -> ``timeout`` within the time limit + 10 %.
+* goals that exist but cannot be reached -> ``timeout`` within the time limit + 10 %
+  (limits counted in CPU time, tests/conftest.py `cpu_clock`, so other processes do not count).
 """
 
 from __future__ import annotations
@@ -49,15 +50,19 @@ def test_fetch_no_valid_goal_gives_the_reason_per_region():
     cage = {"id": "cage", "geometry": {"box": [0.2, 0.2, 0.3]}, "pose": {"xyz": [0.4, 0.5, 0.8]}}
     far_table = moved(TABLE, (3.0, 0.0, 0.6525), "far_table")
     far_can = moved(CAN, (3.0, 0.0, 0.73), "Can2")
-    report = api.plan(fetch_scene([cage], [TABLE, CAN, far_table, far_can]), "pick up a can", seed=0, time_limit=30)
+    report = api.plan(fetch_scene([cage], [TABLE, CAN, far_table, far_can]), "pick up a can", seed=0, time_limit=1e6)
     res = report.result
     assert res.status is PlanStatus.NO_VALID_GOAL, res.message
     assert res.message.startswith("no valid goal configuration in any goal region: ")
     per_region = dict(part.split(": ", 1) for part in res.message.split(": ", 1)[1].split("; "))
-    assert set(per_region) == {"Can1/top", "Can2/top"}
+    grasps = ("top", "side")  # a can's grasp regions (grounding/types.yaml, #15)
+    assert set(per_region) == {f"{can}/{g}" for can in ("Can1", "Can2") for g in grasps}
     assert re.fullmatch(r"0/\d+ valid \(in collision x\d+\)", per_region["Can1/top"]), per_region
-    assert re.fullmatch(r"0/\d+ valid \((out of reach|ik failed)( x\d+)?(, (out of reach|ik failed) x\d+)?\)", per_region["Can2/top"]), per_region
-    assert res.time_s < 30 * 0.5  # given up on, not timed out
+    # from the side some poses are also out of reach or fail IK; the ones IK reaches collide with the cage
+    assert re.fullmatch(r"0/\d+ valid \((.*, )?in collision x\d+(, .*)?\)", per_region["Can1/side"]), per_region
+    for g in grasps:
+        assert re.fullmatch(r"0/\d+ valid \((out of reach|ik failed)( x\d+)?(, (out of reach|ik failed) x\d+)?\)", per_region[f"Can2/{g}"]), per_region
+    assert sum(st.attempts for st in res.region_stats) <= len(per_region) * 50  # given up on after 50 attempts per region
 
 
 def overshoots(scene, request, limits, seeds, world=None):
@@ -72,7 +77,7 @@ def overshoots(scene, request, limits, seeds, world=None):
     return out
 
 
-def test_parking_timeout_within_limit(tmp_path):
+def test_parking_timeout_within_limit(tmp_path, cpu_clock):  # limits in CPU time: the same overshoot under load
     scene = load_scene(walled_lot(tmp_path))
     world = DrakeWorld(scene, visual=False)
     over = overshoots(scene, "park", (0.3, 0.6, 1.0), seeds=(0, 1), world=world)
@@ -80,7 +85,7 @@ def test_parking_timeout_within_limit(tmp_path):
     assert max(over) <= OVERSHOOT
 
 
-def test_fetch_timeout_within_limit():
+def test_fetch_timeout_within_limit(cpu_clock):  # limits in CPU time: the same overshoot under load
     """The arm is boxed in around its tucked start; valid grasps of the can exist outside."""
     scene = fetch_scene(ARM_CAGE, [TABLE, CAN])
     world = DrakeWorld(scene, visual=False)

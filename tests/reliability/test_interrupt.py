@@ -34,11 +34,11 @@ class InterruptingWorld(BoxWorld):
 
 def test_solve_returns_interrupted_with_partial_statistics():
     world = InterruptingWorld(WALLS, after=3000)
-    settings = PlannerSettings(step_size=0.5, time_limit=60.0, goal_bias=0.1)
+    settings = PlannerSettings(step_size=0.5, time_limit=1e6, goal_bias=0.1)  # the interrupt, not the clock, ends it
     res = solve(SPACE, world, goal_source(world, [UNREACHABLE]), START, settings, np.random.default_rng(0), seed=0)
     assert res.status is PlanStatus.INTERRUPTED and res.path is None
     assert res.iterations > 10 and res.tree_size > 10 and res.goal_samples
-    assert res.time_s < 30 and res.seed == 0
+    assert res.time_s > 0 and res.seed == 0
     assert res.region_stats[0].valid > 0
 
 
@@ -65,33 +65,46 @@ def _interrupt(proc, after: float, within: float = 5.0):
     return out, err, time.perf_counter() - t0
 
 
+READY = (
+    "import sys\n"
+    "import lazyground.api, lazyground.drake.world, lazyground.report\n"
+    "from lazyground.cli import main\n"
+    "from lazyground.planning import search\n"
+    "start = search.Search.__init__\n"
+    "def announce(self, *args, **kwargs):\n"
+    "    start(self, *args, **kwargs)\n"
+    "    print('planning', file=sys.stderr, flush=True)\n"
+    "search.Search.__init__ = announce\n"
+    "sys.exit(main(sys.argv[1:]))\n"
+)
+"""Runs the CLI like ``python -m lazyground``, and says on stderr when the planner starts, so the
+signal lands inside the planner however long imports and world building take on a loaded machine."""
+
+
+def _popen_planning(argv):
+    """The CLI with ``argv``, once its planner has started (the "planning" line read off stderr)."""
+    proc = _popen([sys.executable, "-c", READY] + argv)
+    assert proc.stderr.readline().strip() == "planning", proc.communicate()
+    return proc
+
+
 @needs_drake
 def test_cli_ctrl_c_exits_130_with_one_line(tmp_path):
     scene = walled_lot(tmp_path)
-    proc = _popen([sys.executable, "-m", "lazyground", "plan", str(scene), "park", "--time-limit", "30"])
-    out, err, took = _interrupt(proc, after=2.0)
+    proc = _popen_planning(["plan", str(scene), "park", "--time-limit", "30"])
+    out, err, took = _interrupt(proc, after=0.5)
     assert proc.returncode == 130, (out, err)
     lines = err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("interrupted"), err
     assert "Traceback" not in err and took < 5.0
 
 
-READY = (
-    "import sys\n"
-    "import lazyground.api, lazyground.drake.world, lazyground.report\n"
-    "from lazyground.cli import main\n"
-    "print('ready', file=sys.stderr, flush=True)\n"
-    "sys.exit(main(sys.argv[1:]))\n"
-)
-
-
 @needs_drake
 def test_cli_ctrl_c_during_planning_prints_partial_statistics(tmp_path):
-    """Imports done first (a line on stderr says so), so the signal lands inside the planner."""
+    """The signal lands inside the planner (a line on stderr says it started), which reports what it did."""
     scene = walled_lot(tmp_path)
-    proc = _popen([sys.executable, "-c", READY, "plan", str(scene), "park", "--time-limit", "30", "--json"])
-    assert proc.stderr.readline().strip() == "ready"
-    out, err, took = _interrupt(proc, after=1.5)
+    proc = _popen_planning(["plan", str(scene), "park", "--time-limit", "30", "--json"])
+    out, err, took = _interrupt(proc, after=1.0)
     assert proc.returncode == 130, (out, err)
     lines = err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("interrupted after "), err

@@ -38,7 +38,7 @@ def test_the_check_finds_a_colliding_path():
     from lazyground import api
 
     scene, world = stress._scene_and_world("parking_1")
-    report = api.plan(scene, "park", seed=1, world=world)
+    report = api.plan(scene, "park", seed=1, world=world, time_limit=1e6)  # solves at 315 iterations, whatever the load
     assert report.result.solved
     assert stress.check_report(report, scene, world) == []
     res = report.result
@@ -48,7 +48,7 @@ def test_the_check_finds_a_colliding_path():
     assert any("collides" in p for p in problems), problems
 
 
-def test_stress():
+def test_stress(cpu_clock):  # time limits and overshoots in CPU time: other processes' load does not count
     runs, notes = stress.plan_runs(RUNS, seed=0)
     rows = stress.run_all(runs, jobs=1)
     summary = stress.summarize(rows)

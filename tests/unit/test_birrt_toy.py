@@ -6,8 +6,9 @@ import pytest
 from lazyground.planning import PlannerSettings, PlanStatus, path_is_valid, solve
 from lazyground.planning.problem import GoalSample
 from tests.unit.toy import INVALID, REACHABLE, SPACE, START, UNREACHABLE, WALLS, BoxWorld, goal_source
+from tests.unit.toy import NO_CLOCK, SOLVE_BUDGET, TIMEOUT_BUDGET
 
-BI = PlannerSettings(step_size=0.5, time_limit=5.0, algorithm="bidirectional")
+BI = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=SOLVE_BUDGET, algorithm="bidirectional")
 
 
 def run(regions, seed, settings=BI, walls=WALLS):
@@ -17,7 +18,7 @@ def run(regions, seed, settings=BI, walls=WALLS):
 
 @pytest.mark.parametrize("strategy", ["reward-penalty", "consecutive", "random"])
 def test_reaches_the_only_reachable_grounding(strategy):
-    settings = PlannerSettings(step_size=0.5, time_limit=5.0, algorithm="bidirectional", strategy=strategy)
+    settings = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=SOLVE_BUDGET, algorithm="bidirectional", strategy=strategy)
     for seed in range(6):
         world, res = run([UNREACHABLE, INVALID, REACHABLE], seed, settings)
         assert res.solved, res.message
@@ -30,7 +31,7 @@ def test_reaches_the_only_reachable_grounding(strategy):
 
 def test_the_pocket_goal_trees_are_penalised_and_more_samples_drawn():
     # Only the enclosed pocket: its subtrees keep hitting the walls, so reward-penalty resamples.
-    settings = PlannerSettings(step_size=0.5, time_limit=0.5, algorithm="bidirectional",
+    settings = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=TIMEOUT_BUDGET, algorithm="bidirectional",
                                initial_goal_samples=4, resample_count=4)
     world, res = run([UNREACHABLE], 0, settings)
     assert res.status is PlanStatus.TIMEOUT
@@ -59,8 +60,8 @@ def test_same_seed_same_path():
 
 def test_thin_obstacle_between_edge_checks_is_never_returned():
     thin = [(4.0, 0.0, 4.001, 10.0)]
-    settings = PlannerSettings(step_size=2.0, edge_resolution=1.0, time_limit=0.5, algorithm="bidirectional",
-                               validation_factor=1000.0)
+    settings = PlannerSettings(step_size=2.0, edge_resolution=1.0, time_limit=NO_CLOCK, max_iterations=400, algorithm="bidirectional",
+                               validation_factor=1000.0)  # rejects from ~1
     world = BoxWorld(thin)
     res = solve(SPACE, world, goal_source(world, [REACHABLE]), START, settings, np.random.default_rng(0))
     assert res.status is PlanStatus.TIMEOUT and res.invalid_paths_rejected >= 1
@@ -88,7 +89,8 @@ def test_a_failing_approach_segment_retires_its_sample(algorithm):
     # The approach from (8, 9) goes 1.5 down, through a thin wall at y = 8.2 the planner never sees.
     walls = WALLS + [(7.0, 8.2, 9.0, 8.2001)]
     world = BoxWorld(walls)
-    settings = PlannerSettings(step_size=0.5, time_limit=0.5, goal_bias=0.5, algorithm=algorithm, validation_factor=1000.0)
+    settings = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=400, goal_bias=0.5, algorithm=algorithm,
+                               validation_factor=1000.0)  # the first rejection comes at 100-200 iterations
     res = solve(SPACE, world, _BadApproach(goal_source(world, [REACHABLE])), START, settings, np.random.default_rng(1))
     assert res.status is PlanStatus.TIMEOUT
     assert res.invalid_paths_rejected >= 1

@@ -235,7 +235,8 @@ def test_interpretations_carry_goal_regions():
     g = ground("put the blue can on the table", scene("kitchen"))
     (i,) = g.interpretations
     assert (i.action, i.objects, i.target) == ("place", ("can_blue",), "table_1")
-    assert [r.kind for r in i.goal_regions] == ["workspace"] and all(r.object == "can_blue" for r in i.goal_regions)
+    # a can: the top grasp and the side grasp (grounding/types.yaml, #15)
+    assert [r.kind for r in i.goal_regions] == ["workspace", "workspace"] and all(r.object == "can_blue" for r in i.goal_regions)
     assert [r.kind for r in i.place_regions] == ["placement"] and i.place_regions[0].object == "table_1"
     assert all(r.interpretation == i.id for r in i.goal_regions + i.place_regions)
     spot = ground("park in bay_c", scene("lot")).interpretations[0]

@@ -1,14 +1,16 @@
 """The RRT of Algorithm 1 on a 2-D toy world with a fake checker."""
 
-import time
+from dataclasses import replace
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 from lazyground.planning import PlannerSettings, PlanStatus, path_is_valid, solve
 from tests.unit.toy import INVALID, REACHABLE, SPACE, START, UNREACHABLE, WALLS, BoxWorld, goal_source
+from tests.unit.toy import NO_CLOCK, SOLVE_BUDGET, TIMEOUT_BUDGET
 
-SETTINGS = PlannerSettings(step_size=0.5, time_limit=5.0, goal_bias=0.1)
+SETTINGS = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=SOLVE_BUDGET, goal_bias=0.1)
 
 
 def run(regions, seed, settings=SETTINGS, walls=WALLS, start=START):
@@ -18,7 +20,7 @@ def run(regions, seed, settings=SETTINGS, walls=WALLS, start=START):
 
 @pytest.mark.parametrize("strategy", ["reward-penalty", "consecutive", "random"])
 def test_reaches_the_only_reachable_grounding(strategy):
-    settings = PlannerSettings(step_size=0.5, time_limit=5.0, goal_bias=0.1, strategy=strategy)
+    settings = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=SOLVE_BUDGET, goal_bias=0.1, strategy=strategy)
     solved = 0
     for seed in range(8):
         world, res = run([UNREACHABLE, INVALID, REACHABLE], seed, settings)
@@ -48,8 +50,8 @@ def test_result_records_counts_and_time_split():
 
 
 def test_reward_penalty_penalises_unreachable_samples_and_resamples():
-    settings = PlannerSettings(step_size=0.5, time_limit=5.0, goal_bias=0.5, initial_goal_samples=4, resample_count=4)
-    world, res = run([UNREACHABLE], 0, PlannerSettings(**{**settings.__dict__, "time_limit": 0.5}))
+    settings = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=SOLVE_BUDGET, goal_bias=0.5, initial_goal_samples=4, resample_count=4)
+    world, res = run([UNREACHABLE], 0, replace(settings, max_iterations=TIMEOUT_BUDGET))
     assert res.status is PlanStatus.TIMEOUT
     assert res.resamplings >= 1
     assert len(res.goal_samples) == 4 + 4 * res.resamplings
@@ -81,20 +83,28 @@ def test_no_valid_goal_names_each_region():
     assert "block: 0/50 valid (in collision x50)" in res.message
 
 
-def test_timeout_respects_the_limit():
+def test_timeout_respects_the_limit(monkeypatch):
+    # The time limit itself, on a fake clock that advances 1 ms per reading: the planner stops at
+    # the first reading past the limit, whatever the machine's load.
+    ticks = iter(range(10**9))
+    clock = SimpleNamespace(perf_counter=lambda: next(ticks) * 1e-3)
+    from lazyground import goals
+    from lazyground.planning import search
+
+    monkeypatch.setattr(search, "time", clock)
+    monkeypatch.setattr(goals, "time", clock)
     settings = PlannerSettings(step_size=0.5, time_limit=0.3, goal_bias=0.1)
-    t0 = time.perf_counter()
     world, res = run([UNREACHABLE], 0, settings)
-    elapsed = time.perf_counter() - t0
     assert res.status is PlanStatus.TIMEOUT and res.path is None
-    assert elapsed < settings.time_limit * 1.1 + 0.05
+    assert settings.time_limit <= res.time_s <= settings.time_limit + 0.1  # a few readings past the limit
+    assert 0 < res.iterations < 300  # at least one reading per iteration
 
 
 def test_thin_obstacle_between_edge_checks_is_never_returned():
     # A wall thinner than the edge resolution: the planner's coarse edge checks can step
     # over it, the fine re-validation must not let such a path out.
     thin = [(4.0, 0.0, 4.001, 10.0)]
-    settings = PlannerSettings(step_size=2.0, edge_resolution=1.0, time_limit=0.5, goal_bias=0.3, validation_factor=1000.0)
+    settings = PlannerSettings(step_size=2.0, edge_resolution=1.0, time_limit=NO_CLOCK, max_iterations=400, goal_bias=0.3, validation_factor=1000.0)  # rejects from ~10
     world = BoxWorld(thin)
     goals = goal_source(world, [REACHABLE])
     res = solve(SPACE, world, goals, START, settings, np.random.default_rng(0))
@@ -104,7 +114,7 @@ def test_thin_obstacle_between_edge_checks_is_never_returned():
 
 @pytest.mark.parametrize("mode,bias", [("extend", 0.1), ("partial", 0.5), ("connect", 0.1)])
 def test_every_goal_extension_reaches_the_goal_and_stays_valid(mode, bias):
-    settings = PlannerSettings(step_size=0.5, time_limit=5.0, goal_bias=bias, goal_extension=mode)
+    settings = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=SOLVE_BUDGET, goal_bias=bias, goal_extension=mode)
     solved = 0
     for seed in range(5):
         world, res = run([UNREACHABLE, REACHABLE], seed, settings)

@@ -34,6 +34,9 @@ def test_no_defaults_file_is_none(tmp_path):
     ("model: a.urdf\nend_effector: {frame: tool0, approach_axis: w}\n", "approach_axis"),
     ("model: a.urdf\nacceleration_limits: {j1: -1}\n", "must be > 0"),
     ("model: a.urdf\nspeed: 3\n", "speed"),
+    ("model: a.urdf\nplanner: {algorithm: rrtstar}\n", "planner.algorithm: unknown algorithm 'rrtstar'"),  # #15: settings' checks
+    ("model: a.urdf\nplanner: {step_size: -1}\n", "planner.step_size"),
+    ("model: a.urdf\nplanner: {per_algorithm: {rrt: {speed: 1}}}\n", "speed"),
 ])
 def test_bad_defaults_are_one_line_naming_the_file(tmp_path, text, words):
     path = tmp_path / "robot.yaml"

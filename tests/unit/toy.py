@@ -48,7 +48,9 @@ class BoxWorld:
         return max(0, first_bad - 1) / (len(qs) - 1)
 
     def explain(self, q) -> str:
-        return "point inside a box"
+        q = np.asarray(q, float)
+        hits = [i for i, (x0, y0, x1, y1) in enumerate(self.boxes) if x0 <= q[0] <= x1 and y0 <= q[1] <= y1]
+        return ", ".join(f"robot collides with box {i}" for i in hits) or "no colliding pair found"
 
 
 SPACE = ConfigSpace(("x", "y"), np.zeros(2), np.full(2, 10.0))
@@ -64,6 +66,12 @@ WALLS = [
     (7.0, 6.0, 9.0, 7.5),  # a solid block (goal inside it is invalid)
 ]
 START = np.array([1.0, 1.0])
+
+# Outcomes are bounded by iteration counts, never by the clock (a loaded CI machine must
+# give the same answers): a time limit that is never reached, and two iteration budgets.
+NO_CLOCK = 1e6  # s
+SOLVE_BUDGET = 20_000  # iterations: far more than any seeded solve below needs (a few hundred)
+TIMEOUT_BUDGET = 3_000  # iterations: twice what the first resampling in the pocket needs (1,200-1,500)
 
 
 def region(name, x, y, half=0.3):

@@ -49,7 +49,7 @@ def test_cli_meshcat_loop_once_and_html(tmp_path, capsys):
     from lazyground.cli import main
 
     html = tmp_path / "c.html"
-    rc = main(["plan", str(PARKING), "park", "--seed", "0", "--meshcat", "--loop-once", "--html", str(html)])
+    rc = main(["plan", str(PARKING), "park", "--seed", "0", "--time-limit", "1000", "--meshcat", "--loop-once", "--html", str(html)])
     out = capsys.readouterr().out
     assert rc == 0
     assert "meshcat: http://" in out

@@ -1,0 +1,144 @@
+"""A serial kinematic chain read off a Drake plant, evaluated in batches with numpy.
+
+Drake's ``CalcRelativeTransform`` and ``CalcJacobianSpatialVelocity`` cost tens
+of microseconds per call from Python, one configuration at a time. Goal
+sampling solves IK from many random starts; here the chain from the world to
+an end-effector frame becomes a list of fixed transforms and joint axes, so the
+pose and geometric Jacobian of B configurations come from a few batched matrix
+products. The plant stays the reference: tests compare both at random
+configurations.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from pydrake.multibody.tree import PrismaticJoint, RevoluteJoint, WeldJoint
+
+REVOLUTE, PRISMATIC = 0, 1
+
+
+@dataclass(frozen=True)
+class Chain:
+    """World -> frame E through joints 0..n-1 (root first).
+
+    ``X_before[k]`` is the fixed transform from the child side of joint k-1 (the
+    world for k = 0) to joint k's axis frame; ``X_after`` from the last joint to E.
+    ``index[k]`` is joint k's coordinate in the plant's position vector.
+    """
+
+    X_before: np.ndarray  # (n, 4, 4)
+    X_after: np.ndarray  # (4, 4)
+    axes: np.ndarray  # (n, 3), unit, in the joint's own frame (the motion is about z after alignment)
+    kinds: np.ndarray  # (n,) REVOLUTE or PRISMATIC
+    index: np.ndarray  # (n,) plant position index
+
+    @property
+    def n(self) -> int:
+        return len(self.kinds)
+
+    def forward(self, q_chain: np.ndarray, jacobian: bool = False):
+        """World poses X_WE (B, 4, 4) of B chain configurations (B, n); with ``jacobian``
+        also the geometric Jacobians (B, 6, n), rows (angular; linear) in world.
+
+        Every joint's frame is turned so that its axis is z (``chain_to_frame`` folds
+        the turn into the fixed transforms): a joint's motion then rotates the first
+        two columns of the orientation so far, or shifts along its third.
+        """
+        q = np.atleast_2d(q_chain)
+        B = q.shape[0]
+        R = np.empty((B, 3, 3))
+        R[:] = np.eye(3)
+        p = np.zeros((B, 3))
+        origins = np.empty((B, self.n, 3))
+        axes_W = np.empty((B, self.n, 3))
+        c, s = np.cos(q), np.sin(q)
+        for k in range(self.n):
+            p += R @ self.X_before[k, :3, 3]
+            R = R @ self.X_before[k, :3, :3]
+            origins[:, k] = p
+            axes_W[:, k] = R[:, :, 2]
+            if self.kinds[k] == PRISMATIC:
+                p += R[:, :, 2] * q[:, k, None]
+            else:  # R @ Rz(q): turn the first two columns
+                x = R[:, :, 0].copy()
+                ck, sk = c[:, k, None], s[:, k, None]
+                R[:, :, 0] = x * ck + R[:, :, 1] * sk
+                R[:, :, 1] = R[:, :, 1] * ck - x * sk
+        p += R @ self.X_after[:3, 3]
+        R = R @ self.X_after[:3, :3]
+        X = np.zeros((B, 4, 4))
+        X[:, :3, :3], X[:, :3, 3], X[:, 3, 3] = R, p, 1.0
+        if not jacobian:
+            return X
+        J = np.zeros((B, 6, self.n))
+        rev = self.kinds == REVOLUTE
+        a, r = axes_W, p[:, None, :] - origins  # axis and lever of every joint, in world
+        J[:, 0:3, rev] = a[:, rev].transpose(0, 2, 1)
+        cross = np.stack([a[..., 1] * r[..., 2] - a[..., 2] * r[..., 1],
+                          a[..., 2] * r[..., 0] - a[..., 0] * r[..., 2],
+                          a[..., 0] * r[..., 1] - a[..., 1] * r[..., 0]], axis=1)
+        J[:, 3:6] = np.where(rev, cross, a.transpose(0, 2, 1))
+        return X, J
+
+
+def _align_z(axis: np.ndarray) -> np.ndarray:
+    """A rotation (4x4) whose z column is ``axis``."""
+    z = axis / np.linalg.norm(axis)
+    helper = np.array([1.0, 0.0, 0.0]) if abs(z[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    x = np.cross(helper, z)
+    x /= np.linalg.norm(x)
+    T = np.eye(4)
+    T[:3, :3] = np.column_stack([x, np.cross(z, x), z])
+    return T
+
+
+def joints_to_world(plant, body) -> list:
+    """The joints from ``body`` up to the world, nearest first (welds included).
+
+    Raises:
+        ValueError: a body on the way hangs on no joint.
+    """
+    out = []
+    world = plant.world_body().index()
+    while body.index() != world:
+        joint = next((plant.get_joint(j) for j in plant.GetJointIndices() if plant.get_joint(j).child_body().index() == body.index()), None)
+        if joint is None:
+            raise ValueError(f"body {body.name()} is not connected to the world by joints")
+        out.append(joint)
+        body = joint.parent_body()
+    return out
+
+
+def chain_to_frame(plant, frame) -> Chain:
+    """The chain from the world to ``frame`` (a plant Frame).
+
+    Raises:
+        ValueError: a joint on the way is neither revolute, prismatic nor welded
+            (e.g. a floating or planar base), which this chain cannot express.
+    """
+    joints = joints_to_world(plant, frame.body())[::-1]  # root first
+    X_before, axes, kinds, index = [], [], [], []
+    pending = np.eye(4)  # fixed transforms since the last moving joint
+    for joint in joints:
+        X_PF = joint.frame_on_parent().GetFixedPoseInBodyFrame().GetAsMatrix4()
+        X_MC = joint.frame_on_child().GetFixedPoseInBodyFrame().inverse().GetAsMatrix4()
+        if isinstance(joint, WeldJoint):
+            pending = pending @ X_PF @ joint.X_FM().GetAsMatrix4() @ X_MC
+            continue
+        if isinstance(joint, RevoluteJoint):
+            kinds.append(REVOLUTE)
+            axes.append(np.asarray(joint.revolute_axis(), float))
+        elif isinstance(joint, PrismaticJoint):
+            kinds.append(PRISMATIC)
+            axes.append(np.asarray(joint.translation_axis(), float))
+        else:
+            raise ValueError(f"joint {joint.name()} ({joint.type_name()}) cannot be part of an IK chain")
+        A = _align_z(axes[-1])  # the joint frame turned so its axis is z, and back after it
+        X_before.append(pending @ X_PF @ A)
+        index.append(joint.position_start())
+        pending = A.T @ X_MC
+    X_after = pending @ frame.GetFixedPoseInBodyFrame().GetAsMatrix4()
+    return Chain(np.array(X_before).reshape(-1, 4, 4), X_after, np.array(axes).reshape(-1, 3),
+                 np.array(kinds, int), np.array(index, int))
