@@ -196,9 +196,10 @@ def parking_3() -> dict:
         "planner": planner(time_limit=20.0),
         "expect": [
             {"request": "park", "interpretations": ["park:spot_n4", "park:spot_n9", "park:spot_p0", "park:spot_s12", "park:spot_s2"],
-             # measured 27/30 within the scene's 20 s on a loaded machine (benchmarks/RESULTS.md); the regression
-             # test gives 40 s, as a shared machine once solved only 7 of 10 in 20 s
-             "success_rate": 0.8, "seeds": 10, "time_limit": 40.0, "reachable": ["spot_n4", "spot_n9", "spot_s12", "spot_s2"]},
+             # an iteration budget, not the clock: seeds 0-9 need at most 18,335 iterations (seed 1); measured
+             # 27/30 within the scene's 20 s on a loaded machine (benchmarks/RESULTS.md)
+             "success_rate": 0.9, "seeds": 10, "max_iterations": 20000, "time_limit": 300.0,
+             "reachable": ["spot_n4", "spot_n9", "spot_s12", "spot_s2"]},
         ],
     }
 
