@@ -24,7 +24,7 @@ from pathlib import Path
 
 from lazyground.bench import arms
 from lazyground.bench.runner import ALGORITHMS, RunSpec, execute, row_key, Progress
-from lazyground.settings import BY_NAME, Algorithm, Strategy
+from lazyground.settings import BY_NAME, Algorithm, Kinematics, Strategy
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 SCENES_DIR = REPO_ROOT / "yaml_scenes"
@@ -123,7 +123,8 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
         raise BenchUsageError(f"no scene to run: {notes[0]}")
     algorithms = _checked("algorithms", "algorithm", _csv_list(args.algorithms, preset.get("algorithms", (Algorithm.RRT,))))
     configs = [(ALGORITHMS[a], s, b) for a in algorithms for b in biases for s in strategies]
-    if args.peers and args.kinematics not in (None, "holonomic"):
+    kinematics = getattr(args, "kinematics", None)  # absent from Namespaces built by hand (tests)
+    if args.peers and kinematics not in (None, Kinematics.HOLONOMIC):
         raise BenchUsageError("--peers plan holonomic paths only; leave out --kinematics or --peers")
     if args.peers:
         from lazyground.bench.ompl_peer import MISSING, ompl_available
@@ -138,7 +139,7 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
             limit = args.time_limit if args.time_limit is not None else _scene_time_limit(key)
             request = args.request or preset.get("requests", {}).get(Path(key).stem)
             for planner, strategy, bias in configs:
-                specs.append(RunSpec(key, planner, strategy, bias, args.seed + i, limit, request, args.kinematics))
+                specs.append(RunSpec(key, planner, strategy, bias, args.seed + i, limit, request, kinematics))
     return specs, notes, preset.get("title", "Computation time (s)")
 
 
