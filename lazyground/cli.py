@@ -16,6 +16,7 @@ import traceback
 from pathlib import Path
 
 from lazyground.interrupt import work_begins
+from lazyground.motion import cli_options as motion_options
 from lazyground.settings import add_cli_options, cli_values
 
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
@@ -47,6 +48,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--plot", metavar="FILE", help="parking scenes: write a top-down PNG")
     p.add_argument("--animate", metavar="FILE", help="parking scenes: write a top-down GIF")
     p.add_argument("--debug", action="store_true", help="show tracebacks")
+    motion_options.add_arguments(p)
 
     g = sub.add_parser("ground", help="print the interpretations of a request and their goal regions")
     g.add_argument("scene")
@@ -116,7 +118,7 @@ def cmd_plan(args) -> int:
     for line in start_warnings:
         print(f"warning: {line}", file=sys.stderr)
     try:
-        overrides = cli_values(args)
+        overrides = cli_values(args) | motion_options.overrides_from_args(args)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
     problem = output_problem(scene, args.html, args.plot, args.animate)
@@ -140,6 +142,10 @@ def cmd_plan(args) -> int:
 
         print(f"hint: {start_hint(scene)}", file=sys.stderr)
     _write_visuals(report, scene, args)
+    if res.solved:
+        from lazyground.motion.export import write_outputs
+
+        write_outputs(report, args, sys.stderr if args.json else sys.stdout)
     return EXIT_OK if res.solved else EXIT_FAILED
 
 

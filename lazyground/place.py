@@ -20,6 +20,7 @@ import numpy as np
 
 from grounding.model import Grounding
 from lazyground.drake.ik import IKGoalSource
+from lazyground.motion.steps import pick_and_place_motions
 from lazyground.drake.world import DrakeWorld
 from lazyground.geometry import Pose
 from lazyground.plan_report import PlanReport
@@ -107,7 +108,8 @@ def _combine(results: list[PlanResult], status: PlanStatus, path, goal, region, 
 
 def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Generator, worlds: Worlds, *,
         seed: int | None = None, keep_tree: bool = False, place_share: float = PLACE_SHARE) -> Outcome:
-    """Plan "put X on Y": a grasp of any X, then a placement on any Y, with fallback (the "place" task).
+    """Plan "put X on Y": a grasp of any X, then a placement on any Y, with fallback (the "place" task);
+    then each step is shortened and timed (lazyground.motion.steps).
 
     Args:
         scene: the Scene.
@@ -134,8 +136,10 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
     notes: list[str] = []
     results: list[PlanResult] = []
 
+    motion_s = 0.0  # shortening and timing the steps after the solve (lazyground.motion): not planning
+
     def planning_s() -> float:
-        return time.perf_counter() - t0 - (worlds.setup_s - setup_before)
+        return time.perf_counter() - t0 - (worlds.setup_s - setup_before) - motion_s
 
     def finish(status: PlanStatus, message: str, **done) -> Outcome:
         if results:
@@ -184,7 +188,12 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
             excluded.append(obj.id)
             continue
         X_WO = carrying.frame_pose(frame, place.path[-1]).compose(grasp.X_GO)
-        steps = (Step(f"pick {obj.id}", pick, setup_before), Step(f"place {obj.id}", place, setup, grasp))
+        t_motion = time.perf_counter()
+        pick, pick_motion, place, place_motion = pick_and_place_motions(world, carrying, pick, lift.path, place, settings, rng)
+        motion_s = time.perf_counter() - t_motion
+        results[-2:] = [pick, place]  # the shortened steps (the combined result sums their lengths)
+        steps = (Step(f"pick {obj.id}", pick, setup_before, motion=pick_motion),
+                 Step(f"place {obj.id}", place, setup, grasp, motion=place_motion))
         chosen = next(i for i in g.interpretations if i.objects == (obj.id,) and i.target == place.goal_region.object)
         region = replace(place.goal_region, interpretation=chosen.id)  # placement regions are shared by interpretations
         return finish(PlanStatus.SOLVED, "", steps=steps, lift=lift, region=region, goal=place.goal,

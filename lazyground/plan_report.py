@@ -38,6 +38,14 @@ class PlanReport:
         return self.outcome.notes if self.outcome is not None else ()
 
     @property
+    def motion(self):
+        """A one-step task's shortcut and timed trajectory (lazyground.motion.pipeline.Motion); None for
+        several steps (each Step has its own) or none."""
+        if self.outcome is None or len(self.outcome.steps) != 1:
+            return None
+        return self.outcome.steps[0].motion
+
+    @property
     def status(self) -> PlanStatus:
         return self.result.status
 
@@ -64,4 +72,4 @@ class PlanReport:
     def step_report(self, step: Step) -> "PlanReport":
         """``step`` as a report of its own (the JSON output's ``steps`` entries)."""
         return PlanReport(step.label, self.scene, self.seed, self.settings, self.grounding, step.result,
-                          self.joint_names, 0.0, step.setup_s)
+                          self.joint_names, 0.0, step.setup_s, Outcome(step.result, (step,), self.joint_names))

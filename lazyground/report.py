@@ -5,6 +5,8 @@ The report itself is :class:`lazyground.plan_report.PlanReport`.
 
 from __future__ import annotations
 
+from lazyground.motion.export import motion_line, motion_to_json, trajectory_to_json
+from lazyground.motion.steps import report_trajectory
 from lazyground.plan_report import PlanReport
 from lazyground.settings import Algorithm, Kinematics
 from lazyground.tolerance import goal_tolerance_json
@@ -63,9 +65,13 @@ def report_to_json(report: PlanReport) -> dict:
         "regions": {r.id: st.to_json() for r, st in zip(res.regions, res.region_stats)},
         "notes": list(report.grounding.notes) + list(report.notes),
     }
+    if report.motion is not None:
+        out.update(motion_to_json(report.motion))
     if report.steps:
         out["steps"] = [report_to_json(report.step_report(s)) for s in report.steps]
         out.update(_pick_and_place_json(report.outcome))
+        joined = report_trajectory(report)  # the steps' trajectories with the gripper events between
+        out["trajectory"] = trajectory_to_json(joined) if joined is not None else None
     return out
 
 
@@ -103,6 +109,7 @@ def report_lines(report: PlanReport) -> list[str]:
             f"(goal sampling {res.goal_sampling_s:.3f}, collision {res.collision_s:.3f}); "
             f"{res.iterations} iterations, tree {res.tree_size}, {len(res.goal_samples)} goal samples, {res.resamplings} resamplings"
         )
+        lines.extend(motion_line(s.motion) for s in (report, *report.steps) if s.motion is not None)
     else:
         lines.append(f"status: {res.status.value}: {res.message}")
         lines.append(f"time {report.time_s:.3f} s; {res.iterations} iterations, tree {res.tree_size}, {len(res.goal_samples)} goal samples")

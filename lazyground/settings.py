@@ -139,6 +139,7 @@ def _range_phrase(s: Setting) -> str:
 
 _PLANNER = frozenset({Layer.SCENE, Layer.API})
 _EVERYWHERE = frozenset({Layer.SCENE, Layer.API, Layer.CLI})
+_MOTION = frozenset({Layer.API, Layer.CLI})
 
 SETTINGS: tuple[Setting, ...] = (
     Setting("strategy", Strategy, Strategy.REWARD_PENALTY, "goal-selection strategy",
@@ -177,6 +178,13 @@ SETTINGS: tuple[Setting, ...] = (
             frozenset({Layer.API}), low=1.0),
     Setting("collision_padding", float, 0.0, "metres, robot–environment and robot–robot",
             frozenset({Layer.SCENE}), low=0.0),
+    # after the solve (lazyground.motion, issue #16): shortcutting and time parameterisation
+    Setting("shortcut_iterations", int, 100, "shortcut attempts after the solve (0: keep the raw path; "
+            "`--no-shortcut`)", _MOTION, low=0.0),
+    Setting("shortcut_time", float, 1.0, "seconds the shortcutting may take", _MOTION, low=0.0),
+    Setting("speed", float, 1.0, "trajectory speed s: velocity limits x s, acceleration limits x s²", _MOTION,
+            low=0.0, high=1.0, low_open=True),
+    Setting("sample_rate", float, 100.0, "trajectory samples per second", _MOTION, low=0.0, low_open=True),
 )
 BY_NAME: dict[str, Setting] = {s.name: s for s in SETTINGS}
 
@@ -255,7 +263,11 @@ def add_cli_options(parser: argparse.ArgumentParser) -> None:
     for s in declared(Layer.CLI):
         parser.add_argument(s.flag, dest=s.name, type=str if s.choices else s.type, choices=s.choices,
                             metavar=None if s.choices else s.name.upper(),
-                            help=f"{s.doc} ({'' if s.choices else s.allowed() + '; '}default: the scene's)")
+                            help=f"{s.doc} ({'' if s.choices else s.allowed() + '; '}default: {_cli_default(s)})")
+
+
+def _cli_default(s: Setting) -> str:
+    return "the scene's" if Layer.SCENE in s.layers else f"{s.default:g}"
 
 
 def cli_values(args: argparse.Namespace) -> dict[str, Any]:

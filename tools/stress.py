@@ -7,7 +7,10 @@ Every run varies the scene, seed, planner, goal-selection strategy and goal bias
 (drawn from ``--seed``, so the list of runs is reproducible). Every solved
 path is re-checked at a tenth of the planner's edge resolution
 (``path_is_valid``); pick-and-place reports are re-checked with
-``validate_pick_and_place`` (the carried object included). Any exception other
+``validate_pick_and_place`` (the carried object included). Every solved plan's
+timed trajectory (issue #16) is re-checked too: its ends, the curve between
+its samples at the same resolution, and its velocity and acceleration limits
+(``lazyground.motion.validate``). Any exception other
 than a planning status is counted as unexpected. Prints the figures: runs,
 solved, invalid paths found, unexpected exceptions and the largest time-limit
 overshoot (reported planning time / limit - 1). Exit 1 when a path is invalid
@@ -117,8 +120,8 @@ def check_report(report, scene, world) -> list[str]:
     if report.steps:  # pick and place: both steps, the lift and the carried object
         from lazyground.place import validate_pick_and_place
 
-        return validate_pick_and_place(report, scene, fine)
-    problems = []
+        return validate_pick_and_place(report, scene, fine) + _pick_and_place_trajectory_problems(report, scene, world, fine)
+    problems = _trajectory_problems(report, world, world.start, fine)
     if not np.allclose(res.path[0], world.start):
         problems.append("path does not start at the start configuration")
     if not all(world.space.within_bounds(q) for q in res.path):
@@ -129,6 +132,26 @@ def check_report(report, scene, world) -> list[str]:
     if bad >= 0:
         problems.append(f"segment {bad} collides at resolution {fine:g}")
     return problems
+
+
+def _trajectory_problems(report, world, start, fine: float, from_first_free: bool = False) -> list[str]:
+    """The timed trajectory of a solved report (issue #16), re-checked as a curve at ``fine``."""
+    from lazyground.motion.validate import trajectory_problems
+
+    motion = report.motion
+    if motion is None or motion.trajectory is None:
+        return ["solved without a trajectory" + (f" ({motion.note})" if motion is not None and motion.note else "")]
+    return trajectory_problems(motion.trajectory, world.space, world, start, report.result.path[-1], fine, from_first_free)
+
+
+def _pick_and_place_trajectory_problems(report, scene, world, fine: float) -> list[str]:
+    """The pick's trajectory in the world; the place step's (lift first) with the object carried."""
+    from lazyground.tasks.worlds import Worlds
+
+    pick, place = report.steps
+    carrying = Worlds(scene, world, visual=False).get(place.grasp)
+    return (["pick: " + p for p in _trajectory_problems(pick, world, world.start, fine)]
+            + ["place: " + p for p in _trajectory_problems(place, carrying, pick.result.path[-1], fine, from_first_free=True)])
 
 
 def run_one(run: StressRun) -> dict:

@@ -231,6 +231,9 @@ def write_outputs(rows: list[dict], out: Path, title: str, notes: list[str], tot
     from lazyground.bench import ompl_log, tables
 
     md = [tables.markdown_table(rows, f"## {title}"), "## Where the time goes (every finished run, mean seconds)\n", tables.time_split_table(rows)]
+    motion = tables.motion_table(rows)
+    if motion:
+        md += ["## Shortening and timing after the solve (solved runs, medians)\n", motion]
     md += [f"Note: {n}\n" for n in notes]
     (out / "table.md").write_text("\n".join(md))
     print("\n".join(md))

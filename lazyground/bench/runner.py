@@ -30,6 +30,7 @@ FIELDS = (
     "scene", "planner", "strategy", "bias", "seed", "status", "time_s", "grounding_s", "goal_sampling_s",
     "collision_s", "other_s", "iterations", "tree_size", "goal_samples", "resamplings", "interpretation",
     "region", "path_length", "time_limit", "message",
+    "raw_path_length", "shortcut_s", "timing_s", "duration_s",  # after the solve (lazyground.motion; #16)
 )
 
 
@@ -163,7 +164,16 @@ def _run_lazyground(problem: Problem, spec: RunSpec) -> dict:
 
     report = api.plan(problem.scene, problem.request, seed=spec.seed, world=problem.world, **overrides)
     region = report.result.goal_region
-    return result_fields(report.result, report.grounding_s, report.chosen.id if report.chosen else "", region.id if region else "")
+    fields = result_fields(report.result, report.grounding_s, report.chosen.id if report.chosen else "", region.id if region else "")
+    return fields | motion_fields(report.motion)
+
+
+def motion_fields(motion) -> dict:
+    """The CSV fields of a plan's shortcut and trajectory (empty when there is none)."""
+    if motion is None:
+        return {}
+    return dict(raw_path_length=motion.raw_length, shortcut_s=motion.shortcut_s, timing_s=motion.timing_s,
+                duration_s=motion.trajectory.duration if motion.trajectory is not None else "")
 
 
 def result_fields(result, grounding_s: float, interpretation: str, region: str) -> dict:

@@ -156,6 +156,32 @@ def time_split_table(rows: list[dict]) -> str:
     return "\n".join(lines) + "\n"
 
 
+def motion_table(rows: list[dict]) -> str:
+    """Shortening and timing after the solve (solved runs with a motion): medians of the raw and final
+    path lengths and their ratio, of shortening and timing seconds and their share of the planning
+    time, and of the trajectory's duration."""
+    rows = [r for r in rows if r["status"] == "solved" and r.get("raw_path_length") not in ("", None)]
+    if not rows:
+        return ""
+    head = ["Scene", "Strategy", "Bias %", "solved", "raw length", "final length", "final / raw", "shortcut s",
+            "timing s", "(shortcut + timing) / planning", "duration s"]
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    scenes = scenes_of(rows)
+    for (label, bias), per_scene in group(rows).items():
+        for scene in [s for s in scenes if s in per_scene]:
+            rs = per_scene[scene]
+            col = {k: np.array([float(r[k]) if r[k] not in ("", None) else np.nan for r in rs])
+                   for k in ("raw_path_length", "path_length", "shortcut_s", "timing_s", "time_s", "duration_s")}
+            med = {k: float(np.nanmedian(v)) for k, v in col.items()}
+            ratio = float(np.median(col["path_length"] / col["raw_path_length"]))
+            share = float(np.median((col["shortcut_s"] + col["timing_s"]) / col["time_s"]))
+            b = f"{float(bias) * 100:g}" if bias not in ("", None) else "-"
+            lines.append(f"| {scene} | {label} | {b} | {len(rs)} | {med['raw_path_length']:.2f} | {med['path_length']:.2f} | "
+                         f"{ratio * 100:.0f}% | {med['shortcut_s']:.3f} | {med['timing_s']:.3f} | {share * 100:.0f}% | "
+                         f"{med['duration_s']:.2f} |")
+    return "\n".join(lines) + "\n"
+
+
 # --- plots ----------------------------------------------------------------------------------
 
 def _pyplot():

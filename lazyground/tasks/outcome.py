@@ -55,7 +55,12 @@ class Step:
     result: PlanResult
     setup_s: float = 0.0  # building the world this step planned in
     grasp: Grasp | None = None  # the object carried during this step, and how; None: nothing carried
-    trajectory: object | None = None  # a timed trajectory along result.path (issue #16)
+    motion: object | None = None  # the shortcut and its timing (lazyground.motion.pipeline.Motion; issue #16)
+
+    @property
+    def trajectory(self):
+        """The timed trajectory along ``result.path`` (a lazyground.motion Trajectory), if any."""
+        return self.motion.trajectory if self.motion is not None else None
 
     @property
     def attached(self) -> str | None:

@@ -40,10 +40,11 @@ from lazyground.viz.style import (
     CAR_FOOTPRINT, FAILED_RGBA, GOAL_BIASED_RGBA, PATH_DARK_RGBA, PATH_RGBA, REGION_RGBA, REVERSE_RGBA, TREE_RGBA,
     weight_rgba,
 )
-from lazyground.viz.trace import resample_path, tree_edges
+from lazyground.viz.trace import frames_in_time, resample_path, tree_edges
 
 FPS = 30
-STEP_SECONDS = 4.0  # animation length of one planned step
+STEP_SECONDS = 4.0  # animation length of a step without a timed trajectory (else: its real duration)
+RAW_PATH_ALPHA = 0.3  # the planner's raw path, drawn faintly beside the shortened one
 PAUSE_SECONDS = 0.5  # hold at the end of a step
 ROOT = "/lazyground"
 CAMERA_DISTANCE = 1.75  # x the drawn extent's radius; the page's side panel leaves the view ~70 % of the width
@@ -125,12 +126,13 @@ class _Segment:
     report: object
     attached: Attachment | None
     motion: np.ndarray | None
+    trajectory: object = None  # the step's timed Trajectory (lazyground.motion): the replay's clock
 
 
 def _segments(report, scene) -> list[_Segment]:
     """The steps to replay: one for a plain plan; pick, then lift and place (carrying) for pick and place."""
     if not report.steps:
-        return [_Segment(report, None, report.result.path)]
+        return [_Segment(report, None, report.result.path, _trajectory(report))]
     out = []
     lift = report.outcome.lift
     for k, step in enumerate(report.steps):
@@ -139,8 +141,12 @@ def _segments(report, scene) -> list[_Segment]:
         motion = step.result.path
         if k == 1 and motion is not None and lift is not None:  # the lift-off leads into the place step
             motion = np.vstack([lift.path, motion[1:]])
-        out.append(_Segment(step, carried, motion))
+        out.append(_Segment(step, carried, motion, _trajectory(step)))  # the place step's trajectory starts with the lift
     return out
+
+
+def _trajectory(report):
+    return report.motion.trajectory if getattr(report, "motion", None) is not None else None
 
 
 @dataclass(frozen=True)
@@ -158,6 +164,7 @@ class _StepView:
     def __init__(self, segment: _Segment, scene, meshcat: Meshcat, prefix: str):
         report = segment.report
         self.report, self.motion, self.scene, self.meshcat, self.prefix = report, segment.motion, scene, meshcat, prefix
+        self.trajectory = segment.trajectory
         params = MeshcatVisualizerParams(prefix=prefix, delete_on_initialization_event=False)
 
         def add_visualizer(builder):
@@ -213,10 +220,17 @@ class _StepView:
             draw_tube(self.meshcat, f"{path}/path_tube", tube, 0.5 * self.scale, Rgba(*PATH_RGBA))
             if car:
                 self._draw_travel(f"{path}/direction_of_travel", qs)
+        raw = self.report.motion.raw_path if getattr(self.report, "motion", None) is not None else None
+        if raw is not None and not np.array_equal(raw, self.report.result.path):
+            dense = resample_path(raw, 200, self.world.space.wrap)
+            self.meshcat.SetLine(f"{path}/raw_path", self.points(dense), 2.0, Rgba(*PATH_RGBA[:3], RAW_PATH_ALPHA))
 
     def animate(self, t0: float) -> float:
-        """Record the robot along the path from time ``t0``; returns the end time."""
-        if self.motion is None:
+        """Record the robot along its timed trajectory at real speed (else along the path in
+        ``STEP_SECONDS``) from time ``t0``; returns the end time."""
+        if self.trajectory is not None:
+            qs = frames_in_time(self.trajectory, FPS)
+        elif self.motion is None:
             qs = np.atleast_2d(self.start)
         else:
             qs = resample_path(self.motion, int(STEP_SECONDS * FPS) + 1, self.world.space.wrap)
@@ -224,6 +238,8 @@ class _StepView:
             self.context.SetTime(t0 + i / FPS)
             self.world.plant.SetPositions(self.plant_context, self.world.full(q))
             self.world.diagram.ForcedPublish(self.context)
+        if self.trajectory is not None:
+            return t0 + self.trajectory.duration
         return t0 + (len(qs) - 1) / FPS
 
     def _draw_travel(self, path: str, dense: np.ndarray, every: float = 1.5) -> None:

@@ -35,7 +35,7 @@ from lazyground.viz.style import (  # noqa: E402
     TREE_RGBA,
     weight_rgba,
 )
-from lazyground.viz.trace import planar_indices, rect_corners, resample_path, tree_edges  # noqa: E402
+from lazyground.viz.trace import frames_in_time, planar_indices, rect_corners, resample_path, tree_edges  # noqa: E402
 
 WEIGHT_CMAP = ListedColormap([weight_rgba(w) for w in np.linspace(0, 1, 256)], name="goal_weight")
 GROW_FRAMES, DRIVE_FRAMES, HOLD_FRAMES = 24, 40, 8
@@ -58,7 +58,8 @@ def plot_parking(report, scene, path) -> None:
 
 
 def animate_parking(report, scene, path, fps: int = 12) -> None:
-    """Write a top-down GIF: the tree grows, then the car drives along the path.
+    """Write a top-down GIF: the tree grows, then the car drives along the path, at the real speed of
+    its timed trajectory when it has one (else in ``DRIVE_FRAMES`` frames).
 
     The scene is rendered once; each frame redraws only the tree, the trail and
     the car over it (blitting), which keeps a 70-frame GIF to about a second.
@@ -70,6 +71,7 @@ def animate_parking(report, scene, path, fps: int = 12) -> None:
     fig, ax = view.figure(size=(7.2, 5.0), dpi=72)
     view.draw_samples(ax)
     view.draw_arrows(ax)  # the whole route's direction of travel, under the moving car
+    view.draw_raw_path(ax)
     tree = LineCollection([], colors=[TREE_RGBA], linewidths=0.6, zorder=3, animated=True)
     ax.add_collection(tree)
     trail, = ax.plot([], [], color=PATH_RGBA, lw=2.5, zorder=6, animated=True)
@@ -82,14 +84,21 @@ def animate_parking(report, scene, path, fps: int = 12) -> None:
     fig.canvas.draw()
     background = fig.canvas.copy_from_bbox(fig.bbox)
     segments = view.tree_segments()
-    drive = view.resampled(DRIVE_FRAMES) if view.path is not None else np.repeat(view.start[None], DRIVE_FRAMES, 0)
+    # GIFs time frames in centiseconds (browsers slow delays under 2 cs down): the nearest at least 2 cs
+    frame_ms = 10 * max(2, round(100 / fps))
+    if view.trajectory is not None:  # the GIF's clock is the trajectory's: one frame every frame_ms
+        drive = frames_in_time(view.trajectory, 1000.0 / frame_ms)
+    elif view.path is not None:
+        drive = view.resampled(DRIVE_FRAMES)
+    else:
+        drive = np.repeat(view.start[None], DRIVE_FRAMES, 0)
     grow = GROW_FRAMES if len(segments) else 0
     frames = []
-    for frame in range(grow + DRIVE_FRAMES + HOLD_FRAMES):
+    for frame in range(grow + len(drive) + HOLD_FRAMES):
         if frame < grow:
             tree.set_segments(segments[: int(len(segments) * (frame + 1) / grow)])
         else:
-            k = min(frame - grow, DRIVE_FRAMES - 1)
+            k = min(frame - grow, len(drive) - 1)
             xy = drive[: k + 1][:, list(view.ix[:2])]
             trail.set_data(xy[:, 0], xy[:, 1])
             car.set_xy(view.footprint(drive[k]))
@@ -100,7 +109,7 @@ def animate_parking(report, scene, path, fps: int = 12) -> None:
     plt.close(fig)
     palette = frames[-1].quantize(colors=128)  # one shared palette keeps the GIF small and steady
     frames = [f.quantize(palette=palette, dither=Image.Dither.NONE) for f in frames]
-    frames[0].save(str(path), save_all=True, append_images=frames[1:], duration=int(1000 / fps), loop=0, optimize=True)
+    frames[0].save(str(path), save_all=True, append_images=frames[1:], duration=frame_ms, loop=0, optimize=True)
 
 
 class _View:
@@ -110,6 +119,9 @@ class _View:
         self.report, self.scene, self.res = report, scene, report.result
         self.ix = planar_indices(report.joint_names)
         self.path = self.res.path
+        motion = getattr(report, "motion", None)
+        self.trajectory = motion.trajectory if motion is not None else None
+        self.raw_path = motion.raw_path if motion is not None and not np.array_equal(motion.raw_path, self.path) else None
         q0 = self.path[0] if self.path is not None else self.res.tree[0][0] if self.res.tree is not None else None
         self.start = np.asarray(q0, float) if q0 is not None else _start_from_scene(scene, report.joint_names)
 
@@ -205,11 +217,18 @@ class _View:
     def draw_path(self, ax, footprints: int) -> None:
         if self.path is None:
             return
+        self.draw_raw_path(ax)
         ax.plot(self.path[:, self.ix[0]], self.path[:, self.ix[1]], color=PATH_RGBA, lw=2.5, zorder=6, label="path")
         self.draw_arrows(ax)
         for q in self.resampled(footprints)[1:-1]:
             ax.add_patch(Polygon(self.footprint(q), closed=True, fc="none", ec=PATH_RGBA, lw=0.8, zorder=6))
         ax.add_patch(Polygon(self.footprint(self.path[-1]), closed=True, fc=CAR_RGBA, ec="black", lw=1.0, zorder=8))
+
+    def draw_raw_path(self, ax) -> None:
+        """The planner's raw path, faint and dashed beside the shortened one."""
+        if self.raw_path is not None:
+            ax.plot(self.raw_path[:, self.ix[0]], self.raw_path[:, self.ix[1]], color=PATH_RGBA, alpha=0.35, lw=1.5,
+                    ls="--", zorder=5, label="raw path")
 
     def finish(self, fig, ax, outlines: bool = True) -> None:
         lo, hi = _extent(self.scene)

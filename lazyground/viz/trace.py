@@ -60,3 +60,15 @@ def rect_corners(x: float, y: float, heading: float, length: float, width: float
     c, s = np.cos(heading), np.sin(heading)
     local = np.array([[1, 1], [-1, 1], [-1, -1], [1, -1]]) * [length / 2, width / 2]
     return local @ np.array([[c, s], [-s, c]]) + [x, y]
+
+
+def frames_in_time(trajectory, fps: float) -> np.ndarray:
+    """Configurations of a timed trajectory every 1 / ``fps`` s (and at its end): a replay at real speed.
+
+    The trajectory's samples are interpolated linearly (its ``q`` is continuous: wrapping
+    coordinates are unwrapped).
+    """
+    t, q = trajectory.t, trajectory.q
+    times = np.arange(0.0, t[-1], 1.0 / fps)
+    times = np.append(times, t[-1]) if not len(times) or t[-1] - times[-1] > 1e-9 else times
+    return np.stack([np.interp(times, t, q[:, j]) for j in range(q.shape[1])], axis=1)

@@ -48,6 +48,23 @@ def test_the_check_finds_a_colliding_path():
     assert any("collides" in p for p in problems), problems
 
 
+def test_the_check_finds_a_trajectory_too_fast_or_through_obstacles():
+    """The trajectory re-check is not a tautology either (issue #16)."""
+    from dataclasses import replace
+
+    from lazyground import api
+
+    scene, world = stress._scene_and_world("parking_1")
+    report = api.plan(scene, "park", seed=1, world=world)
+    tr = report.motion.trajectory
+    fast = replace(tr, qd=tr.qd * 1.05)
+    through = replace(tr, q=np.linspace(tr.q[0], tr.q[-1], len(tr.q)))  # straight across the lot
+    for bad, expected in ((fast, "velocity limit"), (through, "collides")):
+        step = report.outcome.steps[0]
+        worse = replace(report, outcome=replace(report.outcome, steps=(replace(step, motion=replace(step.motion, trajectory=bad)),)))
+        assert any(expected in p for p in stress.check_report(worse, scene, world))
+
+
 def test_stress(cpu_clock):  # time limits and overshoots in CPU time: other processes' load does not count
     runs, notes = stress.plan_runs(RUNS, seed=0)
     rows = stress.run_all(runs, jobs=1)

@@ -3,7 +3,8 @@
 Each block names a request; the test asserts the exact set of interpretations
 (when given), a success rate over several seeds (as OMPL's regression tests do,
 not exact paths), that solutions reach an allowed object, and re-checks every
-returned path for collisions at one tenth of the planner's edge resolution.
+returned path and timed trajectory for collisions at one tenth of the planner's
+edge resolution.
 Every block bounds its runs by ``max_iterations`` (IK attempts by restarts, see
 tests/conftest.py), so the outcome of each seed is the same on a loaded machine.
 """
@@ -17,6 +18,7 @@ pytest.importorskip("pydrake")
 import grounding  # noqa: E402
 from lazyground import api  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
+from lazyground.motion.validate import trajectory_problems  # noqa: E402
 from lazyground.place import validate_pick_and_place  # noqa: E402
 from lazyground.planning import path_is_valid  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
@@ -67,5 +69,7 @@ def test_scene_expectation(path, k):
         if res.goal_region.kind == "config":
             assert res.goal_region.contains(res.path[-1])
         assert path_is_valid(world.space, world, res.path, fine) == -1, f"seed {seed}: path collides at {fine:g}"
+        # the timed trajectory too, as a curve (issue #16)
+        assert trajectory_problems(report.motion.trajectory, world.space, world, world.start, res.path[-1], fine) == [], f"seed {seed}"
     rate = solved / expect.seeds
     assert rate >= expect.success_rate, f"{expect.request!r}: solved {solved}/{expect.seeds}"

@@ -38,7 +38,13 @@ def test_gif_is_small_and_the_car_moves(parking, tmp_path):
         first_drive = np.asarray(im.convert("RGB"))
         im.seek(n - 1)
         last = np.asarray(im.convert("RGB"))
-    assert plots.GROW_FRAMES + plots.DRIVE_FRAMES - 5 <= n <= plots.GROW_FRAMES + plots.DRIVE_FRAMES + plots.HOLD_FRAMES
+    # the drive plays the timed trajectory at real speed: one frame per frame time (#16)
+    frame_s = 0.08  # 12 fps asked: 8 cs per frame, what a GIF can store
+    with Image.open(out) as im:
+        im.seek(plots.GROW_FRAMES + 1)
+        assert im.info["duration"] == 80
+    drive = int(np.ceil(report.motion.trajectory.duration / frame_s)) + 1
+    assert plots.GROW_FRAMES + drive - 5 <= n <= plots.GROW_FRAMES + drive + plots.HOLD_FRAMES
     moved = np.abs(first_drive.astype(int) - last.astype(int)).max(axis=2) > 30
     assert moved.sum() > 1_000  # the car left its start and the trail was drawn
 

@@ -1,0 +1,120 @@
+"""After a solve: shorten the path, then time it (what ``api.plan`` runs by default)."""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from lazyground.motion.shortcut import ShortcutResult, ShortcutSettings, ShortcutStatus, shortcut_path
+from lazyground.motion.trajectory import Limits, MotionError, TimingSettings, Trajectory, time_path
+from lazyground.planning.problem import PlanResult, ValidityChecker
+from lazyground.settings import PlannerSettings
+from lazyground.planning.space import ConfigSpace
+
+
+def shortcut_settings(settings: PlannerSettings) -> ShortcutSettings:
+    """The shortcut's settings from the planner's (declared in lazyground.settings)."""
+    return ShortcutSettings(enabled=settings.shortcut_iterations > 0, max_iterations=settings.shortcut_iterations,
+                            time_budget=settings.shortcut_time)
+
+
+def timing_settings(settings: PlannerSettings) -> TimingSettings:
+    return TimingSettings(speed=settings.speed, sample_rate=settings.sample_rate)
+
+
+@dataclass(frozen=True)
+class Motion:
+    """The shortened path and its timed trajectory (None when timing is off or impossible)."""
+
+    shortcut: ShortcutResult
+    trajectory: Trajectory | None
+    shortcut_s: float
+    timing_s: float
+    note: str = ""  # why there is no trajectory
+
+    @property
+    def raw_path(self) -> np.ndarray:
+        return self.shortcut.raw_path
+
+    @property
+    def raw_length(self) -> float:
+        return self.shortcut.raw_length
+
+    @property
+    def time_s(self) -> float:
+        return self.shortcut_s + self.timing_s
+
+
+def make_motion(
+    space: ConfigSpace,
+    checker: ValidityChecker,
+    result: PlanResult,
+    planner: PlannerSettings,
+    limits: Limits | None,
+    rng: np.random.Generator,
+) -> Motion:
+    """Shorten and time a solved result's path.
+
+    Args:
+        space: the planner's configuration space.
+        checker: the planner's validity checker.
+        result: a solved PlanResult (its goal's ``final`` marks a straight approach to keep).
+        planner: the settings it was planned with (resolution, validation factor) and the motion's
+            (shortcut_iterations, shortcut_time, speed, sample_rate).
+        limits: velocity/acceleration limits; None: no trajectory.
+        rng: the plan's generator (continues its stream, so the motion follows from the seed).
+
+    Returns:
+        The Motion; its ``shortcut.path`` passed the fine re-check.
+    """
+    approach = result.goal is not None and result.goal.final is not None
+    short = shortcut_path(space, checker, result.path, planner.resolution, planner.validation_factor,
+                          shortcut_settings(planner), rng, keep_last_segment=approach)
+    if limits is None:
+        return Motion(short, None, short.time_s, 0.0, "no limits for timing")
+    t0 = time.perf_counter()
+    fine = planner.resolution / planner.validation_factor
+    for attempt in (short, _reverted(short)):
+        stops = (len(attempt.path) - 2,) if approach else ()
+        try:
+            traj = time_path(space, checker, attempt.path, limits, fine, timing_settings(planner), stops=stops)
+        except MotionError as exc:
+            if attempt.path is attempt.raw_path:
+                return Motion(short, None, short.time_s, time.perf_counter() - t0, f"no trajectory: {exc}")
+            continue  # a shortcut segment grazes an obstacle between its fine checks: time the raw path instead
+        return Motion(attempt, traj, short.time_s, time.perf_counter() - t0)
+    raise AssertionError("unreachable")
+
+
+def _reverted(short: ShortcutResult) -> ShortcutResult:
+    return replace(short, status=ShortcutStatus.REVERTED, path=short.raw_path, length=short.raw_length)
+
+
+def with_motion(result: PlanResult, motion: Motion) -> PlanResult:
+    """The result with the shortened path as its path (the raw one stays in ``motion``)."""
+    return replace(result, path=motion.shortcut.path, path_length=motion.shortcut.length)
+
+
+def motion_for_world(world, result: PlanResult, planner: PlannerSettings,
+                     rng: np.random.Generator) -> tuple[PlanResult, Motion | None]:
+    """The API's hook: shorten and time a result planned in a DrakeWorld.
+
+    Returns:
+        (the result with the shortened path, its Motion); (result, None) when it is not solved.
+        A robot without limits gets a Motion without trajectory and a note saying why.
+    """
+    if not result.solved or result.path is None:
+        return result, None
+    from lazyground.motion.limits import world_limits
+    from lazyground.scene.typed_yaml import SceneError
+
+    try:
+        limits, note = world_limits(world), ""
+    except SceneError as exc:
+        limits, note = None, f"no trajectory: {exc}"
+    motion = make_motion(world.space, world, result, planner, limits, rng)
+    if note and not motion.note:
+        motion = replace(motion, note=note)
+    return with_motion(result, motion), motion

@@ -1,0 +1,274 @@
+"""Shortcutting a planned path over the planner's protocols (no Drake).
+
+Shortcuts between two random waypoints (OMPL's ``reduceVertices``), between two random
+points anywhere on the path (OMPL's ``shortcutPath``) and partial shortcuts that
+straighten one coordinate only between two points (Geraerts and Overmars, "Creating
+High-quality Paths for Motion Planning", IJRR 2007), which help where a full shortcut is
+blocked but one joint still wanders. The start, the goal and, when the goal sample has
+an approach, the final straight approach segment are kept.
+
+Every new segment is checked at the planner's resolution when it is tried. The fine
+check (``resolution / validation_factor``, as every returned path) is deferred to the
+segments of the final path that are new, because most accepted shortcuts are later cut
+again (checking each one finely when accepted cost 3-5x more on the Fetch scenes).
+Segments that are pieces of the input path were checked finely by the planner. When a
+new segment fails the fine check, the newest earlier version of the path whose new
+segments all pass is returned (the input path, at worst).
+"""
+
+from __future__ import annotations
+
+import enum
+import functools
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from lazyground.motion.curve import segment_lengths
+from lazyground.planning.problem import ValidityChecker
+from lazyground.planning.space import ConfigSpace
+
+
+class ShortcutStatus(str, enum.Enum):
+    SHORTENED = "shortened"
+    UNCHANGED = "unchanged"  # no shortcut found (or none tried)
+    DISABLED = "disabled"
+    BACKTRACKED = "backtracked"  # the last version failed the fine check; an earlier, valid one is returned
+    REVERTED = "reverted"  # the shortened path could not be timed (lazyground.motion.pipeline): the raw one is kept
+
+    def __str__(self) -> str:
+        return self.value
+
+
+@dataclass(frozen=True)
+class ShortcutSettings:
+    """How hard to shorten. Both budgets apply: whichever runs out first stops it."""
+
+    enabled: bool = True
+    max_iterations: int = 100  # shortcut attempts
+    time_budget: float = 1.0  # seconds
+    vertex_fraction: float = 0.5  # share of attempts between two waypoints (they drop waypoints)
+    partial_fraction: float = 0.2  # share of attempts that straighten one coordinate only
+
+    def __post_init__(self):
+        shares = (self.vertex_fraction, self.partial_fraction)
+        if self.max_iterations < 0 or not self.time_budget >= 0 or min(shares) < 0 or sum(shares) > 1:
+            raise ValueError("shortcut settings: max_iterations >= 0, time_budget >= 0, shares >= 0 summing to <= 1")
+
+
+@dataclass(frozen=True)
+class ShortcutResult:
+    """The path after shortcutting, the raw one, and what it cost."""
+
+    status: ShortcutStatus
+    path: np.ndarray
+    raw_path: np.ndarray
+    raw_length: float
+    length: float
+    iterations: int
+    accepted: int
+    time_s: float
+
+
+@dataclass(frozen=True)
+class _Path:
+    """Waypoints and, per segment, whether it is new (not a piece of the input path)."""
+
+    space: ConfigSpace
+    q: list
+    new: list  # per segment: 0 for a piece of the input path, else the version that made it
+
+    @functools.cached_property
+    def cum(self) -> np.ndarray:
+        """Arc length at each waypoint (computed once per version; attempts reuse it)."""
+        return np.concatenate([[0.0], np.cumsum(self.lengths)])
+
+    @functools.cached_property
+    def lengths(self) -> np.ndarray:
+        return segment_lengths(self.space, np.array(self.q))
+
+    def cut(self, i: int, j: int, middle: list, new_middle: list) -> "_Path":
+        """Waypoints ..q[i], *middle, q[j].. ; ``new_middle`` flags the len(middle) + 1 segments between."""
+        return _Path(self.space, self.q[: i + 1] + middle + self.q[j:], self.new[:i] + new_middle + self.new[j:])
+
+
+def shortcut_path(
+    space: ConfigSpace,
+    checker: ValidityChecker,
+    path: np.ndarray,
+    resolution: float,
+    validation_factor: float,
+    settings: ShortcutSettings,
+    rng: np.random.Generator,
+    keep_last_segment: bool = False,
+) -> ShortcutResult:
+    """Shorten ``path`` (start and goal kept).
+
+    Args:
+        space: the planner's configuration space (interpolation, metric).
+        checker: the planner's validity checker (``edge_free``, ``configs_free``).
+        path: (n, dim) waypoints, valid at ``resolution / validation_factor``.
+        resolution: the planner's edge-check spacing; new segments are tried at it.
+        validation_factor: new segments of the result are checked at ``resolution / validation_factor``.
+        settings: budgets and the shares of the three kinds of shortcut.
+        rng: the only source of randomness (the plan's generator).
+        keep_last_segment: keep the last segment as it is (a goal sample's straight approach).
+
+    Returns:
+        A ShortcutResult; ``path`` is never longer than ``raw_path`` and every segment of it is
+        free at the fine resolution.
+    """
+    t0 = time.perf_counter()
+    raw = np.asarray(path, float)
+    raw_length = space.path_length(raw)
+
+    def done(status, out, iterations=0, accepted=0):
+        return ShortcutResult(status, out, raw, raw_length, space.path_length(out), iterations, accepted, time.perf_counter() - t0)
+
+    if not settings.enabled:
+        return done(ShortcutStatus.DISABLED, raw)
+    body, tail = (raw[:-1], raw[-1:]) if keep_last_segment and len(raw) > 2 else (raw, raw[:0])
+    work = _drop_redundant(space, _Path(space, list(body), [0] * (len(body) - 1)))
+    versions = [work]
+    deadline = t0 + settings.time_budget
+    iterations = 0
+    edge = lambda a, b: checker.edge_free(a, b, resolution)  # noqa: E731
+    while iterations < settings.max_iterations and time.perf_counter() < deadline and len(work.q) > 2:
+        iterations += 1
+        draw = rng.random()
+        born = len(versions)
+        if draw < settings.vertex_fraction:
+            new = _try_vertices(edge, work, rng, born)
+        elif draw < settings.vertex_fraction + settings.partial_fraction:
+            new = _try_partial(space, edge, work, rng, born)
+        else:
+            new = _try_full(space, edge, work, rng, born)
+        if new is not None:
+            work = _drop_redundant(space, new)
+            versions.append(work)
+    fine = _FineCheck(space, checker, resolution / validation_factor)
+    k = len(versions) - 1
+    while (bad := fine.first_failure(versions[k])) is not None:
+        k = bad - 1  # the newest version made before the failing segment
+    out = np.array(versions[k].q)
+    out = np.vstack([out, tail]) if len(tail) else out
+    if len(versions) == 1 or space.path_length(out) >= raw_length:
+        return done(ShortcutStatus.UNCHANGED, raw, iterations, 0)
+    status = ShortcutStatus.SHORTENED if k == len(versions) - 1 else ShortcutStatus.BACKTRACKED
+    return done(status, out, iterations, k)
+
+
+class _FineCheck:
+    """The fine check of a version's new segments, each distinct segment checked once."""
+
+    def __init__(self, space: ConfigSpace, checker: ValidityChecker, resolution: float):
+        self.space, self.checker, self.resolution, self.known = space, checker, resolution, {}
+
+    def first_failure(self, p: _Path) -> int | None:
+        """The version that made the first new segment failing the check, or None if all pass."""
+        for a, b, born in zip(p.q[:-1], p.q[1:], p.new):
+            if not born:
+                continue
+            key = (a.tobytes(), b.tobytes())
+            if key not in self.known:
+                self.known[key] = bool(np.all(self.checker.configs_free(self.space.discretize(a, b, self.resolution))))
+            if not self.known[key]:
+                return born
+        return None
+
+
+def _try_vertices(edge, path: _Path, rng, born: int) -> _Path | None:
+    """Replace the waypoints between two random waypoints i < j - 1 by one straight segment."""
+    i, j = np.sort(rng.choice(len(path.q), 2, replace=False))
+    if j - i < 2 or not edge(path.q[i], path.q[j]):
+        return None
+    return path.cut(i, j, [], [born])
+
+
+def _point_at(space: ConfigSpace, q: list, cum: np.ndarray, s: float) -> tuple[int, np.ndarray]:
+    """The segment index k (q[k] -> q[k + 1]) holding arc length s, and the point there."""
+    k = int(np.clip(np.searchsorted(cum, s, side="right") - 1, 0, len(q) - 2))
+    span = cum[k + 1] - cum[k]
+    t = 0.0 if span <= 0 else (s - cum[k]) / span
+    return k, space.interpolate(q[k], q[k + 1], float(np.clip(t, 0.0, 1.0)))
+
+
+def _two_points(space: ConfigSpace, path: _Path, rng: np.random.Generator):
+    """Two random points on different segments, in path order: (ka, a, kb, b, cum), or None."""
+    cum = path.cum
+    if cum[-1] <= 0:
+        return None
+    sa, sb = np.sort(rng.random(2) * cum[-1])
+    ka, a = _point_at(space, path.q, cum, sa)
+    kb, b = _point_at(space, path.q, cum, sb)
+    return None if ka == kb else (ka, a, kb, b, cum)
+
+
+def _try_full(space, edge, path: _Path, rng, born: int) -> _Path | None:
+    """Replace the stretch between two random points by one straight segment, if free and shorter."""
+    picked = _two_points(space, path, rng)
+    if picked is None:
+        return None
+    ka, a, kb, b, cum = picked
+    q = path.q
+    old = space.distance(a, q[ka + 1]) + (cum[kb] - cum[ka + 1]) + space.distance(q[kb], b)
+    if space.distance(a, b) >= old - 1e-12 or not edge(a, b):
+        return None
+    # q[ka] -> a and b -> q[kb + 1] are pieces of old segments: as new as those were
+    return path.cut(ka, kb + 1, [a, b], [path.new[ka], born, path.new[kb]])
+
+
+def _try_partial(space, edge, path: _Path, rng, born: int) -> _Path | None:
+    """Straighten one coordinate between two random points (the others follow the path), if free and shorter."""
+    picked = _two_points(space, path, rng)
+    if picked is None:
+        return None
+    ka, a, kb, b, cum = picked
+    j = int(rng.integers(space.dim))
+    old = [a] + path.q[ka + 1 : kb + 1] + [b]
+    along = np.concatenate([[0.0], np.cumsum(segment_lengths(space, np.array(old)))])
+    if along[-1] <= 0:
+        return None
+    diff_j = space.difference(a, b)[j]
+    new = np.array(old)
+    new[:, j] = a[j] + along / along[-1] * diff_j
+    if space.wrap[j]:
+        new = space.interpolate(new, new, 0.0)  # interpolate wraps angles
+    if space.path_length(new) >= along[-1] - 1e-12:
+        return None
+    if not all(edge(p, q) for p, q in zip(new[:-1], new[1:])):
+        return None
+    middle = list(new)
+    return path.cut(ka, kb + 1, middle, [path.new[ka]] + [born] * (len(middle) - 1) + [path.new[kb]])
+
+
+def _drop_redundant(space: ConfigSpace, path: _Path) -> _Path:
+    """Drop repeated waypoints and waypoints on the straight segment between their neighbours.
+
+    A run of interior waypoints each on the segment between its neighbours lies on one
+    segment from the run's first neighbour to its last, so the whole run goes at once.
+    (Wrapping coordinates' chords are not additive: such waypoints stay, which is safe.)
+    """
+    q = np.array(path.q)
+    new = np.array(path.new)
+    d = path.lengths
+    if np.any(d <= 1e-12):  # repeated waypoints (rare): keep the first of each run, and the goal itself
+        idx = [0]
+        for k in range(1, len(q)):
+            if space.distance(q[idx[-1]], q[k]) > 1e-12:
+                idx.append(k)
+            elif k == len(q) - 1:
+                idx[-1:] = [k] if len(idx) > 1 else [0, k]
+        return _drop_redundant(space, _Path(space, list(q[idx]), list(np.maximum.reduceat(new, idx[:-1]))))
+    if len(q) < 3:
+        return path
+    e = space.embed(q)
+    skip = np.linalg.norm(e[2:] - e[:-2], axis=1)  # q[k] -> q[k + 2]
+    on_line = np.abs(d[:-1] + d[1:] - skip) <= 1e-9 * np.maximum(1.0, skip)
+    if not on_line.any():
+        return path
+    keep = np.concatenate([[True], ~on_line, [True]])
+    starts = np.flatnonzero(keep)[:-1]
+    born = np.maximum.reduceat(new, starts)  # a merged segment is as new as its newest piece
+    return _Path(space, list(q[keep]), list(born))

@@ -1,0 +1,289 @@
+"""Time parameterisation on Drake: TOPP-RA over a smooth curve through a path.
+
+Each piece of the path (pieces end where the robot must stop: the start of a straight
+approach) gets a blended B-spline (:mod:`lazyground.motion.curve`). The sampled output is
+checked densely at the fine resolution (its samples and the joins between them, the very
+check ``lazyground.motion.validate`` re-runs); a piece whose curve collides is redone with
+less blending, then as the piecewise-linear path with a stop at every waypoint. When even
+that fails (the path grazes an obstacle between the points its own fine check tested)
+there is no trajectory (:class:`MotionError`). Drake's ``Toppra`` (Pham and Pham, IEEE T-RO 2018) finds the fastest timing under
+per-joint velocity and acceleration limits. TOPP-RA enforces its constraints at grid
+points; the sampled trajectory is then slowed uniformly by the largest overshoot between
+them, so every sample respects the limits. ``speed`` s scales the limits to s v_max and
+s^2 a_max, i.e. the same motion played 1/s times slower.
+"""
+
+from __future__ import annotations
+
+import functools
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from lazyground.motion.curve import Curve, blended_curve, unwrap_path
+from lazyground.motion.validate import first_colliding_join
+from lazyground.planning.problem import ValidityChecker
+from lazyground.planning.space import ConfigSpace
+
+
+@dataclass(frozen=True)
+class Limits:
+    """Per-coordinate velocity and acceleration limits (positive, finite)."""
+
+    velocity: np.ndarray
+    acceleration: np.ndarray
+
+    def __post_init__(self):
+        for name in ("velocity", "acceleration"):
+            v = np.asarray(getattr(self, name), float)
+            if not (np.all(np.isfinite(v)) and np.all(v > 0)):
+                raise ValueError(f"{name} limits must be positive and finite, got {v}")
+            object.__setattr__(self, name, v)
+
+
+@dataclass(frozen=True)
+class TimingSettings:
+    """``speed`` in (0, 1] scales the limits; samples every 1 / ``sample_rate`` s."""
+
+    speed: float = 1.0
+    sample_rate: float = 100.0  # Hz
+    blends: tuple[float, ...] = (0.3, 0.1, 0.03)  # tried in order; then stops at waypoints
+
+    def __post_init__(self):
+        if not 0 < self.speed <= 1:
+            raise ValueError(f"speed must be in (0, 1], got {self.speed}")
+        if not self.sample_rate > 0:
+            raise ValueError(f"sample_rate must be > 0, got {self.sample_rate}")
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """A timed motion sampled at a fixed rate; ``q`` is unwrapped (continuous) in ``wrap`` coordinates."""
+
+    joint_names: tuple[str, ...]
+    wrap: tuple[bool, ...]
+    t: np.ndarray  # (m,)
+    q: np.ndarray  # (m, dim)
+    qd: np.ndarray
+    qdd: np.ndarray
+    limits: Limits  # the limits it was timed under (already scaled by speed)
+    curve: str  # how it was shaped, e.g. "blend 0.3" or "stops at waypoints", per piece joined by " + "
+    time_s: float = 0.0  # computing it
+    events: tuple[tuple[float, str], ...] = ()  # (t, what) while at rest, e.g. (4.2, "close gripper")
+
+    @property
+    def duration(self) -> float:
+        return float(self.t[-1])
+
+    @property
+    def peak_ratios(self) -> tuple[float, float]:
+        """The largest |qd| / v_max and |qdd| / a_max over the samples."""
+        return float(np.max(np.abs(self.qd) / self.limits.velocity)), float(np.max(np.abs(self.qdd) / self.limits.acceleration))
+
+    @property
+    def limits_bind(self) -> bool:
+        """Whether a velocity or acceleration limit is reached (within 1%) somewhere."""
+        return max(self.peak_ratios) >= 0.99
+
+
+def time_path(
+    space: ConfigSpace,
+    checker: ValidityChecker,
+    path: np.ndarray,
+    limits: Limits,
+    fine_resolution: float,
+    settings: TimingSettings = TimingSettings(),
+    stops: tuple[int, ...] = (),
+) -> Trajectory:
+    """A timed trajectory through ``path`` (start to goal, resting at both).
+
+    Args:
+        space: the planner's configuration space.
+        checker: its validity checker; every curve is checked at ``fine_resolution``.
+        path: (n, dim) waypoints, valid at ``fine_resolution``.
+        limits: per-coordinate velocity and acceleration limits (before ``speed``).
+        fine_resolution: the spacing of the dense check of every curve.
+        settings: speed, sample rate, blends.
+        stops: waypoint indices where the robot stops (e.g. the start of a straight approach);
+            the segment after a stop stays straight.
+
+    Returns:
+        The Trajectory, sampled every ``1 / settings.sample_rate`` s and at its end.
+    """
+    t0 = time.perf_counter()
+    q = unwrap_path(space, path)
+    scaled = Limits(limits.velocity * settings.speed, limits.acceleration * settings.speed**2)
+    cuts = sorted({0, len(q) - 1, *(k for k in stops if 0 < k < len(q) - 1)})
+    pieces = [q[a : b + 1] for a, b in zip(cuts[:-1], cuts[1:])]
+    dt = 1.0 / settings.sample_rate
+    options = [*settings.blends, None]  # None: stop at every waypoint
+    level = [0] * len(pieces)
+    timed = [_time_piece(space, p, options[0], fine_resolution, scaled, dt) for p in pieces]
+    while True:
+        parts = [part for piece in timed for part in piece[0]] or [_Rest(q[0])]
+        t, qs, qd, qdd = _sample(parts, dt)
+        bad = first_colliding_join(space, checker, qs, fine_resolution)
+        if bad is None:
+            break
+        # the piece playing at the colliding join gets less blending; the whole output is checked again
+        # (rarely needed), so that it passes the very check a re-check runs
+        ends = np.cumsum([sum(part.duration for part in piece[0]) for piece in timed])
+        k = min(int(np.searchsorted(ends, t[bad], side="right")), len(pieces) - 1)
+        level[k] += 1
+        if level[k] >= len(options):
+            raise MotionError(f"no collision-free timing: the path grazes an obstacle between its fine-resolution "
+                              f"checks near t = {t[bad]:.2f} s")
+        timed[k] = _time_piece(space, pieces[k], options[level[k]], fine_resolution, scaled, dt)
+    labels = " + ".join(piece[1] for piece in timed)
+    return Trajectory(space.names, tuple(bool(w) for w in space.wrap), t, qs, qd, qdd, scaled, labels, time.perf_counter() - t0)
+
+
+class MotionError(RuntimeError):
+    """No valid timed trajectory could be made (the caller reports it; the path stays valid)."""
+
+
+STRAIGHT = 1.0 / 3.0  # a blend that spaces a straight segment's control points evenly (constant dq/du)
+
+
+def _straight(a: np.ndarray, b: np.ndarray) -> Curve:
+    return blended_curve(np.array([a, b]), STRAIGHT)
+
+
+def _time_piece(space, piece: np.ndarray, blend: float | None, resolution: float, limits: Limits, dt: float):
+    """([timed curves], label) for a piece between two stops: one blended curve, or (``blend`` None,
+    or TOPP-RA failing on the curve) straight segments with a stop at every waypoint."""
+    if len(piece) == 2 or blend is None:
+        label = "straight" if len(piece) == 2 else "stops at waypoints"
+        return [_time_curve(_straight(a, b), limits, dt) for a, b in zip(piece[:-1], piece[1:]) if np.any(a != b)], label
+    try:
+        return [_time_curve(blended_curve(piece[_merge_close(space, piece, resolution)], blend), limits, dt)], f"blend {blend:g}"
+    except RuntimeError:  # TOPP-RA failed on this curve (numerics): stops at waypoints
+        return _time_piece(space, piece, None, resolution, limits, dt)
+
+
+def _merge_close(space: ConfigSpace, piece: np.ndarray, resolution: float) -> np.ndarray:
+    """The indices of the waypoints kept when dropping interior ones closer than ``resolution``
+    to the previous kept one.
+
+    Near-duplicate waypoints make corners with near-zero dq/du; the curve is checked
+    densely anyway, so dropping them only changes which curve is checked.
+    """
+    keep = [0]
+    for k in range(1, len(piece) - 1):
+        if space.distance(piece[keep[-1]], piece[k]) >= resolution:
+            keep.append(k)
+    if len(keep) > 1 and space.distance(piece[keep[-1]], piece[-1]) < resolution:
+        keep.pop()
+    return np.array(keep + [len(piece) - 1])
+
+
+@dataclass(frozen=True)
+class _Timed:
+    """One curve q(u) timed by u(t) on [0, duration]; ``stretch`` >= 1 slows u(t) uniformly."""
+
+    curve: Curve
+    s_of_t: object  # pydrake PiecewisePolynomial u(t)
+    stretch: float
+
+    @property
+    def duration(self) -> float:
+        return self.s_of_t.end_time() * self.stretch
+
+    def evaluate(self, t: np.ndarray):
+        """q, qd, qdd at times t in [0, duration]."""
+        tau = np.clip(np.asarray(t, float) / self.stretch, 0.0, self.s_of_t.end_time())
+        u = np.clip(self.s_of_t.vector_values(tau)[0], 0.0, 1.0)
+        ud = self.s_of_t.derivative(1).vector_values(tau)[0] / self.stretch
+        udd = self.s_of_t.derivative(2).vector_values(tau)[0] / self.stretch**2
+        d1, d2 = self.curve.spline(1)(u), self.curve.spline(2)(u)
+        return self.curve.spline()(u), d1 * ud[:, None], d2 * (ud**2)[:, None] + d1 * udd[:, None]
+
+
+# TOPP-RA's grid: a few points in every knot span of the B-spline (curvature changes
+# within a span, and a grid coarser than the spans overshot the acceleration limit 3-16x
+# between grid points on Fetch paths); its solve costs ~1 ms per grid point.
+GRID_PER_SPAN = 4
+
+
+def _time_curve(curve: Curve, limits: Limits, dt: float) -> _Timed:
+    """TOPP-RA on the curve, then the uniform slow-down that makes dense samples respect the limits."""
+    from pydrake.multibody.optimization import Toppra
+
+    path = _drake_bspline(curve)
+    grid = curve.grid(GRID_PER_SPAN)
+    toppra = Toppra(path, _point_plant(len(limits.velocity)), grid)
+    toppra.AddJointVelocityLimit(-limits.velocity, limits.velocity)
+    toppra.AddJointAccelerationLimit(-limits.acceleration, limits.acceleration)
+    s_of_t = toppra.SolvePathParameterization()
+    if s_of_t is None:
+        raise RuntimeError("TOPP-RA found no time parameterisation")
+    timed = _Timed(curve, s_of_t, 1.0)
+    # probed four times finer than the output samples, so those respect the limits too
+    probe = np.linspace(0.0, timed.duration, max(400, int(4 * timed.duration / dt)))
+    _, qd, qdd = timed.evaluate(probe)
+    over_v = np.max(np.abs(qd) / limits.velocity)
+    over_a = np.max(np.abs(qdd) / limits.acceleration)
+    stretch = max(1.0, over_v, np.sqrt(over_a)) * (1.0 + 1e-6)
+    return _Timed(curve, s_of_t, stretch)
+
+
+def _drake_bspline(curve: Curve):
+    from pydrake.math import BsplineBasis
+    from pydrake.trajectories import BsplineTrajectory
+
+    from lazyground.motion.curve import DEGREE
+
+    basis = BsplineBasis(DEGREE + 1, list(curve.knots))
+    return BsplineTrajectory(basis, [c.reshape(-1, 1) for c in curve.control])
+
+
+@functools.lru_cache(maxsize=8)
+def _point_plant(dim: int):
+    """A plant whose positions are the planned coordinates (a chain of prismatic joints).
+
+    Joint velocity and acceleration limits involve no dynamics, so TOPP-RA needs only a plant
+    with ``dim`` positions and q̇ = v; this keeps timing independent of the robot's plant
+    (fixed joints, a planar car's joint) and of which coordinates are planned.
+    """
+    from pydrake.multibody.plant import MultibodyPlant
+    from pydrake.multibody.tree import PrismaticJoint, SpatialInertia, UnitInertia
+
+    plant = MultibodyPlant(0.0)
+    parent = plant.world_body()
+    for k in range(dim):
+        body = plant.AddRigidBody(f"coordinate_{k}", SpatialInertia(1.0, np.zeros(3), UnitInertia(1.0, 1.0, 1.0)))
+        plant.AddJoint(PrismaticJoint(f"coordinate_{k}", parent.body_frame(), body.body_frame(), [1.0, 0.0, 0.0]))
+        parent = body
+    plant.Finalize()
+    return plant
+
+
+@dataclass(frozen=True)
+class _Rest:
+    """Standing still at q (a path whose start is its goal)."""
+
+    q: np.ndarray
+    duration: float = 0.0
+
+    def evaluate(self, t: np.ndarray):
+        zero = np.zeros((len(t), len(self.q)))
+        return self.q + zero, zero, zero.copy()
+
+
+def _sample(parts: list, dt: float):
+    """The pieces played one after another, sampled every dt and at the end."""
+    total = sum(p.duration for p in parts)
+    t = np.arange(0.0, total, dt)
+    if not len(t) or total - t[-1] > 1e-9:
+        t = np.append(t, total)
+    dim = len(parts[0].evaluate(np.zeros(1))[0][0])
+    q, qd, qdd = (np.empty((len(t), dim)) for _ in range(3))
+    ends = np.cumsum([p.duration for p in parts])
+    which = np.minimum(np.searchsorted(ends, t, side="left"), len(parts) - 1)
+    starts = ends - [p.duration for p in parts]
+    for k, part in enumerate(parts):
+        idx = np.flatnonzero(which == k)
+        if len(idx):
+            q[idx], qd[idx], qdd[idx] = part.evaluate(t[idx] - starts[k])
+    return t, q, qd, qdd

@@ -1,0 +1,107 @@
+"""Shortcutting and the smooth curve on the 2-D toy world (no Drake)."""
+
+import numpy as np
+import pytest
+
+from lazyground.motion.curve import blended_curve, unwrap_path
+from lazyground.motion.validate import first_colliding_join
+from lazyground.motion.shortcut import ShortcutSettings, ShortcutStatus, shortcut_path
+from lazyground.planning import PlannerSettings, path_is_valid, solve
+from lazyground.planning.space import ConfigSpace
+from tests.unit.toy import REACHABLE, SPACE, START, WALLS, BoxWorld, goal_source
+
+SETTINGS = PlannerSettings(step_size=0.5, time_limit=30.0, goal_bias=0.1)
+BUDGET = ShortcutSettings(max_iterations=200, time_budget=1e9)  # iterations decide, never the clock
+FINE = SETTINGS.resolution / SETTINGS.validation_factor
+
+
+def planned(seed):
+    world = BoxWorld(WALLS)
+    res = solve(SPACE, world, goal_source(world, [REACHABLE]), START, SETTINGS, np.random.default_rng(seed), seed=seed)
+    assert res.solved
+    return world, res.path
+
+
+def shorten(world, path, seed, settings=BUDGET, keep_last=False):
+    return shortcut_path(SPACE, world, path, SETTINGS.resolution, SETTINGS.validation_factor, settings,
+                         np.random.default_rng(seed), keep_last_segment=keep_last)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_shortcut_never_lengthens_stays_valid_and_keeps_the_ends(seed):
+    world, path = planned(seed)
+    out = shorten(world, path, seed)
+    assert out.length <= out.raw_length + 1e-12
+    assert np.array_equal(out.path[0], path[0]) and np.array_equal(out.path[-1], path[-1])
+    assert path_is_valid(SPACE, world, out.path, FINE / 4) == -1  # finer still than the fine check
+    assert np.isclose(out.length, SPACE.path_length(out.path))
+    assert out.raw_length == pytest.approx(SPACE.path_length(path))
+
+
+def test_shortcut_shortens_the_toy_paths_substantially():
+    ratios = []
+    for seed in range(6):
+        world, path = planned(seed)
+        ratios.append(shorten(world, path, seed).length / SPACE.path_length(path))
+    # through the wall's gap: the direct route is ~13.5 long; RRT paths wander 1.2-2x that
+    assert np.median(ratios) < 0.85
+
+
+def test_shortcut_is_deterministic_in_the_seed():
+    world, path = planned(0)
+    a, b = shorten(world, path, 5), shorten(world, path, 5)
+    assert np.array_equal(a.path, b.path) and a.iterations == b.iterations == BUDGET.max_iterations
+
+
+def test_disabled_keeps_the_raw_path():
+    world, path = planned(1)
+    out = shorten(world, path, 1, ShortcutSettings(enabled=False))
+    assert out.status is ShortcutStatus.DISABLED and out.path is out.raw_path and out.length == out.raw_length
+
+
+def test_the_final_approach_segment_is_kept():
+    world, path = planned(2)
+    out = shorten(world, path, 2, keep_last=True)
+    assert np.array_equal(out.path[-2:], path[-2:])
+
+
+def test_a_wall_thinner_than_the_planner_resolution_is_caught_by_the_fine_check():
+    # The wall at x in [5, 5.01] hides between the planner's checks (every 0.05) along a shortcut
+    # but not between the fine ones (every 0.005): the shortened path must go around it.
+    thin = BoxWorld([(5.0, 0.0, 5.01, 8.0)])
+    path = np.array([[1.0, 1.0], [3.0, 8.5], [7.0, 8.5], [9.0, 1.0]])
+    assert path_is_valid(SPACE, thin, path, FINE) == -1
+    assert thin.edge_free(np.array([1.0, 1.0]), np.array([9.0, 1.03]), SETTINGS.resolution)  # the coarse check misses it
+    outs = [shorten(thin, path, seed) for seed in range(10)]
+    for out in outs:
+        assert path_is_valid(SPACE, thin, out.path, FINE / 4) == -1
+    assert any(o.status is ShortcutStatus.BACKTRACKED for o in outs)
+
+
+def test_blended_curve_runs_from_start_to_goal_near_the_corners():
+    path = np.array([[1.0, 1.0], [3.0, 8.5], [6.0, 8.5], [8.0, 9.0]])
+    for blend in (0.3, 0.1, 0.03):
+        curve = blended_curve(path, blend)
+        assert np.allclose(curve(0.0), path[0]) and np.allclose(curve(1.0), path[-1])
+        q = curve(np.linspace(0.0, 1.0, 4000))
+        # the curve stays within blend x the longest segment of the polyline
+        seg = [np.min(np.linalg.norm(q[:, None] - np.linspace(a, b, 2000)[None], axis=2), axis=1) for a, b in zip(path[:-1], path[1:])]
+        assert np.min(seg, axis=0).max() <= blend * 8.0
+
+
+def test_the_join_check_finds_a_corner_cut_into_an_obstacle():
+    # A box sits inside the corner at (5, 5): the polyline goes around it, a wide blend cuts into it.
+    world = BoxWorld([(4.3, 4.3, 4.9, 4.9)])
+    path = np.array([[1.0, 5.0], [5.0, 5.0], [5.0, 1.0]])
+    assert path_is_valid(SPACE, world, path, 0.005) == -1
+    u = np.linspace(0.0, 1.0, 500)
+    assert first_colliding_join(SPACE, world, blended_curve(path, 0.3)(u), 0.005) is not None
+    assert first_colliding_join(SPACE, world, blended_curve(path, 0.03)(u), 0.005) is None
+    assert first_colliding_join(SPACE, world, path, 0.005) is None
+
+
+def test_unwrap_takes_the_short_way_round():
+    space = ConfigSpace(("x", "theta"), np.array([0.0, -np.pi]), np.array([10.0, np.pi]), wrap=np.array([False, True]))
+    path = np.array([[0.0, 3.0], [1.0, -3.0], [2.0, -2.0]])
+    out = unwrap_path(space, path)
+    assert np.allclose(out[:, 1], [3.0, 2 * np.pi - 3.0, 2 * np.pi - 2.0])
