@@ -16,11 +16,13 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from grounding.grasps import fit_note
 from grounding.lexicon import Lexicon, load_lexicon, plural
 from grounding.model import Grounding, GroundingError, Interpretation
 from grounding.parse import NounPhrase, Phrase, parse
 from grounding.regions import check_types, regions_for
 from grounding.resolve import Resolver, inventory
+from lazyground.robots.end_effector import end_effector_of
 from lazyground.scene.schema import Scene, SceneObject
 
 MAX_CHARS = 500
@@ -61,7 +63,24 @@ def ground(request: str, scene: Scene, lexicon: Lexicon | None = None) -> Ground
             interps = [_interpretation("place", o, t, scene) for o in objs for t in targets if o.id != t.id]
             if not interps:
                 raise GroundingError(f"nothing to place: {objs[0].id} cannot be put on itself")
+        interps, unfit = _graspable(interps, scene)
+        notes += unfit
     return Grounding(request, action, tuple(interps), tuple(notes + res.notes))
+
+
+def _graspable(interps: list[Interpretation], scene: Scene) -> tuple[list[Interpretation], list[str]]:
+    """Drop interpretations whose object no grasp fits (grounding/grasps.py), with a note each.
+
+    Raises:
+        GroundingError: no object fits the gripper (the notes, with the numbers).
+    """
+    keep = [i for i in interps if i.goal_regions]
+    dropped = sorted({i.objects[0] for i in interps if not i.goal_regions})
+    ee = end_effector_of(scene.robot)
+    unfit = [fit_note(scene.object(o), ee) for o in dropped]
+    if not keep:
+        raise GroundingError("; ".join(unfit))
+    return keep, unfit
 
 
 def _check_text(request) -> str:

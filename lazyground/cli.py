@@ -32,6 +32,25 @@ class _Parser(argparse.ArgumentParser):
         raise UsageError(message)
 
 
+def _add_robot_source_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--package", action="append", metavar="NAME=DIR",
+                   help="folder of the ROS package NAME for package://NAME/... URIs in the robot model (repeatable)")
+    p.add_argument("--srdf", metavar="FILE", help="MoveIt SRDF: disabled collision pairs and named poses")
+
+
+def _robot_overrides(args) -> dict:
+    """The scene robot keys that --package/--srdf replace (paths made absolute: they are relative to the cwd)."""
+    from lazyground.robots.description import parse_package_args
+
+    out: dict = {}
+    packages = parse_package_args(getattr(args, "package", None))
+    if packages:
+        out["packages"] = {name: str(folder.resolve()) for name, folder in packages.items()}
+    if getattr(args, "srdf", None):
+        out["srdf"] = str(Path(args.srdf).resolve())
+    return out
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="lazyground", description="Ground ambiguous requests lazily inside a motion planner.")
     parser.add_argument("--debug", action="store_true", help="show tracebacks")
@@ -41,6 +60,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("scene")
     p.add_argument("request")
     add_cli_options(p)
+    _add_robot_source_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--html", metavar="FILE", help="write a self-contained HTML replay (Meshcat)")
     p.add_argument("--meshcat", action="store_true", help="show the result in a live Meshcat until Ctrl-C")
@@ -54,7 +74,13 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("scene")
     g.add_argument("request")
     g.add_argument("--json", action="store_true")
+    _add_robot_source_options(g)
     g.add_argument("--debug", action="store_true", help="show tracebacks")
+
+    c = sub.add_parser("check-robot", help="load a robot model (URDF/SDF) and report what lazyground makes of it")
+    c.add_argument("model", help="a URDF or SDF file, or a bundled robot name (fetch, panda, ur5e)")
+    _add_robot_source_options(c)
+    c.add_argument("--debug", action="store_true", help="show tracebacks")
 
     d = sub.add_parser("demo", help="plan the bundled demo requests and write the visualisations")
     d.add_argument("--out", default="lazyground_output", help="output folder (default: lazyground_output)")
@@ -76,7 +102,7 @@ def cmd_ground(args) -> int:
     import grounding
     from lazyground.scene import load_scene
 
-    scene = load_scene(args.scene)
+    scene = load_scene(args.scene, _robot_overrides(args))
     g = grounding.ground(args.request, scene)
     if args.json:
         print(json.dumps(g.to_json()))
@@ -114,7 +140,7 @@ def cmd_plan(args) -> int:
     from lazyground.report import report_lines, report_to_json
     from lazyground.scene import load_scene
 
-    scene, start_warnings = override_scene_start(load_scene(args.scene), start_options(args))
+    scene, start_warnings = override_scene_start(load_scene(args.scene, _robot_overrides(args)), start_options(args))
     for line in start_warnings:
         print(f"warning: {line}", file=sys.stderr)
     try:
@@ -177,6 +203,24 @@ def cmd_demo(args) -> int:
     return run_demo(Path(args.out), seed=args.seed)
 
 
+def cmd_check_robot(args) -> int:
+    """Exit 0 when the robot is fine, 2 with the problems (the last line says which)."""
+    from lazyground.robots.description import parse_package_args
+    from lazyground.scene.loader import resolve_model
+    from lazyground.scene.typed_yaml import SceneError
+
+    model = resolve_model(args.model, Path.cwd())
+    if model is None:
+        raise SceneError(f"check-robot: no model file {args.model!r} (give a .urdf/.sdf path or a bundled robot name)")
+    _import_drake()
+    from lazyground.drake.check_robot import check_robot
+
+    report = check_robot(model, args.srdf, parse_package_args(args.package))
+    for line in report.lines():
+        print(line)
+    return EXIT_OK if report.ok else EXIT_BAD_INPUT
+
+
 def cmd_import_moveit(args) -> int:
     from lazyground.moveit.cli import cmd_import_moveit as run
 
@@ -190,7 +234,8 @@ def cmd_bench(args) -> int:
     return bench_main(args.bench_args)
 
 
-COMMANDS = {"plan": cmd_plan, "ground": cmd_ground, "demo": cmd_demo, "import-moveit": cmd_import_moveit, "bench": cmd_bench}
+COMMANDS = {"plan": cmd_plan, "ground": cmd_ground, "demo": cmd_demo, "import-moveit": cmd_import_moveit, "bench": cmd_bench,
+            "check-robot": cmd_check_robot}
 
 
 def main(argv: list[str] | None = None) -> int:

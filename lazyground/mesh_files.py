@@ -27,7 +27,7 @@ def read_stl(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
         (count,) = struct.unpack_from("<I", data, 80)
         if count > 0 and len(data) == 84 + 50 * count:  # binary: the size is exact
             rec = np.frombuffer(data, dtype=np.dtype([("n", "<3f4"), ("v", "<9f4"), ("a", "<u2")]), count=count, offset=84)
-            return _merge(rec["v"].reshape(-1, 3).astype(float))
+            return mesh_from_triangles(rec["v"].reshape(-1, 3, 3).astype(float))
     text = data.decode("ascii", errors="replace")
     if not text.lstrip().lower().startswith("solid"):
         raise MeshFileError(f"{path}: not an STL file (neither binary nor ASCII 'solid')")
@@ -38,11 +38,12 @@ def read_stl(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
         raise MeshFileError(f"{path}: malformed ASCII STL vertex line") from None
     if len(points) == 0 or len(points) % 3:
         raise MeshFileError(f"{path}: ASCII STL has {len(points)} vertices, not whole triangles")
-    return _merge(points)
+    return mesh_from_triangles(points.reshape(-1, 3, 3))
 
 
-def _merge(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    vertices, inverse = np.unique(points, axis=0, return_inverse=True)
+def mesh_from_triangles(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(vertices, triangle indices) of a triangle soup (n, 3, 3), vertices merged where they coincide exactly."""
+    vertices, inverse = np.unique(np.asarray(triangles, float).reshape(-1, 3), axis=0, return_inverse=True)
     return vertices, inverse.reshape(-1, 3)
 
 

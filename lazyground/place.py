@@ -27,6 +27,7 @@ from lazyground.plan_report import PlanReport
 from lazyground.planning.problem import PlannerSettings, PlanResult, PlanStatus
 from lazyground.planning.rrt import path_is_valid, solve
 from lazyground.regions import GoalRegion
+from lazyground.robots.end_effector import frame_of
 from lazyground.scene.schema import Scene
 from lazyground.tasks.outcome import Grasp, Lift, Outcome, Placement, Step
 from lazyground.tasks.worlds import Worlds
@@ -130,7 +131,7 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
     t0 = time.perf_counter()
     setup_before = worlds.setup_s  # world building from here on is set-up, not planning
     deadline = t0 + settings.time_limit
-    frame = scene.robot.end_effector or "gripper_link"
+    frame = frame_of(scene.robot)
     grasps, places = _regions_by_object(g)
     excluded: list[str] = []
     notes: list[str] = []

@@ -17,6 +17,7 @@ from pydrake.multibody.plant import CoulombFriction
 from pydrake.planning import RobotDiagramBuilder
 
 from grounding.regions import occupant_geometry
+from lazyground.drake.robot_model import add_scene_robot
 from lazyground.geometry import Pose
 from lazyground.scene.schema import Geometry, Scene, SceneObject
 from lazyground.scene.typed_yaml import SceneError
@@ -69,11 +70,7 @@ def build_diagram(scene: Scene, attached: Attachment | None = None, visual: bool
     """
     builder = RobotDiagramBuilder(time_step=0.0)
     plant = builder.plant()
-    try:
-        (robot,) = builder.parser().AddModels(scene.robot.model)
-    except Exception as exc:  # Drake's parser raises RuntimeError with multi-line text
-        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise SceneError(f"{scene.source}: robot.model: cannot parse {scene.robot.model}: {first}") from None
+    robot = add_scene_robot(builder, scene)  # package:// URIs, STL/DAE meshes, SRDF pairs: drake/robot_model.py
     if scene.robot.base is not None:
         try:
             base = plant.GetFrameByName(scene.robot.base_link, robot)

@@ -34,11 +34,11 @@ def cmd_import_moveit(args) -> int:
     """Run the import; warnings and notes to stderr, the summary and planner to stdout."""
     from lazyground.moveit.convert import ImportOptions
     from lazyground.moveit.importer import import_moveit_file
-    from lazyground.moveit.meshes import parse_package
+    from lazyground.robots.description import parse_package_args
     from lazyground.moveit.types import load_rules_file, parse_rule
 
     rules = [parse_rule(t) for t in args.type] + (load_rules_file(args.rules) if args.rules else [])
-    options = ImportOptions(robot=args.robot, user_rules=tuple(rules), packages=dict(parse_package(p) for p in args.package),
+    options = ImportOptions(robot=args.robot, user_rules=tuple(rules), packages=parse_package_args(args.package),
                             start=start_options(args), name=args.name or ImportOptions().name)
     result = import_moveit_file(args.file, args.output, options)
     for line in result.summary.warnings:

@@ -39,20 +39,6 @@ class MeshTally:
         self.reasons.append(reason)
 
 
-def parse_package(text: str) -> tuple[str, Path]:
-    """``NAME=DIR`` for ``--package``.
-
-    Raises:
-        SceneError: no ``=`` or a DIR that is not a folder.
-    """
-    name, sep, folder = text.partition("=")
-    if not sep or not name.strip() or not folder.strip():
-        raise SceneError(f"--package: expected NAME=DIR, got {text!r}")
-    if not Path(folder).is_dir():
-        raise SceneError(f"--package {name}: {folder!r} is not a folder")
-    return name.strip(), Path(folder).resolve()
-
-
 def find_mesh(resource: str, lookup: MeshLookup) -> tuple[Path | None, str]:
     """(the mesh file, or None with the reason it was dropped)."""
     if resource.startswith("package://"):

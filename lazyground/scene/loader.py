@@ -37,8 +37,11 @@ def resolve_model(model: str, scene_dir: Path | None) -> Path | None:
     return None
 
 
-def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = None) -> Scene:
-    """Parse scene YAML text; errors are SceneError with one line naming ``source``."""
+def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = None, robot_overrides: dict | None = None) -> Scene:
+    """Parse scene YAML text; errors are SceneError with one line naming ``source``.
+
+    ``robot_overrides`` replaces robot keys before the robot's defaults are filled in (the CLI's
+    ``--package``/``--srdf``: absolute paths)."""
     try:
         data = yaml.safe_load(text)
     except RecursionError:  # PyYAML composes nested collections recursively
@@ -63,11 +66,17 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
     problem = _overlap_problem(scene.objects) or _mesh_problem(scene, scene_dir)
     if problem:
         raise SceneError(f"{source}: {problem}")
-    return replace(scene, robot=replace(scene.robot, model=str(model)), obstacles=_absolute_meshes(scene.obstacles, scene_dir), source=source)
+    # imported here: lazyground.robots reads robot.yaml through this package's typed_yaml
+    from lazyground.robots.complete import complete_robot
+
+    robot = replace(scene.robot, model=str(model), **(robot_overrides or {}))
+    robot = complete_robot(robot, scene_dir, source)
+    return replace(scene, robot=robot, obstacles=_absolute_meshes(scene.obstacles, scene_dir), source=source)
 
 
-def load_scene(path: str | os.PathLike) -> Scene:
-    """Load and validate a scene file; a bare name (``parking_1``) means the bundled scene.
+def load_scene(path: str | os.PathLike, robot_overrides: dict | None = None) -> Scene:
+    """Load and validate a scene file; a bare name (``parking_1``) means the bundled scene
+    (``robot_overrides``: see :func:`parse_scene`).
 
     Raises:
         SceneError: with one line naming the file, the key path and the problem.
@@ -85,7 +94,7 @@ def load_scene(path: str | os.PathLike) -> Scene:
         text = path.read_text(encoding="utf-8")
     except UnicodeDecodeError:
         raise SceneError(f"{path}: not a UTF-8 text file") from None
-    return parse_scene(text, str(path), path.parent)
+    return parse_scene(text, str(path), path.parent, robot_overrides)
 
 
 def _bundled() -> str:

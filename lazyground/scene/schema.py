@@ -15,6 +15,7 @@ from lazyground.scene.typed_yaml import checked, in_range, positive
 from lazyground.settings import BY_NAME, Algorithm, Layer, Setting, declared
 
 OBJECT_TYPES_HINT = "can, box, cup, bottle, table, shelf, parking_spot, ..."
+AXES = ("x", "y", "z", "-x", "-y", "-z")
 
 
 @dataclass(frozen=True)
@@ -127,17 +128,45 @@ class SceneObject:
 
 
 @dataclass(frozen=True)
+class EndEffectorSpec:
+    """The gripper frame and how it grasps: ``approach_axis`` points from the palm towards the
+    object, ``closing_axis`` is the direction the fingers close along, ``opening`` the widest
+    object (m) the fingers take."""
+
+    frame: str
+    offset_xyz: tuple[float, float, float] = (0.0, 0.0, 0.0)  # grasp point in ``frame``
+    offset_rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    approach_axis: str = "x"
+    closing_axis: str = "y"
+    opening: float | None = checked(positive, default=None)
+
+    def validate(self) -> str | None:
+        for key in ("approach_axis", "closing_axis"):
+            if getattr(self, key) not in AXES:
+                return f"{key}: {getattr(self, key)!r} is not one of {', '.join(AXES)}"
+        if self.approach_axis.strip("-") == self.closing_axis.strip("-"):
+            return "closing_axis: must differ from approach_axis"
+        return None
+
+
+@dataclass(frozen=True)
 class RobotSpec:
     """The robot: a model file, its planned joints and its start configuration."""
 
     model: str
-    start: dict[str, float]
+    # {joint: value}; or a named pose ("tucked"); or {from: NAME, joint: value, ...} (overrides);
+    # None = the robot.yaml's start. The loader leaves a {joint: value} mapping (robots/complete.py).
+    start: dict[str, float | str] | str | None = None
     base: PoseSpec | None = None  # weld pose of the model's base link; None = free/planar models
-    base_link: str = "base_link"
-    planned_joints: tuple[str, ...] | None = None  # None = every movable joint
+    base_link: str | None = None  # None = the robot.yaml's, else "base_link"
+    planned_joints: tuple[str, ...] | None = None  # None = the robot.yaml's, else every movable joint
     limits: dict[str, tuple[float, float]] = field(default_factory=dict)  # per position name
     weights: dict[str, float] = field(default_factory=dict)  # per position name, for the metric
-    end_effector: str | None = None
+    # a frame name (x approach, y closing unless it is the robot.yaml's frame) or the full spec
+    end_effector: str | EndEffectorSpec | None = None
+    packages: dict[str, str] = field(default_factory=dict)  # package:// NAME -> folder (relative to the scene)
+    srdf: str | None = None  # MoveIt SRDF: disable_collisions pairs and group_state named poses
+    allowed_collisions: tuple[tuple[str, str], ...] = ()  # link pairs never checked against each other
 
     def validate(self) -> str | None:
         for name, (lo, hi) in self.limits.items():

@@ -53,6 +53,9 @@ def convert(value: Any, tp, path: str):
         options = [a for a in args if a is not type(None)]
         if len(options) == 1:  # Optional[X]: X's own error is the useful one
             return convert(value, options[0], path)
+        same_kind = [a for a in options if _kind(a) == _kind_of(value)]
+        if len(same_kind) == 1:  # e.g. a mapping for ``str | Spec``: the Spec's error is the useful one
+            return convert(value, same_kind[0], path)
         for arg in options:
             try:
                 return convert(value, arg, path)
@@ -98,6 +101,26 @@ def convert(value: Any, tp, path: str):
             _fail(path, f"expected a string, got {_describe(value)}")
         return value
     raise TypeError(f"unsupported schema type {tp!r}")  # a schema bug, not a user error
+
+
+def _kind(tp) -> str:
+    """The YAML kind a schema type takes: mapping, list, string, number, boolean."""
+    origin = get_origin(tp)
+    if dataclasses.is_dataclass(tp) or tp is dict or origin is dict:
+        return "mapping"
+    if tp is list or origin in (list, tuple):
+        return "list"
+    return {str: "string", float: "number", int: "number", bool: "boolean"}.get(tp, "other")
+
+
+def _kind_of(value) -> str:
+    if isinstance(value, dict):
+        return "mapping"
+    if isinstance(value, list):
+        return "list"
+    if isinstance(value, bool):
+        return "boolean"
+    return "string" if isinstance(value, str) else "number" if isinstance(value, (int, float)) else "other"
 
 
 def _describe(value) -> str:

@@ -32,8 +32,8 @@ from pydrake.geometry import Box, Meshcat, MeshcatAnimation, MeshcatVisualizer, 
 from pydrake.math import RigidTransform
 from pydrake.perception import BaseField, Fields, PointCloud
 
-from grounding.regions import END_EFFECTOR
 from lazyground.drake.world import Attachment, DrakeWorld, rigid_transform
+from lazyground.robots.end_effector import frame_of
 from lazyground.viz.replay_page import Layout, decorate
 from lazyground.viz.shapes import draw_tube
 from lazyground.viz.style import (
@@ -314,7 +314,7 @@ def step_label(report, k: int, n: int) -> str:
 def _tracer(world: DrakeWorld, scene) -> _Tracer:
     """The end effector if the robot has one, otherwise its base (lifted off the ground)."""
     plant = world.plant
-    ee = scene.robot.end_effector or END_EFFECTOR
+    ee = frame_of(scene.robot)
     if plant.HasBodyNamed(ee, world.robot):
         return _Tracer(plant.GetBodyByName(ee, world.robot), np.zeros(3), arm=True)
     base = plant.get_body(plant.GetBodyIndices(world.robot)[0])

@@ -290,7 +290,8 @@ def test_mutated_scenes_build_or_raise_scene_error(tree):
 @pytest.mark.parametrize(
     "robot_edit,fragment",
     [
-        ({"base": {"xyz": [0, 0, 0]}}, "robot.base_link: no link 'base_link' in the model"),
+        ({"base": {"xyz": [0, 0, 0]}, "base_link": "base_link"}, "robot.base_link: no link 'base_link' in the model"),
+        ({"base": {"xyz": [0, 0, 0]}}, "robot.base: cannot weld 'car_body' to the world"),  # robot.yaml's base_link
         ({"base": {"xyz": [0, 0, 0]}, "base_link": "car_body"}, "robot.base: cannot weld 'car_body' to the world"),
         ({"planned_joints": []}, "robot: nothing to plan"),
         ({"planned_joints": ["steering"]}, "robot.planned_joints: no joint 'steering' in the model"),

@@ -38,7 +38,8 @@ FETCH = textwrap.dedent("""\
 
 # A table ahead (two cans, a small box), a left rack of three boards grouped by
 # attributes.unit, a right rack of two boards grouped by their stacked footprints,
-# and a big box on the floor.
+# and a big box on the floor. Every box fits the Fetch's 0.10 m opening across one axis
+# (grasps exist only where the object fits: grounding/grasps.py).
 KITCHEN = [
     _box("table_1", "table", 0.8, 0.0, 0.68, 0.8, 1.0, 0.04),
     _cyl("can_red", "can", 0.7, 0.2, 0.72, extra=", color: red"),
@@ -52,8 +53,8 @@ KITCHEN = [
     _cyl("can_green", "can", 0.6, 1.1, 1.215, extra=", color: green"),
     _cyl("can_plain", "can", 0.6, 0.9, 0.815),
     _cyl("can_red2", "can", 0.6, -1.0, 0.415, extra=", color: red"),
-    _box("box_mid", "box", 0.6, 0.8, 0.415, 0.1, 0.1, 0.1),
-    _box("box_big", "box", 1.6, 0.5, 0.0, 0.2, 0.2, 0.2),
+    _box("box_mid", "box", 0.6, 0.8, 0.415, 0.08, 0.08, 0.12),
+    _box("box_big", "box", 1.6, 0.5, 0.0, 0.3, 0.085, 0.3),
 ]
 
 # A counter with two cups and a branded bottle; a desk (a "table") with a cup and a bottle.
@@ -235,8 +236,9 @@ def test_interpretations_carry_goal_regions():
     g = ground("put the blue can on the table", scene("kitchen"))
     (i,) = g.interpretations
     assert (i.action, i.objects, i.target) == ("place", ("can_blue",), "table_1")
-    # a can: the top grasp and the side grasp (grounding/types.yaml, #15)
-    assert [r.kind for r in i.goal_regions] == ["workspace", "workspace"] and all(r.object == "can_blue" for r in i.goal_regions)
+    # a can: the top grasp and side grasps at two heights (grounding/types.yaml)
+    assert [r.label for r in i.goal_regions] == ["top", "side 35%", "side 65%"]
+    assert all(r.kind == "workspace" and r.object == "can_blue" for r in i.goal_regions)
     assert [r.kind for r in i.place_regions] == ["placement"] and i.place_regions[0].object == "table_1"
     assert all(r.interpretation == i.id for r in i.goal_regions + i.place_regions)
     spot = ground("park in bay_c", scene("lot")).interpretations[0]

@@ -45,3 +45,15 @@ def test_bad_defaults_are_one_line_naming_the_file(tmp_path, text, words):
         load_robot_defaults(path)
     message = str(err.value)
     assert "\n" not in message and str(path) in message and words in message
+
+
+@pytest.mark.parametrize("robot,frame,opening", [("panda", "panda_hand_tcp", 0.08), ("ur5e", "tool_tcp", 0.085)])
+def test_arm_defaults_give_a_z_forward_tool_and_named_poses_over_the_planned_joints(robot, frame, opening):
+    d = defaults_for_model(MODELS / robot / f"{robot}.urdf")
+    ee = d.end_effector
+    assert (ee.frame, ee.approach_axis, ee.closing_axis, ee.opening) == (frame, "z", "y", opening)
+    assert d.start in d.named_poses and d.path(d.model).is_file()
+    for name, pose in d.named_poses.items():
+        assert set(pose) == set(d.planned_joints), name
+    assert all(d.acceleration_limit(j) > 0 for j in d.planned_joints)
+    assert d.planner["algorithm"] == "bidirectional"

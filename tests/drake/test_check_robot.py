@@ -1,0 +1,68 @@
+"""``lazyground check-robot``: a clean robot, a missing mesh, a self-colliding named pose, an unknown package."""
+
+import pytest
+
+pytest.importorskip("pydrake")
+
+from lazyground.cli import main  # noqa: E402
+
+from tests.drake.ros_package import PACKAGE, make_package  # noqa: E402
+
+
+@pytest.fixture(autouse=True)
+def _isolated(tmp_path, monkeypatch):
+    monkeypatch.setenv("LAZYGROUND_CACHE", str(tmp_path / "cache"))
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+
+
+def _run(capsys, *argv):
+    code = main(["check-robot", *argv])
+    out = capsys.readouterr()
+    return code, out.out.strip().splitlines(), out.err.strip()
+
+
+@pytest.mark.parametrize("robot,dof", [("panda", 7), ("ur5e", 6), ("fetch", 8)])
+def test_bundled_robots_are_clean(capsys, robot, dof):
+    code, lines, err = _run(capsys, robot)
+    assert code == 0 and not err
+    assert f"DOF: {dof}" in lines and lines[-1].startswith(f"ok: {robot}.urdf loads with {dof} DOF")
+    assert any(line.strip().endswith(": free") for line in lines)  # its named poses were checked
+    assert any("limits [" in line and "velocity" in line for line in lines)
+
+
+def test_ros_package_with_srdf_reports_meshes_pairs_and_unsupported(tmp_path, capsys):
+    pkg = make_package(tmp_path)
+    code, lines, _ = _run(capsys, str(pkg / "urdf" / "my_arm.urdf"), "--srdf", str(pkg / "config" / "my_arm.srdf"))
+    text = "\n".join(lines)
+    assert "meshes: 25 converted to OBJ" in text and f"package {PACKAGE}: {pkg}" in text
+    assert "  fts_robotside: 1 mesh" in text and "  ready: free" in text
+    assert "3 disabled pairs applied" in text and "skipped: 1 (e.g. robotiq_inner_knuckle-fts_robotside)" in text
+    assert "unsupported: SRDF <group> x1 read but not used" in text
+    # the SRDF's "folded" state folds the wrist onto the upper arm: exit 2, the verdict names it
+    assert code == 2 and lines[-1].startswith("1 problem(s): named pose 'folded' self-collides: ")
+    assert "upper_arm_link-wrist_1_link" in lines[-1]
+
+
+def test_missing_mesh_is_one_line_naming_the_file(tmp_path, capsys):
+    pkg = make_package(tmp_path)
+    (pkg / "meshes" / "fts.stl").unlink()
+    code, lines, err = _run(capsys, str(pkg / "urdf" / "my_arm.urdf"))
+    assert code == 2 and not lines and "\n" not in err
+    assert "mesh 'package://my_arm_description/meshes/fts.stl'" in err and f"{pkg / 'meshes' / 'fts.stl'} not found" in err
+
+
+def test_unknown_package_names_it_and_the_fix(tmp_path, capsys):
+    pkg = make_package(tmp_path, mesh_uri="package://arm_meshes/meshes")
+    code, _, err = _run(capsys, str(pkg / "urdf" / "my_arm.urdf"))
+    assert code == 2 and "\n" not in err
+    assert f"unknown package 'arm_meshes' (known: {PACKAGE})" in err and "--package arm_meshes=DIR" in err
+    code, lines, _ = _run(capsys, str(pkg / "urdf" / "my_arm.urdf"), "--package", f"arm_meshes={pkg}")
+    assert code == 0 and lines[-1].startswith("ok: my_arm.urdf loads with 6 DOF")
+
+
+def test_not_a_model_is_one_line(tmp_path, capsys):
+    (tmp_path / "robot.xacro").write_text("<robot/>")
+    code, _, err = _run(capsys, str(tmp_path / "robot.xacro"))
+    assert code == 2 and "xacro files must be expanded first" in err
+    code, _, err = _run(capsys, "no_such_robot")
+    assert code == 2 and "no model file 'no_such_robot'" in err

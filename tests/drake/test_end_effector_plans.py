@@ -1,0 +1,53 @@
+"""A z-forward ROS tool frame grasps with its z axis along the grasp's approach (issue #18).
+
+Before the end effector was explicit, grasp regions assumed the tool frame's x axis approached,
+and a UR tool frame "solved" pick requests with the gripper horizontal over the cup. Here every
+solved plan's final configuration is checked: the tool's approach axis (z) points straight down
+for a top grasp and horizontally at the cup's axis for a side grasp, the TCP is at the grasp.
+"""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("pydrake")
+
+from lazyground import api  # noqa: E402
+from lazyground.drake.world import DrakeWorld  # noqa: E402
+from lazyground.robots.end_effector import frame_of  # noqa: E402
+from lazyground.scene import load_scene  # noqa: E402
+
+SCENES = Path(__file__).resolve().parents[2] / "yaml_scenes"
+# IK meets a goal pose within 0.01 rad and 2 mm a side (lazyground/drake/ik.py); a wrong axis is off by 90 deg
+ANGLE, POSITION = 0.011, 0.004
+
+
+@pytest.mark.parametrize("scene_name,request_text", [("ur5e_tabletop.yaml", "pick up cup_open"),
+                                                      ("ur5e_tabletop.yaml", "pick up cup_shelf"),
+                                                      ("panda_tabletop.yaml", "pick up can_open")])
+def test_solved_grasps_point_the_tool_z_axis_along_the_approach(scene_name, request_text):
+    scene = load_scene(SCENES / scene_name)
+    world = DrakeWorld(scene)
+    frame = frame_of(scene.robot)
+    cup = scene.object(request_text.split()[-1])
+    p_WC = np.array(cup.pose.xyz)
+    solved = 0
+    for seed in range(3):
+        report = api.plan(scene, request_text, seed=seed, world=world, time_limit=30.0)
+        if not report.result.solved:
+            continue
+        solved += 1
+        X_WT = world.frame_pose(frame, report.result.path[-1])
+        z = X_WT.rotation()[:, 2]
+        p = np.array(X_WT.xyz)
+        label = report.result.goal_region.label
+        if label == "top":
+            assert z @ [0, 0, -1] > np.cos(ANGLE)  # straight down, not horizontal
+            assert np.hypot(*(p - p_WC)[:2]) < POSITION and p[2] > p_WC[2]  # above the axis
+        else:
+            assert label.startswith("side") and abs(z[2]) < np.sin(ANGLE)  # horizontal approach
+            towards = (p_WC - p)[:2] / np.linalg.norm((p_WC - p)[:2])
+            assert towards @ z[:2] / np.linalg.norm(z[:2]) > np.cos(ANGLE + POSITION / 0.02)  # pointing at the cup's axis
+            assert abs(X_WT.rotation()[2, 1]) < np.sin(ANGLE)  # the fingers close horizontally
+    assert solved >= 2
