@@ -118,6 +118,7 @@ class PlanResult:
     failed_from: np.ndarray | None = None  # nodes from which a goal-biased extension failed
     path_length: float = 0.0
     invalid_paths_rejected: int = 0
+    cusps: int | None = None  # car spaces: gear changes along the path (None: not a car)
 
     @property
     def solved(self) -> bool:
