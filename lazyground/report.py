@@ -8,7 +8,7 @@ from __future__ import annotations
 from lazyground.motion.export import motion_line, motion_to_json, trajectory_to_json
 from lazyground.motion.steps import report_trajectory
 from lazyground.plan_report import PlanReport
-from lazyground.settings import Algorithm
+from lazyground.settings import Algorithm, Kinematics
 from lazyground.tolerance import goal_tolerance_json
 
 
@@ -29,6 +29,7 @@ def report_to_json(report: PlanReport) -> dict:
         "strategy": report.settings.strategy,
         "algorithm": report.settings.algorithm,
         "goal_bias": report.settings.goal_bias,
+        "kinematics": report.settings.kinematics,
         "action": report.grounding.action,
         "ambiguous": report.grounding.ambiguous,
         "interpretations": [i.to_json() for i in report.grounding.interpretations],
@@ -43,6 +44,7 @@ def report_to_json(report: PlanReport) -> dict:
         "joint_names": list(report.joint_names),
         "path": res.path.round(9).tolist() if res.path is not None else None,
         "path_length": _r(res.path_length),
+        "cusps": res.cusps,  # car kinematics: gear changes along the path (path_length is then the driven length)
         "time_s": _r(report.time_s),
         "time_split_s": {
             "grounding": _r(report.grounding_s),
@@ -101,8 +103,9 @@ def report_lines(report: PlanReport) -> list[str]:
         lines.append(
             f"reached: {report.chosen.id} via goal region {res.goal_region.id}"
         )
+        driven = "" if res.cusps is None else f" driven, {res.cusps} gear change(s)"
         lines.append(
-            f"path: {len(res.path)} waypoints, length {res.path_length:.3f}; time {report.time_s:.3f} s "
+            f"path: {len(res.path)} waypoints, length {res.path_length:.3f}{driven}; time {report.time_s:.3f} s "
             f"(goal sampling {res.goal_sampling_s:.3f}, collision {res.collision_s:.3f}); "
             f"{res.iterations} iterations, tree {res.tree_size}, {len(res.goal_samples)} goal samples, {res.resamplings} resamplings"
         )
@@ -116,5 +119,9 @@ def report_lines(report: PlanReport) -> list[str]:
 
 def _planner_label(settings) -> str:
     if settings.algorithm is Algorithm.BIDIRECTIONAL:  # no goal bias in the two-tree planner
-        return f"{settings.strategy}, bidirectional"
-    return f"{settings.strategy}, bias {settings.goal_bias:g}"
+        return f"{settings.strategy}, bidirectional{_car(settings)}"
+    return f"{settings.strategy}, bias {settings.goal_bias:g}{_car(settings)}"
+
+
+def _car(settings) -> str:
+    return "" if settings.kinematics is Kinematics.HOLONOMIC else f", {settings.kinematics}"

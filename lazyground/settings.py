@@ -50,6 +50,14 @@ class GoalExtension(enum.StrEnum):
     CONNECT = "connect"  # repeat free steps until blocked or there
 
 
+class Kinematics(enum.StrEnum):
+    """How a car moves between configurations; the spaces are in ``planning/car.py``."""
+
+    HOLONOMIC = "holonomic"  # straight lines in (x, y, heading): the paper's sliding car
+    REEDS_SHEPP = "reeds-shepp"  # forwards and reverse along curves no tighter than the turning radius
+    DUBINS = "dubins"  # forwards only
+
+
 class Layer(enum.StrEnum):
     """Where a setting can be given."""
 
@@ -152,6 +160,12 @@ SETTINGS: tuple[Setting, ...] = (
             "it as a reward if it moved at all (the authors' MoveIt planner, OMPL's `checkMotion` with a last "
             "valid state); `extend` is one step, all or nothing; `connect` repeats free steps until blocked",
             _EVERYWHERE | {Layer.PER_ALGORITHM}),
+    Setting("kinematics", Kinematics, Kinematics.HOLONOMIC,
+            "car scenes: `holonomic` (the paper's setup: the car slides and turns on the spot), `reeds-shepp` "
+            "(forwards and reverse along curves no tighter than the minimum turning radius from "
+            "`kinematics:` in `models/<robot>/robot.yaml`) or `dubins` (forwards only); returned car paths are "
+            "sampled along the curves at most 0.1 m apart (`lazyground/planning/car.py`)",
+            _EVERYWHERE | {Layer.BENCH}),
     Setting("time_limit", float, 10.0, "seconds", _EVERYWHERE | {Layer.BENCH}, low=0.0, low_open=True),
     Setting("max_iterations", int, 10_000_000, "iterations before giving up", _PLANNER, low=0.0, low_open=True),
     Setting("seed", int, 0, "the default random seed", frozenset({Layer.SCENE, Layer.CLI, Layer.BENCH}), low=0.0),

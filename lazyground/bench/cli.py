@@ -24,7 +24,7 @@ from pathlib import Path
 
 from lazyground.bench import arms
 from lazyground.bench.runner import ALGORITHMS, RunSpec, execute, row_key, Progress
-from lazyground.settings import BY_NAME, Algorithm, Strategy
+from lazyground.settings import BY_NAME, Algorithm, Kinematics, Strategy
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 SCENES_DIR = REPO_ROOT / "yaml_scenes"
@@ -60,6 +60,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--runs", type=int, help="seeds per configuration (tables: 1000 / 100; otherwise 10)")
     p.add_argument("--time-limit", type=float, help="seconds per run (default: each scene's; arms 10)")
     p.add_argument("--request", help="the request (default: each scene's first expectation)")
+    p.add_argument("--kinematics", choices=BY_NAME["kinematics"].choices, help="car scenes: holonomic (the paper's), reeds-shepp or dubins "
+                   "(default: each scene's)")
     p.add_argument("--peers", action="store_true", help="also run OMPL RRT and RRTConnect and sscbirrt's CBiRRT (pip install .[bench])")
     p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="worker processes (default: cores)")
     p.add_argument("--cluster", metavar="ADDRESS", help="run on this Dask scheduler instead (pip install .[cluster])")
@@ -121,6 +123,9 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
         raise BenchUsageError(f"no scene to run: {notes[0]}")
     algorithms = _checked("algorithms", "algorithm", _csv_list(args.algorithms, preset.get("algorithms", (Algorithm.RRT,))))
     configs = [(ALGORITHMS[a], s, b) for a in algorithms for b in biases for s in strategies]
+    kinematics = getattr(args, "kinematics", None)  # absent from Namespaces built by hand (tests)
+    if args.peers and kinematics not in (None, Kinematics.HOLONOMIC):
+        raise BenchUsageError("--peers plan holonomic paths only; leave out --kinematics or --peers")
     if args.peers:
         from lazyground.bench import ompl_peer, sscbirrt_peer
 
@@ -138,7 +143,7 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
             limit = args.time_limit if args.time_limit is not None else _scene_time_limit(key)
             request = args.request or preset.get("requests", {}).get(Path(key).stem)
             for planner, strategy, bias in configs:
-                specs.append(RunSpec(key, planner, strategy, bias, args.seed + i, limit, request))
+                specs.append(RunSpec(key, planner, strategy, bias, args.seed + i, limit, request, kinematics))
     return specs, notes, preset.get("title", "Computation time (s)")
 
 

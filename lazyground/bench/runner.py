@@ -48,6 +48,7 @@ class RunSpec:
     seed: int
     time_limit: float
     request: str | None = None  # None: the scene's first expectation's request
+    kinematics: str | None = None  # car scenes: None keeps the scene's (a results file holds one mode)
 
     def key(self) -> tuple:
         """What identifies a run in a results file (for --resume)."""
@@ -153,7 +154,8 @@ def run(spec: RunSpec) -> dict:
 
 def _run_lazyground(problem: Problem, spec: RunSpec) -> dict:
     algorithm = next(a for a, name in ALGORITHMS.items() if name == spec.planner)
-    overrides = dict(strategy=spec.strategy, algorithm=algorithm, goal_bias=spec.bias, time_limit=spec.time_limit)
+    overrides = dict(strategy=spec.strategy, algorithm=algorithm, goal_bias=spec.bias, time_limit=spec.time_limit,
+                     kinematics=spec.kinematics)
     if problem.regions:  # generated arm: C-space regions, no grounding
         from lazyground.api import planner_settings
         from lazyground.goals import ConfigGoalSource

@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 
 from lazyground.planning.problem import PlanResult, PlanStatus
-from lazyground.planning.search import Search
+from lazyground.planning.search import Search, edge_free
 from lazyground.planning.tree import Tree
 
 
@@ -92,7 +92,7 @@ def _extend(s: Search, tree: Tree, near: int, q_towards: np.ndarray) -> int:
     """One step from node ``near`` towards q_towards: the new node, or -1 if blocked."""
     q_near = tree.nodes[near]
     q_new, _ = s.space.steer(q_near, q_towards, s.settings.step_size)
-    if not s.checker.edge_free(q_near, q_new, s.settings.resolution):
+    if not edge_free(s.space, s.checker, q_near, q_new, s.settings.resolution):
         return -1
     return tree.add(q_new, near)
 
@@ -104,7 +104,7 @@ def _connect(s: Search, tree: Tree, q_target: np.ndarray) -> tuple[int, bool]:
         return -1, False
     while s.time_left():
         q_new, reached = s.space.steer(tree.nodes[node], q_target, s.settings.step_size)
-        if not s.checker.edge_free(tree.nodes[node], q_new, s.settings.resolution):
+        if not edge_free(s.space, s.checker, tree.nodes[node], q_new, s.settings.resolution):
             return node, False
         node = tree.add(q_new, node)
         if reached:

@@ -14,7 +14,7 @@ import numpy as np
 
 from lazyground.planning.birrt import grow_bidirectional
 from lazyground.planning.problem import GoalSource, PlannerSettings, PlanResult, PlanStatus, ValidityChecker
-from lazyground.planning.search import Search, path_is_valid
+from lazyground.planning.search import Search, edge_fraction, edge_free, path_is_valid
 from lazyground.planning.space import ConfigSpace
 from lazyground.planning.tree import Tree
 from lazyground.settings import Algorithm, GoalExtension
@@ -96,11 +96,11 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
             q_new = None  # the same edge as before: its answer has not changed
         elif gi is not None and settings.goal_extension is GoalExtension.PARTIAL:
             # the authors' RRTGoalRegion: a blocked goal step keeps its free part and counts as progress
-            t = checker.edge_fraction(q_near, q_new, resolution)
+            t = edge_fraction(space, checker, q_near, q_new, resolution)
             if t < 1.0:
                 reached = False
                 q_new = space.interpolate(q_near, q_new, t) if t > 0.0 else None
-        elif not checker.edge_free(q_near, q_new, resolution):
+        elif not edge_free(space, checker, q_near, q_new, resolution):
             q_new = None
         if q_new is None:
             if gi is not None:
@@ -114,7 +114,7 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
         # "connect" keeps stepping towards the goal sample while the steps are free
         while settings.goal_extension is GoalExtension.CONNECT and not reached and s.time_left():
             q_next, r = space.steer(q_new, q_towards, settings.step_size)
-            if not checker.edge_free(q_new, q_next, resolution):
+            if not edge_free(space, checker, q_new, q_next, resolution):
                 break
             node, q_new, reached = tree.add(q_next, node, True), q_next, r
         s.reward(gi)

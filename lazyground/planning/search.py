@@ -52,6 +52,30 @@ def _checks(checker: ValidityChecker) -> int:
     return int(getattr(checker, "checks", 0))
 
 
+def edge_free(space: ConfigSpace, checker: ValidityChecker, a: np.ndarray, b: np.ndarray, resolution: float) -> bool:
+    """Whether the edge a -> b is free: the checker's own edge check for straight edges,
+    the space's samples along the curve otherwise (Drake's edge check interpolates linearly)."""
+    if space.linear_edges:
+        return checker.edge_free(a, b, resolution)
+    return bool(np.all(checker.configs_free(space.discretize(a, b, resolution, skip_first=True))))
+
+
+def edge_fraction(space: ConfigSpace, checker: ValidityChecker, a: np.ndarray, b: np.ndarray, resolution: float) -> float:
+    """The largest checked fraction t such that a -> interpolate(a, b, t) is free (the free prefix)."""
+    if space.linear_edges:
+        return checker.edge_fraction(a, b, resolution)
+    qs = space.discretize(a, b, resolution, skip_first=True)
+    blocked = np.flatnonzero(~np.asarray(checker.configs_free(qs), bool))
+    if not len(blocked):
+        return 1.0
+    if blocked[0] == 0:
+        return 0.0
+    # samples need not be evenly spaced (a car samples each segment on its own): the fraction of the
+    # distance to the last free sample, which interpolate maps back to it (a shortest path's prefix
+    # is the shortest path to its end)
+    return space.distance(a, qs[blocked[0] - 1]) / space.distance(a, b)
+
+
 class Search:
     def __init__(
         self,
@@ -147,6 +171,10 @@ class Search:
         for i, sample in enumerate(self.samples):
             sample.weight = self.selector.weight(i)
         goal = self.samples[gi] if gi is not None else None
+        length, cusps = (self.space.path_length(path) if path is not None else 0.0), None
+        if path is not None and not self.space.linear_edges:  # a car: return the curves it drives, densely
+            path = self.space.densify(path)
+            cusps = self.space.cusps(path)
         return PlanResult(
             status=status,
             seed=self.seed,
@@ -165,9 +193,10 @@ class Search:
             region_stats=list(self.goals.stats),
             tree=self._tree_arrays() if self.keep_tree else None,
             failed_from=self._failed_from() if self.keep_tree else None,
-            path_length=self.space.path_length(path) if path is not None else 0.0,
+            path_length=length,
             invalid_paths_rejected=self.rejected,
             collision_checks=_checks(self.checker) - self._checks0 - self._sampling_count,
+            cusps=cusps,
         )
 
     def no_goal(self) -> PlanResult:

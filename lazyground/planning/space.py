@@ -19,6 +19,8 @@ from lazyground.geometry import wrap_angle
 class ConfigSpace:
     """Bounded coordinates with per-coordinate metric weights; ``wrap`` marks angles."""
 
+    linear_edges = True  # edges are straight in these coordinates (a checker may interpolate linearly)
+
     names: tuple[str, ...]
     lower: np.ndarray
     upper: np.ndarray

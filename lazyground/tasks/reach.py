@@ -5,6 +5,7 @@ from __future__ import annotations
 from lazyground.goals import goal_source_for
 from lazyground.motion.pipeline import motion_for_world
 from lazyground.planning.rrt import solve
+from lazyground.robots.car import planning_space
 from lazyground.tasks.outcome import Outcome, Step
 
 
@@ -31,7 +32,10 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     world = worlds.get()
     setup_s = worlds.setup_s
     source = make_goal_source(world, grounding.goal_regions)
-    result = solve(world.space, world, source, world.start, settings, rng, seed=seed, keep_tree=keep_tree)
-    result, motion = motion_for_world(world, result, settings, rng)  # shortened and timed (issue #16)
+    space = planning_space(scene, world.space, settings.kinematics)  # a car's curves, or world.space
+    result = solve(space, world, source, world.start, settings, rng, seed=seed, keep_tree=keep_tree)
+    motion = None
+    if space.linear_edges:  # shortcuts interpolate straight lines: a car's curve path is returned as driven
+        result, motion = motion_for_world(world, result, settings, rng)  # shortened and timed (issue #16)
     notes = (motion.note,) if motion is not None and motion.note else ()
     return Outcome(result, (Step(grounding.action, result, setup_s, motion=motion),), world.space.names, notes)

@@ -36,7 +36,10 @@ from lazyground.drake.world import Attachment, DrakeWorld, rigid_transform
 from lazyground.robots.end_effector import frame_of
 from lazyground.viz.replay_page import Layout, decorate
 from lazyground.viz.shapes import draw_tube
-from lazyground.viz.style import CAR_FOOTPRINT, FAILED_RGBA, GOAL_BIASED_RGBA, PATH_RGBA, REGION_RGBA, TREE_RGBA, weight_rgba
+from lazyground.viz.style import (
+    CAR_FOOTPRINT, FAILED_RGBA, GOAL_BIASED_RGBA, PATH_DARK_RGBA, PATH_RGBA, REGION_RGBA, REVERSE_RGBA, TREE_RGBA,
+    weight_rgba,
+)
 from lazyground.viz.trace import frames_in_time, resample_path, tree_edges
 
 FPS = 30
@@ -207,11 +210,16 @@ class _StepView:
             if hide_tree:  # a large tree covers the objects; the page's button shows it
                 self.meshcat.SetProperty(f"{path}/tree", "visible", False)
         if self.motion is not None:
-            dense = self.points(resample_path(self.motion, 200, self.world.space.wrap))
+            car = self.report.result.cusps is not None  # a car's path is already its curves, densely sampled
+            qs = self.motion if car else resample_path(self.motion, 200, self.world.space.wrap)
+            dense = self.points(qs)
             self.meshcat.SetLine(f"{path}/path", dense, 4.0, Rgba(*PATH_RGBA))
             # browsers draw WebGL lines one pixel wide whatever the width: a tube makes the path stand out
-            draw_tube(self.meshcat, f"{path}/path_tube", dense[:, ::4] if dense.shape[1] > 4 else dense,
-                      0.5 * self.scale, Rgba(*PATH_RGBA))
+            stride = max(4, dense.shape[1] // 50)  # ~50 cylinders, however densely a car's path is sampled
+            tube = np.column_stack([dense[:, ::stride], dense[:, -1:]]) if dense.shape[1] > 4 else dense
+            draw_tube(self.meshcat, f"{path}/path_tube", tube, 0.5 * self.scale, Rgba(*PATH_RGBA))
+            if car:
+                self._draw_travel(f"{path}/direction_of_travel", qs)
         raw = self.report.motion.raw_path if getattr(self.report, "motion", None) is not None else None
         if raw is not None and not np.array_equal(raw, self.report.result.path):
             dense = resample_path(raw, 200, self.world.space.wrap)
@@ -233,6 +241,30 @@ class _StepView:
         if self.trajectory is not None:
             return t0 + self.trajectory.duration
         return t0 + (len(qs) - 1) / FPS
+
+    def _draw_travel(self, path: str, dense: np.ndarray, every: float = 1.5) -> None:
+        """Arrowheads along a car's path about every ``every`` metres: forwards blue, reverse orange."""
+        poses = self.poses(dense)
+        p = np.array([X.translation() for X in poses])
+        step = np.linalg.norm(np.diff(p, axis=0), axis=1)
+        s = np.concatenate([[0.0], np.cumsum(step)])
+        size = self.scale * 3.0
+        for gear, rgba in ((1.0, PATH_DARK_RGBA), (-1.0, REVERSE_RGBA)):
+            starts, ends = [], []
+            for k in np.unique(np.searchsorted(s, np.arange(every / 2, s[-1], every))):
+                if not 0 < k < len(p) or step[k - 1] <= 0:
+                    continue
+                u = (p[k] - p[k - 1]) / step[k - 1]
+                if np.sign(u @ poses[k].rotation().matrix()[:, 0]) != gear:
+                    continue
+                side = np.cross([0.0, 0.0, 1.0], u)
+                tip = p[k] + [0.0, 0.0, 0.05]
+                for wing in (tip - size * u + 0.5 * size * side, tip - size * u - 0.5 * size * side):
+                    starts.append(wing)
+                    ends.append(tip)
+            if starts:
+                self.meshcat.SetLineSegments(f"{path}/{'forwards' if gear > 0 else 'reverse'}", np.array(starts).T,
+                                             np.array(ends).T, 3.0, Rgba(*rgba))
 
     def _points(self, path: str, p: np.ndarray, rgba, size: float) -> None:
         if p.shape[1] == 0:

@@ -28,8 +28,10 @@ from lazyground.viz.style import (  # noqa: E402
     FAILED_RGBA,
     GOAL_BIASED_RGBA,
     OBSTACLE_RGBA,
+    PATH_DARK_RGBA,
     PATH_RGBA,
     REGION_RGBA,
+    REVERSE_RGBA,
     TREE_RGBA,
     weight_rgba,
 )
@@ -68,6 +70,7 @@ def animate_parking(report, scene, path, fps: int = 12) -> None:
     view = _View(report, scene)
     fig, ax = view.figure(size=(7.2, 5.0), dpi=72)
     view.draw_samples(ax)
+    view.draw_arrows(ax)  # the whole route's direction of travel, under the moving car
     view.draw_raw_path(ax)
     tree = LineCollection([], colors=[TREE_RGBA], linewidths=0.6, zorder=3, animated=True)
     ax.add_collection(tree)
@@ -190,11 +193,33 @@ class _View:
         ax.quiver(q[:, self.ix[0]], q[:, self.ix[1]], np.cos(h), np.sin(h), w, cmap=WEIGHT_CMAP, clim=(0, 1),
                   angles="xy", scale_units="xy", scale=0.6, width=0.004, zorder=9)
 
+    def draw_arrows(self, ax, every: float = 1.5) -> None:
+        """Direction of travel along the path, about every ``every`` metres: forwards in the path's
+        colour, reverse in orange (a car's path changes gear at cusps)."""
+        if self.path is None or len(self.path) < 2:
+            return
+        xy = self.path[:, list(self.ix[:2])]
+        d = np.diff(xy, axis=0)
+        step = np.hypot(d[:, 0], d[:, 1])
+        s = np.concatenate([[0.0], np.cumsum(step)])
+        picks = [k for k in np.unique(np.searchsorted(s, np.arange(every / 2, s[-1], every))) if 0 < k <= len(d) and step[k - 1] > 0]
+        if not picks:
+            return
+        k = np.array(picks) - 1
+        h = self.path[k, self.ix[2]]
+        reverse = d[k, 0] * np.cos(h) + d[k, 1] * np.sin(h) < 0
+        u = d[k] / step[k, None]
+        for mask, color, label in ((~reverse, PATH_DARK_RGBA, "forwards"), (reverse, REVERSE_RGBA, "reverse")):
+            if mask.any():
+                ax.quiver(xy[k[mask], 0], xy[k[mask], 1], u[mask, 0], u[mask, 1], color=color, angles="xy",
+                          scale_units="xy", scale=1.4, width=0.004, headwidth=4, zorder=7, label=label)
+
     def draw_path(self, ax, footprints: int) -> None:
         if self.path is None:
             return
         self.draw_raw_path(ax)
         ax.plot(self.path[:, self.ix[0]], self.path[:, self.ix[1]], color=PATH_RGBA, lw=2.5, zorder=6, label="path")
+        self.draw_arrows(ax)
         for q in self.resampled(footprints)[1:-1]:
             ax.add_patch(Polygon(self.footprint(q), closed=True, fc="none", ec=PATH_RGBA, lw=0.8, zorder=6))
         ax.add_patch(Polygon(self.footprint(self.path[-1]), closed=True, fc=CAR_RGBA, ec="black", lw=1.0, zorder=8))

@@ -11,6 +11,8 @@ PATH_RGBA = (0.35, 0.8, 1.0, 1.0)  # light blue: the solution path
 REGION_RGBA = (0.1, 0.8, 0.25, 0.25)  # translucent green: goal regions / free spots
 OBSTACLE_RGBA = (0.8, 0.15, 0.1, 1.0)  # red: obstacles
 CAR_RGBA = (1.0, 1.0, 1.0, 1.0)  # white: the planned car
+PATH_DARK_RGBA = (0.0, 0.45, 0.75, 1.0)  # darker blue: direction of travel, forwards
+REVERSE_RGBA = (1.0, 0.5, 0.0, 1.0)  # orange: direction of travel, reverse gear
 
 CAR_FOOTPRINT = (4.5, 1.8)  # m: the planned car's length and width (models/car/car.urdf)
 

@@ -55,6 +55,26 @@ def test_plan_json_solves(capsys):
     assert doc["time_s"] >= doc["time_split_s"]["goal_sampling"] + doc["time_split_s"]["collision_checking"]
 
 
+def test_plan_kinematics(capsys):
+    assert main(["plan", P1, "park", "--json", "--seed", "1"]) == 0  # the parking scenes drive Reeds-Shepp curves
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["kinematics"] == "reeds-shepp" and isinstance(doc["cusps"], int)
+    steps = [abs(b[0] - a[0]) + abs(b[1] - a[1]) for a, b in zip(doc["path"][:-1], doc["path"][1:])]
+    assert max(steps) <= 0.1 * 2**0.5 + 1e-6  # dense samples along the curves
+    assert main(["plan", P1, "park", "--json", "--seed", "1", "--kinematics", "holonomic"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["kinematics"] == "holonomic" and doc["cusps"] is None
+    assert main(["plan", P1, "park", "--seed", "1", "--kinematics", "dubins", "--time-limit", "0.5"]) in (0, 1)
+    assert "dubins" in capsys.readouterr().out.splitlines()[0]
+
+
+def test_car_kinematics_need_a_car(capsys):
+    fetch = str(ROOT / "yaml_scenes/fetch_cans_1.yaml")
+    assert main(["plan", fetch, "pick up a can", "--kinematics", "reeds-shepp"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "kinematics" in err and len(err.splitlines()) == 1
+
+
 def test_plan_bidirectional(capsys):
     assert main(["plan", P1, "park", "--json", "--seed", "1", "--algorithm", "bidirectional"] + BY_SEED) == 0
     doc = json.loads(capsys.readouterr().out)
@@ -100,6 +120,7 @@ def test_timeout_when_unreachable(tmp_path, capsys):
         (["plan", P1, "park", "--goal-bias", "2"], "--goal-bias must be in [0, 1]"),
         (["plan", P1, "park", "--time-limit", "-1"], "--time-limit must be > 0"),
         (["plan", P1, "park", "--strategy", "greedy"], "invalid choice: 'greedy'"),
+        (["plan", P1, "park", "--kinematics", "teleport"], "invalid choice: 'teleport'"),
         (["plan", P1], "the following arguments are required: request"),
         (["frobnicate"], "invalid choice: 'frobnicate'"),
     ],
