@@ -54,6 +54,7 @@ def make_motion(
     planner: PlannerSettings,
     limits: Limits | None,
     rng: np.random.Generator,
+    stops: tuple[int, ...] = (),
 ) -> Motion:
     """Shorten and time a solved result's path.
 
@@ -65,21 +66,24 @@ def make_motion(
             (shortcut_iterations, shortcut_time, speed, sample_rate).
         limits: velocity/acceleration limits; None: no trajectory.
         rng: the plan's generator (continues its stream, so the motion follows from the seed).
+        stops: waypoints where the motion comes to rest (a car's gear changes); a path with
+            stops is timed as it is, not shortened (the stops index its waypoints).
 
     Returns:
         The Motion; its ``shortcut.path`` passed the fine re-check.
     """
     approach = result.goal is not None and result.goal.final is not None
+    cut = shortcut_settings(planner)
     short = shortcut_path(space, checker, result.path, planner.resolution, planner.validation_factor,
-                          shortcut_settings(planner), rng, keep_last_segment=approach)
+                          replace(cut, enabled=False) if stops else cut, rng, keep_last_segment=approach)
     if limits is None:
         return Motion(short, None, short.time_s, 0.0, "no limits for timing")
     t0 = time.perf_counter()
     fine = planner.resolution / planner.validation_factor
     for attempt in (short, _reverted(short)):
-        stops = (len(attempt.path) - 2,) if approach else ()
+        rests = tuple(stops) + ((len(attempt.path) - 2,) if approach else ())
         try:
-            traj = time_path(space, checker, attempt.path, limits, fine, timing_settings(planner), stops=stops)
+            traj = time_path(space, checker, attempt.path, limits, fine, timing_settings(planner), stops=rests)
         except MotionError as exc:
             if attempt.path is attempt.raw_path:
                 return Motion(short, None, short.time_s, time.perf_counter() - t0, f"no trajectory: {exc}")
@@ -98,7 +102,7 @@ def with_motion(result: PlanResult, motion: Motion) -> PlanResult:
 
 
 def motion_for_world(world, result: PlanResult, planner: PlannerSettings,
-                     rng: np.random.Generator) -> tuple[PlanResult, Motion | None]:
+                     rng: np.random.Generator, stops: tuple[int, ...] = ()) -> tuple[PlanResult, Motion | None]:
     """The API's hook: shorten and time a result planned in a DrakeWorld.
 
     Returns:
@@ -114,7 +118,7 @@ def motion_for_world(world, result: PlanResult, planner: PlannerSettings,
         limits, note = world_limits(world), ""
     except SceneError as exc:
         limits, note = None, f"no trajectory: {exc}"
-    motion = make_motion(world.space, world, result, planner, limits, rng)
+    motion = make_motion(world.space, world, result, planner, limits, rng, stops)
     if note and not motion.note:
         motion = replace(motion, note=note)
     return with_motion(result, motion), motion

@@ -194,6 +194,10 @@ class CarSpace(ConfigSpace):
         """Gear changes along a dense path of this space (see :func:`gear_changes`)."""
         return gear_changes(self.reference(dense))
 
+    def cusp_indices(self, dense: np.ndarray) -> tuple[int, ...]:
+        """The waypoints of a dense path where the direction of travel flips (where a car stops)."""
+        return cusp_indices(self.reference(dense))
+
 
 def _end(x, y, th, kind, length, r):
     """The pose after a whole segment (metres), via the unit-radius kinematics."""
@@ -211,9 +215,15 @@ def drive_profile(path: np.ndarray) -> np.ndarray:
 
 def gear_changes(path: np.ndarray) -> int:
     """Cusps of a dense path of reference-point poses: how often the direction of travel flips."""
+    return len(cusp_indices(path))
+
+
+def cusp_indices(path: np.ndarray) -> tuple[int, ...]:
+    """Waypoints of a dense path of reference-point poses where the direction of travel flips."""
     g = drive_profile(path)
-    g = g[g != 0]
-    return int(np.count_nonzero(g[1:] != g[:-1]))
+    moving = np.flatnonzero(g)  # steps that move (step k runs from waypoint k to k + 1)
+    flips = moving[1:][g[moving[1:]] != g[moving[:-1]]]
+    return tuple(int(k) for k in flips)
 
 
 def make_space(base: ConfigSpace, kinematics: str | Kinematics, radius: float, offset: float = 0.0) -> ConfigSpace:

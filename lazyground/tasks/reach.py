@@ -34,8 +34,9 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     source = make_goal_source(world, grounding.goal_regions)
     space = planning_space(scene, world.space, settings.kinematics)  # a car's curves, or world.space
     result = solve(space, world, source, world.start, settings, rng, seed=seed, keep_tree=keep_tree)
-    motion = None
-    if space.linear_edges:  # shortcuts interpolate straight lines: a car's curve path is returned as driven
-        result, motion = motion_for_world(world, result, settings, rng)  # shortened and timed (issue #16)
+    # shortened and timed (issue #16); a car's path is timed as driven, resting at every gear
+    # change (a shortcut would interpolate straight lines off its curves)
+    stops = () if space.linear_edges or not result.solved else space.cusp_indices(result.path)
+    result, motion = motion_for_world(world, result, settings, rng, stops=stops)
     notes = (motion.note,) if motion is not None and motion.note else ()
     return Outcome(result, (Step(grounding.action, result, setup_s, motion=motion),), world.space.names, notes)
