@@ -54,7 +54,7 @@ def make_motion(
     planner: PlannerSettings,
     limits: Limits | None,
     rng: np.random.Generator,
-    stops: tuple[int, ...] = (),
+    stops: tuple[int, ...] | None = None,
 ) -> Motion:
     """Shorten and time a solved result's path.
 
@@ -66,8 +66,8 @@ def make_motion(
             (shortcut_iterations, shortcut_time, speed, sample_rate).
         limits: velocity/acceleration limits; None: no trajectory.
         rng: the plan's generator (continues its stream, so the motion follows from the seed).
-        stops: waypoints where the motion comes to rest (a car's gear changes); a path with
-            stops is timed as it is, not shortened (the stops index its waypoints).
+        stops: None to shorten the path; else it is timed as driven (a car's curves), not
+            shortened, resting at these waypoints (its gear changes).
 
     Returns:
         The Motion; its ``shortcut.path`` passed the fine re-check.
@@ -75,13 +75,13 @@ def make_motion(
     approach = result.goal is not None and result.goal.final is not None
     cut = shortcut_settings(planner)
     short = shortcut_path(space, checker, result.path, planner.resolution, planner.validation_factor,
-                          replace(cut, enabled=False) if stops else cut, rng, keep_last_segment=approach)
+                          replace(cut, enabled=False) if stops is not None else cut, rng, keep_last_segment=approach)
     if limits is None:
         return Motion(short, None, short.time_s, 0.0, "no limits for timing")
     t0 = time.perf_counter()
     fine = planner.resolution / planner.validation_factor
     for attempt in (short, _reverted(short)):
-        rests = tuple(stops) + ((len(attempt.path) - 2,) if approach else ())
+        rests = tuple(stops or ()) + ((len(attempt.path) - 2,) if approach else ())
         try:
             traj = time_path(space, checker, attempt.path, limits, fine, timing_settings(planner), stops=rests)
         except MotionError as exc:
@@ -102,7 +102,7 @@ def with_motion(result: PlanResult, motion: Motion) -> PlanResult:
 
 
 def motion_for_world(world, result: PlanResult, planner: PlannerSettings,
-                     rng: np.random.Generator, stops: tuple[int, ...] = ()) -> tuple[PlanResult, Motion | None]:
+                     rng: np.random.Generator, stops: tuple[int, ...] | None = None) -> tuple[PlanResult, Motion | None]:
     """The API's hook: shorten and time a result planned in a DrakeWorld.
 
     Returns:
@@ -121,4 +121,6 @@ def motion_for_world(world, result: PlanResult, planner: PlannerSettings,
     motion = make_motion(world.space, world, result, planner, limits, rng, stops)
     if note and not motion.note:
         motion = replace(motion, note=note)
+    if stops is not None:  # timed as driven, not shortened: the path and its (driven) length stay the planner's
+        return result, motion
     return with_motion(result, motion), motion

@@ -25,6 +25,8 @@ def add_import_options(m) -> None:
     m.add_argument("--rules", metavar="FILE", help="a YAML file of 'REGEX: TYPE' rules, tried after --type")
     m.add_argument("--package", action="append", default=[], metavar="NAME=DIR",
                    help="resolve package://NAME/... mesh resources under DIR (repeatable)")
+    m.add_argument("--srdf", metavar="FILE", help="the robot's SRDF (MoveIt's disabled collision pairs and named "
+                   "states), written into the scene's robot block")
     m.add_argument("--name", help="the scene name (default: the output file's stem)")
     add_start_options(m)
     m.add_argument("--debug", action="store_true", help="show tracebacks")
@@ -39,7 +41,7 @@ def cmd_import_moveit(args) -> int:
 
     rules = [parse_rule(t) for t in args.type] + (load_rules_file(args.rules) if args.rules else [])
     options = ImportOptions(robot=args.robot, user_rules=tuple(rules), packages=parse_package_args(args.package),
-                            start=start_options(args), name=args.name or ImportOptions().name)
+                            start=start_options(args), name=args.name or ImportOptions().name, srdf=args.srdf)
     result = import_moveit_file(args.file, args.output, options)
     for line in result.summary.warnings:
         print(f"warning: {line}", file=sys.stderr)

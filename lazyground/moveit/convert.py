@@ -40,6 +40,7 @@ class ImportOptions:
     packages: dict[str, Path] = field(default_factory=dict)
     start: StartOptions = StartOptions()
     name: str = "imported"
+    srdf: str | None = None  # the robot's SRDF, written into the scene's robot block
 
 
 @dataclass(frozen=True)
@@ -118,7 +119,7 @@ def convert_moveit(data, source: str, options: ImportOptions = ImportOptions(), 
     scene = {
         "name": options.name,
         "description": f"Imported from the MoveIt planning scene {Path(source).name}.",
-        "robot": _robot_block(options.robot, defaults, start),
+        "robot": _robot_block(options.robot, start, options.srdf),
         "obstacles": obstacles,
         "objects": objects,
     }
@@ -128,13 +129,13 @@ def convert_moveit(data, source: str, options: ImportOptions = ImportOptions(), 
     return scene, summary
 
 
-def _robot_block(robot: str, defaults: RobotDefaults, start: dict[str, float]) -> dict:
-    """The scene's robot block: the model welded at the origin, the robot.yaml's keys spelt out, the start."""
-    block = {"model": robot, "base": {"xyz": [0.0, 0.0, 0.0]}, "base_link": defaults.base_link,
-             "planned_joints": list(defaults.planned_joints)}
-    if defaults.end_effector is not None:
-        block["end_effector"] = defaults.end_effector.frame
-    return {**block, "start": start}
+def _robot_block(robot: str, start: dict[str, float], srdf: str | None) -> dict:
+    """The scene's robot block: the model welded at the origin (MoveIt scenes are in its base frame) and
+    the start; base link, planned joints and end effector (with its axes) come from the robot.yaml."""
+    block = {"model": robot, "base": {"xyz": [0.0, 0.0, 0.0]}, "start": start}
+    if srdf is not None:
+        block["srdf"] = str(Path(srdf).resolve())
+    return block
 
 
 def _start(data: dict, source: str, options: StartOptions, defaults: RobotDefaults, model: Path, warnings: list[str]):

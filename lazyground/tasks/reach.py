@@ -36,7 +36,7 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     result = solve(space, world, source, world.start, settings, rng, seed=seed, keep_tree=keep_tree)
     # shortened and timed (issue #16); a car's path is timed as driven, resting at every gear
     # change (a shortcut would interpolate straight lines off its curves)
-    stops = () if space.linear_edges or not result.solved else space.cusp_indices(result.path)
+    stops = None if space.linear_edges or not result.solved else space.cusp_indices(result.path)
     result, motion = motion_for_world(world, result, settings, rng, stops=stops)
     notes = (motion.note,) if motion is not None and motion.note else ()
     return Outcome(result, (Step(grounding.action, result, setup_s, motion=motion),), world.space.names, notes)

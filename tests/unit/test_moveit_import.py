@@ -30,7 +30,7 @@ def test_reference_scene_converts_and_loads(path, tmp_path):
     scene = load_scene(result.output)
     assert scene.robot.start["shoulder_pan_joint"] == pytest.approx(1.32)
     assert scene.robot.start["torso_lift_joint"] == pytest.approx(0.05)
-    assert scene.robot.end_effector == "gripper_link"  # from models/fetch/robot.yaml
+    assert (scene.robot.end_effector.frame, scene.robot.end_effector.approach_axis) == ("gripper_link", "x")  # models/fetch/robot.yaml
     assert scene.planner.algorithm == "bidirectional" and scene.planner.edge_resolution == 0.05  # the robot's planner
     cans = scene.objects_of_type("can")
     assert cans and all(c.geometry.cylinder is not None for c in cans)
@@ -98,7 +98,8 @@ def test_small_scene_poses_types_and_start():
     assert scene["robot"]["start"]["wrist_flex_joint"] == 1.66  # missing joints: the tucked pose, with a warning
     assert any("wrist_flex_joint" in w for w in summary.warnings)
     assert "planner" not in scene  # the robot.yaml's planner settings apply
-    assert scene["robot"]["end_effector"] == "gripper_link" and len(scene["robot"]["planned_joints"]) == 8
+    # base link, planned joints and the end effector with its axes come from the robot.yaml when the scene loads
+    assert set(scene["robot"]) == {"model", "base", "start"}
     assert summary.types == {"cup": 1, "box": 2} and summary.start_source == "the scene's robot_state"
 
 
@@ -250,3 +251,23 @@ def test_a_rule_naming_an_unknown_type_fails_at_import(tmp_path):
     with pytest.raises(SceneError, match="object 'can_3': unknown type 'plant'; .*from a --type or --rules rule"):
         _import(CORPUS / "bookshelf_cans.yaml", tmp_path, options)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_srdf_option_is_written_into_the_robot_block(tmp_path):
+    from lazyground.cli import main
+
+    srdf = tmp_path / "fetch.srdf"
+    srdf.write_text('<robot name="fetch"><disable_collisions link1="base_link" link2="torso_lift_link" reason="Adjacent"/></robot>')
+    source = tmp_path / "scene.yaml"
+    source.write_text(textwrap.dedent("""\
+        name: s
+        world:
+          collision_objects:
+            - id: wall
+              header: {frame_id: base_link}
+              primitives: [{type: box, dimensions: [0.1, 1.0, 1.0]}]
+              primitive_poses: [{position: {x: 1.5, y: 0.0, z: 0.5}, orientation: {x: 0, y: 0, z: 0, w: 1}}]
+        """))
+    out = tmp_path / "out.yaml"
+    assert main(["import-moveit", str(source), "-o", str(out), "--srdf", str(srdf)]) == 0
+    assert yaml.safe_load(out.read_text())["robot"]["srdf"] == str(srdf.resolve())
