@@ -105,6 +105,14 @@ def scenes_of(rows: list[dict]) -> list[str]:
     return list(dict.fromkeys(r["scene"] for r in rows))
 
 
+def _rows_by_config_and_scene(rows: list[dict]):
+    """(config label, bias in percent or "-", scene, its rows), one per table row, in table order."""
+    scenes = scenes_of(rows)
+    for (label, bias), per_scene in group(rows).items():
+        for scene in [s for s in scenes if s in per_scene]:
+            yield label, (f"{float(bias) * 100:g}" if bias not in ("", None) else "-"), scene, per_scene[scene]
+
+
 # --- Markdown -------------------------------------------------------------------------------
 
 def markdown_table(rows: list[dict], title: str = "") -> str:
@@ -143,17 +151,13 @@ def time_split_table(rows: list[dict]) -> str:
     head = ["Scene", "Strategy", "Bias %", "runs", "solved", "time", "grounding", "goal sampling", "collision", "other",
             "other share", "checks", "µs/check"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
-    scenes = scenes_of(rows)
-    for (label, bias), per_scene in group(rows).items():
-        for scene in [s for s in scenes if s in per_scene]:
-            rs = per_scene[scene]
-            m = {k: np.mean([float(r[k]) for r in rs]) for k in ("time_s", "grounding_s", "goal_sampling_s", "collision_s", "other_s")}
-            share = m["other_s"] / m["time_s"] if m["time_s"] > 0 else float("nan")
-            solved = sum(r["status"] == "solved" for r in rs)
-            b = f"{float(bias) * 100:g}" if bias not in ("", None) else "-"
-            lines.append(f"| {scene} | {label} | {b} | {len(rs)} | {solved} | {m['time_s']:.3f} | {m['grounding_s']:.3f} | "
-                         f"{m['goal_sampling_s']:.3f} | {m['collision_s']:.3f} | {m['other_s']:.3f} | {share * 100:.0f}% | "
-                         f"{_checks_cells(rs)} |")
+    for label, b, scene, rs in _rows_by_config_and_scene(rows):
+        m = {k: np.mean([float(r[k]) for r in rs]) for k in ("time_s", "grounding_s", "goal_sampling_s", "collision_s", "other_s")}
+        share = m["other_s"] / m["time_s"] if m["time_s"] > 0 else float("nan")
+        solved = sum(r["status"] == "solved" for r in rs)
+        lines.append(f"| {scene} | {label} | {b} | {len(rs)} | {solved} | {m['time_s']:.3f} | {m['grounding_s']:.3f} | "
+                     f"{m['goal_sampling_s']:.3f} | {m['collision_s']:.3f} | {m['other_s']:.3f} | {share * 100:.0f}% | "
+                     f"{_checks_cells(rs)} |")
     return "\n".join(lines) + "\n"
 
 
@@ -177,19 +181,15 @@ def motion_table(rows: list[dict]) -> str:
     head = ["Scene", "Strategy", "Bias %", "solved", "raw length", "final length", "final / raw", "shortcut s",
             "timing s", "(shortcut + timing) / planning", "duration s"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
-    scenes = scenes_of(rows)
-    for (label, bias), per_scene in group(rows).items():
-        for scene in [s for s in scenes if s in per_scene]:
-            rs = per_scene[scene]
-            col = {k: np.array([float(r[k]) if r[k] not in ("", None) else np.nan for r in rs])
-                   for k in ("raw_path_length", "path_length", "shortcut_s", "timing_s", "time_s", "duration_s")}
-            med = {k: float(np.nanmedian(v)) for k, v in col.items()}
-            ratio = float(np.median(col["path_length"] / col["raw_path_length"]))
-            share = float(np.median((col["shortcut_s"] + col["timing_s"]) / col["time_s"]))
-            b = f"{float(bias) * 100:g}" if bias not in ("", None) else "-"
-            lines.append(f"| {scene} | {label} | {b} | {len(rs)} | {med['raw_path_length']:.2f} | {med['path_length']:.2f} | "
-                         f"{ratio * 100:.0f}% | {med['shortcut_s']:.3f} | {med['timing_s']:.3f} | {share * 100:.0f}% | "
-                         f"{med['duration_s']:.2f} |")
+    for label, b, scene, rs in _rows_by_config_and_scene(rows):
+        col = {k: np.array([float(r[k]) if r[k] not in ("", None) else np.nan for r in rs])
+               for k in ("raw_path_length", "path_length", "shortcut_s", "timing_s", "time_s", "duration_s")}
+        med = {k: float(np.nanmedian(v)) for k, v in col.items()}
+        ratio = float(np.median(col["path_length"] / col["raw_path_length"]))
+        share = float(np.median((col["shortcut_s"] + col["timing_s"]) / col["time_s"]))
+        lines.append(f"| {scene} | {label} | {b} | {len(rs)} | {med['raw_path_length']:.2f} | {med['path_length']:.2f} | "
+                     f"{ratio * 100:.0f}% | {med['shortcut_s']:.3f} | {med['timing_s']:.3f} | {share * 100:.0f}% | "
+                     f"{med['duration_s']:.2f} |")
     return "\n".join(lines) + "\n"
 
 
