@@ -85,23 +85,31 @@ def _step(world, g, q0, q1, regions, seed=0):
     return PlanReport("step", "fetch_can_viz", seed, PlannerSettings(), g, result, world.space.names, 0.0, 0.0)
 
 
-def test_pick_and_place_steps_replay_in_turn_with_the_carried_object(tmp_path):
+def fetch_can_set_up(tmp_path):
+    """The small Fetch scene with one can, grounded for "pick up the can", and three configurations
+    (start, grasp, place) that pick-and-place replays are drawn through."""
     import grounding
-    from pydrake.geometry import Meshcat
 
     from lazyground.drake.world import DrakeWorld
-    from lazyground.geometry import Pose
     from lazyground.scene import load_scene
 
     path = tmp_path / "fetch_can_viz.yaml"
     path.write_text(textwrap.dedent(FETCH_SCENE))
     scene = load_scene(path)
     world = DrakeWorld(scene, visual=False)
-    g = grounding.ground("pick up the can", scene)
-    regions = g.goal_regions
     q0 = world.start
     q1 = q0 + np.array([0.1, -1.0, -0.8, 0.0, -0.5, 0.0, -0.5, 0.0])
     q2 = q1 + np.array([0.0, 0.4, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    return scene, world, grounding.ground("pick up the can", scene), (q0, q1, q2)
+
+
+def test_pick_and_place_steps_replay_in_turn_with_the_carried_object(tmp_path):
+    from pydrake.geometry import Meshcat
+
+    from lazyground.geometry import Pose
+
+    scene, world, g, (q0, q1, q2) = fetch_can_set_up(tmp_path)
+    regions = g.goal_regions
     lift = np.array([q1, q1 + [0.05, 0, 0, 0, 0, 0, 0, 0]])
     pick, place = _step(world, g, q0, q1, regions), _step(world, g, lift[-1], q2, regions)
     from dataclasses import replace

@@ -5,15 +5,12 @@ from __future__ import annotations
 
 import html as html_lib
 import re
-import textwrap
 from dataclasses import replace
-
-import numpy as np
 
 from lazyground.viz import meshcat_view
 from lazyground.viz.replay_page import PANEL_ID, TOGGLE_ID
 
-from tests.viz.test_meshcat import FETCH_SCENE, _step
+from tests.viz.test_meshcat import _step, fetch_can_set_up
 
 
 def _panel(page: str) -> str:
@@ -59,21 +56,10 @@ def test_large_tree_starts_hidden_and_the_button_says_show(parking, tmp_path, mo
 
 
 def test_pick_and_place_steps_are_labelled(tmp_path):
-    import grounding
-
-    from lazyground.drake.world import DrakeWorld
     from lazyground.geometry import Pose
-    from lazyground.scene import load_scene
     from lazyground.tasks import Grasp, Outcome, Placement, Step
 
-    path = tmp_path / "fetch_can_viz.yaml"
-    path.write_text(textwrap.dedent(FETCH_SCENE))
-    scene = load_scene(path)
-    world = DrakeWorld(scene, visual=False)
-    g = grounding.ground("pick up the can", scene)
-    q0 = world.start
-    q1 = q0 + np.array([0.1, -1.0, -0.8, 0.0, -0.5, 0.0, -0.5, 0.0])
-    q2 = q1 + np.array([0.0, 0.4, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    scene, world, g, (q0, q1, q2) = fetch_can_set_up(tmp_path)
     pick, place = _step(world, g, q0, q1, g.goal_regions), _step(world, g, q1, q2, g.goal_regions)
     r0 = g.goal_regions[0]
     grasp = Grasp("can1", r0.id, r0.label, "gripper_link", Pose(), Pose())
