@@ -22,7 +22,6 @@ from lazyground.motion import cli_options as motion_options
 from lazyground.settings import add_cli_options, cli_values
 
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_PIPE_CLOSED = 0, 1, 2, 3, 130, 141
-REPO_ROOT = Path(__file__).resolve().parents[1]
 
 
 class UsageError(Exception):
