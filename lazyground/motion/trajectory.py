@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lazyground.motion.curve import Curve, blended_curve, unwrap_path
+from lazyground.motion.curve import Curve, blended_curve, on_segment_spans, unwrap_path
 from lazyground.motion.validate import first_colliding_join
 from lazyground.planning.problem import ValidityChecker
 from lazyground.planning.space import ConfigSpace
@@ -162,11 +162,8 @@ def _time_piece(space, piece: np.ndarray, blend: float | None, resolution: float
         label = "straight" if len(piece) == 2 else "stops at waypoints"
         return [_time_curve(_straight(a, b), limits, dt, (0,)) for a, b in zip(piece[:-1], piece[1:]) if np.any(a != b)], label
     keep = _merge_close(space, piece, resolution)
-    # the straight span of the curve's segment m (control points 3m .. 3m + 3) lies on a segment
-    # of the piece unless merging dropped a waypoint between its ends
-    on_path = tuple(3 * m for m in np.flatnonzero(np.diff(keep) == 1))
     try:
-        return [_time_curve(blended_curve(piece[keep], blend), limits, dt, on_path)], f"blend {blend:g}"
+        return [_time_curve(blended_curve(piece[keep], blend), limits, dt, on_segment_spans(keep))], f"blend {blend:g}"
     except RuntimeError:  # TOPP-RA failed on this curve (numerics): stops at waypoints
         return _time_piece(space, piece, None, resolution, limits, dt)
 
