@@ -16,6 +16,7 @@ so a path already checked at the fine resolution needs only the rounded corners 
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -74,8 +75,13 @@ class Curve:
         return np.append(inner, 1.0)
 
     def spline(self, derivative: int = 0) -> BSpline:
+        return self._splines[derivative]
+
+    @functools.cached_property
+    def _splines(self) -> tuple[BSpline, BSpline, BSpline]:
+        """q(u) and its first two derivatives (built once: timing evaluates them many times)."""
         s = BSpline(self.knots, self.control, DEGREE)
-        return s.derivative(derivative) if derivative else s
+        return s, s.derivative(1), s.derivative(2)
 
     def __call__(self, u) -> np.ndarray:
         return self.spline()(np.asarray(u, float))
