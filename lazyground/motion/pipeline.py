@@ -43,6 +43,10 @@ class Motion:
         return self.shortcut.raw_length
 
     @property
+    def direct_length(self) -> float:
+        return self.shortcut.direct_length
+
+    @property
     def time_s(self) -> float:
         return self.shortcut_s + self.timing_s
 

@@ -76,6 +76,7 @@ class ShortcutResult:
     iterations: int
     accepted: int
     time_s: float
+    direct_length: float = float("nan")  # start to goal in a straight line: a lower bound of ``length``
 
 
 @dataclass(frozen=True)
@@ -131,7 +132,8 @@ def shortcut_path(
     raw_length = space.path_length(raw)
 
     def done(status, out, iterations=0, accepted=0):
-        return ShortcutResult(status, out, raw, raw_length, space.path_length(out), iterations, accepted, time.perf_counter() - t0)
+        return ShortcutResult(status, out, raw, raw_length, space.path_length(out), iterations, accepted,
+                              time.perf_counter() - t0, space.distance(raw[0], raw[-1]))
 
     if not settings.enabled:
         return done(ShortcutStatus.DISABLED, raw)
