@@ -89,8 +89,8 @@ def make_motion(
         try:
             # a returned straight-line path is free at the fine resolution (the planner's re-check, the
             # shortcut's): only the blends off it need checking; a car's dense curve samples are not
-            traj = time_path(space, checker, attempt.path, limits, fine, timing_settings(planner), stops=rests,
-                             verified=stops is None)
+            timing = timing_settings(planner) if stops is not None else timing_settings(planner).for_shortened()
+            traj = time_path(space, checker, attempt.path, limits, fine, timing, stops=rests, verified=stops is None)
         except MotionError as exc:
             if attempt.path is attempt.raw_path:
                 return Motion(short, None, short.time_s, time.perf_counter() - t0, f"no trajectory: {exc}")
