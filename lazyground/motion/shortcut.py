@@ -24,7 +24,7 @@ from __future__ import annotations
 import enum
 import functools
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -46,7 +46,9 @@ class ShortcutStatus(str, enum.Enum):
 
 @dataclass(frozen=True)
 class ShortcutSettings:
-    """How hard to shorten. Both budgets apply: whichever runs out first stops it."""
+    """How hard to shorten. The random shortcuts stop at whichever comes first: ``max_iterations``
+    attempts, ``time_budget`` seconds (from the start of the shortening) or ``patience`` attempts in
+    a row without gain; the greedy pass before them makes a few dozen edge checks and is not cut short."""
 
     enabled: bool = True
     max_iterations: int = 100  # random shortcut attempts after the greedy pass
