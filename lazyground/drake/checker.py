@@ -9,7 +9,6 @@ checker per resolution.
 
 from __future__ import annotations
 
-import math
 import time
 
 import numpy as np
@@ -82,11 +81,14 @@ class DrakeChecker:
         """
         if not self._penetration_first:
             return bool(self.drake.CheckConfigCollisionFree(q_full))
-        self.drake.UpdatePositions(q_full)
-        query = self._context.GetQueryObject()
-        if query.HasCollisions():
+        if self._penetrates(q_full):
             return False
-        return not query.ComputeSignedDistancePairwiseClosestPoints(self.drake.GetLargestPadding())
+        return not self._context.GetQueryObject().ComputeSignedDistancePairwiseClosestPoints(self.drake.GetLargestPadding())
+
+    def _penetrates(self, q_full: np.ndarray) -> bool:
+        """SceneGraph's boolean collision query at q_full (left posed in the main thread's context)."""
+        self.drake.UpdatePositions(q_full)
+        return self._context.GetQueryObject().HasCollisions()
 
     def configs_free(self, qs: np.ndarray) -> np.ndarray:
         qs = np.atleast_2d(qs)
@@ -116,20 +118,19 @@ class DrakeChecker:
         return bool(self._edge(self._edge_free, a, b, resolution))
 
     def _edge_free(self, qa: np.ndarray, qb: np.ndarray) -> bool:
-        """Drake's ``CheckEdgeCollisionFree`` (b first, then a and the steps towards b), with b checked by _free.
+        """Drake's ``CheckEdgeCollisionFree``, after SceneGraph's boolean query at b.
 
         Most of a planner's steps end in collision (on fetch_boxes_3, 70-87 % of the
-        extensions), so the cheap answer for a colliding b decides most edges. The steps
-        are Drake's own (its metric, its step count, its linear interpolation), checked in
-        one batch: the same configurations, hence the same answer, as Drake's edge check.
+        extensions), and Drake checks b first but with its full distance query; the
+        boolean query rejects those edges ~4x cheaper. An edge it lets through gets
+        Drake's own check (b, then a and the steps towards b), so the answer is Drake's.
+        Replayed on a plan's edges this was the cheapest of three variants; checking
+        the steps ourselves in one batch was slower (Python overhead on the cheap car
+        checks, no early exit on the arm; benchmarks/RESULTS.md, #19).
         """
-        if not self._penetration_first:
-            return bool(self.drake.CheckEdgeCollisionFree(qa, qb))
-        if not self._free(qb):
+        if self._penetration_first and self._penetrates(qb):
             return False
-        n = max(1, math.ceil(self.drake.ComputeConfigurationDistance(qa, qb) / self._resolution))
-        r = (np.arange(n) / n)[:, None]
-        return bool(np.all(self._batch(list((1.0 - r) * qa + r * qb))))
+        return bool(self.drake.CheckEdgeCollisionFree(qa, qb))
 
     def edge_fraction(self, a: np.ndarray, b: np.ndarray, resolution: float) -> float:
         """The largest t in [0, 1] with a → a + t (b - a) free at ``resolution`` (1: all free; 0: blocked at once).

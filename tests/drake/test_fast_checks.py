@@ -1,9 +1,8 @@
 """The checker's cheaper paths answer exactly as Drake's own checks, and parallel batches never hang a fork (#19).
 
-``DrakeChecker`` answers a configuration with SceneGraph's boolean query first
-and checks an edge's steps in one batch; both must give Drake's answers
-configuration by configuration and edge by edge, including near obstacles,
-where the padding decides.
+``DrakeChecker`` asks SceneGraph's boolean query first, for a configuration and
+for an edge's end; both must give Drake's answers configuration by configuration
+and edge by edge, including near obstacles, where the padding decides.
 """
 
 from __future__ import annotations
@@ -59,7 +58,7 @@ def test_the_cheap_config_check_is_drakes_answer(world):
     assert 0 < drake.sum() < len(qs)
 
 
-def test_the_batched_edge_check_is_drakes_answer(world):
+def test_the_edge_check_is_drakes_answer(world):
     rng = np.random.default_rng(8)
     edges, inside = [], 0
     while len(edges) < 300 or inside < 5:
