@@ -178,7 +178,8 @@ def _candidates_all_checked(checker) -> bool:
 
     Then a penetration SceneGraph finds is a collision for the checker, and a pair it
     reports within the padding is one too (the checker's own rule), so its queries
-    can stand in for the checker's.
+    can stand in for the checker's. Decided once, at construction: lazyground never
+    changes a checker's filters or padding afterwards.
     """
     plant = checker.plant()
     inspector = checker.model().scene_graph().model_inspector()

@@ -3,10 +3,10 @@
 Drake parallelises ``CheckConfigsCollisionFree`` with OpenMP over its pool of
 contexts. GNU OpenMP's thread pool does not survive ``fork()``: a process forked
 from one that has used the pool hangs in its first parallel region (#19, seen in
-bench workers). So batches go parallel only when they are large enough to pay for the threads
-(:data:`PARALLEL_MIN_BATCH`), and never in a process forked after its parent
-used the pool (an ``os.register_at_fork`` hook notices): that process checks
-serially, slower but never stuck. ``lazyground bench`` forks its workers from a
+bench workers). So batches go parallel only when they are large enough to pay
+for the threads (:data:`PARALLEL_MIN_BATCH`), and never in a process forked after
+its parent used the pool (an ``os.register_at_fork`` hook notices): that process
+checks serially, slower but never stuck. ``lazyground bench`` forks its workers from a
 process that has not checked anything, so they run parallel batches; pytest's
 workers, forked from a process that has, run serial ones (and keep the test
 process's settings, which a ``spawn``-ed worker would not).
@@ -17,8 +17,9 @@ from __future__ import annotations
 import os
 
 # Configurations per batch from which Drake's parallel check is used. Below it the
-# threads' start-up and hand-over cost more than they save, and on a loaded machine
-# a small parallel batch was 2-5x slower than a serial one (benchmarks/RESULTS.md, #19).
+# threads' start-up and hand-over cost more than they save: on a loaded machine a parallel
+# batch of 10-64 configurations was 9-46x slower than a serial one, from ~256 about even
+# (benchmarks/RESULTS.md, #19). The quiet-machine gain on large batches is ~2x.
 PARALLEL_MIN_BATCH = 512
 
 _used = False  # this process has run a parallel batch (its OpenMP pool exists)
