@@ -19,7 +19,7 @@ import os
 # Configurations per batch from which Drake's parallel check is used. Below it the
 # threads' start-up and hand-over cost more than they save: on a loaded machine a parallel
 # batch of 10-64 configurations was 9-46x slower than a serial one, from ~256 about even
-# (benchmarks/RESULTS.md, #19). The quiet-machine gain on large batches is ~2x.
+# (benchmarks/RESULTS.md, #19). On a quiet machine a large batch was reported ~2x faster (not re-measured).
 PARALLEL_MIN_BATCH = 512
 
 _used = False  # this process has run a parallel batch (its OpenMP pool exists)
