@@ -121,8 +121,11 @@ def time_path(
         settings: speed, sample rate, blends.
         stops: waypoint indices where the robot stops (e.g. the start of a straight approach);
             the segment after a stop stays straight.
-        verified: the path's segments are known free at ``fine_resolution`` (a returned path):
-            only the curve off them (the blends around corners) is checked; else all of it.
+        verified: the path's segments are known free at ``fine_resolution``: only the curve off
+            them (the blends around corners) is checked; else all of it. The output then need not
+            pass :func:`~lazyground.motion.validate.trajectory_problems` at the same resolution,
+            which tests other points of those segments (a path grazing an obstacle between the two
+            sets failed it), so the pipeline does not use it.
 
     Returns:
         The Trajectory, sampled every ``1 / settings.sample_rate`` s and at its end.
