@@ -74,7 +74,7 @@ class CarSpace(ConfigSpace):
 
     def word(self, a: np.ndarray, b: np.ndarray) -> curves.Word:
         """The shortest curve a -> b as segments (kind, signed length in metres)."""
-        key = (np.asarray(a, float).tobytes(), np.asarray(b, float).tobytes())
+        key = _key(a, b)
         word = self._words.get(key)
         if word is None:
             solve = curves.reeds_shepp_word if self.kinematics is Kinematics.REEDS_SHEPP else curves.dubins_word
@@ -117,20 +117,23 @@ class CarSpace(ConfigSpace):
 
         Nodes are tried in order of a lower bound on their curve length (the reference points'
         distance, and the arc that turns the heading), stopping once the bound passes the best
-        length found: most candidates are ruled out without solving their curve. Not cached
-        (one of them is used).
+        length found: most candidates are ruled out without solving their curve. The winner's
+        curve is remembered (the planner steers along it next).
         """
         solve = curves.reeds_shepp_word if self.kinematics is Kinematics.REEDS_SHEPP else curves.dubins_word
         ref, end = self.reference(np.asarray(nodes, float)), self._ref(q)
         bound = np.maximum(np.hypot(ref[:, 0] - end[0], ref[:, 1] - end[1]),
                            self.radius * np.abs(wrap_angle(end[2] - ref[:, 2])))
-        best, best_len = 0, math.inf
-        for i in np.argsort(bound, kind="stable"):
+        order, bound, ref = np.argsort(bound, kind="stable").tolist(), bound.tolist(), ref.tolist()
+        best, best_len, best_word = 0, math.inf, None
+        for i in order:
             if bound[i] >= best_len:
                 break
-            length = curves.word_length(solve(*curves.relative(ref[i], end, self.radius))) * self.radius
+            word = solve(*curves.relative(ref[i], end, self.radius))
+            length = curves.word_length(word) * self.radius
             if length < best_len:
-                best, best_len = int(i), length
+                best, best_len, best_word = i, length, word
+        self._remember(_key(nodes[best], q), tuple((k, s * self.radius) for k, s in best_word))
         return best
 
     def _segments(self, a: np.ndarray, word: curves.Word) -> tuple[list, float]:
@@ -202,7 +205,7 @@ class CarSpace(ConfigSpace):
         if curves.word_length(word) <= step:
             return np.array(b, float), True
         q = self._pose_at(a, word, step)
-        self._remember((np.asarray(a, float).tobytes(), q.tobytes()), curves.prefix(word, step))
+        self._remember(_key(a, q), curves.prefix(word, step))
         return q, False
 
     def path_length(self, path: np.ndarray) -> float:
@@ -221,6 +224,11 @@ class CarSpace(ConfigSpace):
     def cusp_indices(self, dense: np.ndarray) -> tuple[int, ...]:
         """The waypoints of a dense path where the direction of travel flips (where a car stops)."""
         return cusp_indices(self.reference(dense))
+
+
+def _key(a, b) -> tuple[bytes, bytes]:
+    """The curve cache's key of a -> b."""
+    return np.asarray(a, float).tobytes(), np.asarray(b, float).tobytes()
 
 
 def _end(x, y, th, kind, length, r):
