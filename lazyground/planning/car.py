@@ -12,9 +12,11 @@ that), so goal regions, strategies and both planners are unchanged:
   (:meth:`CarSpace.closest`). The embedding alone is a poor proxy (a sideways offset
   costs a car far more than its Euclidean distance): from its nearest node a goal step
   can drive a long loop and never arrive. Re-ranked, every free goal step ends nearer
-  its goal sample. Measured on parking_2 with reward-penalty, seeds 0-39: the embedding
-  alone needed a mean 5,910 iterations (3 runs unsolved at 40,000), re-ranking 10
-  candidates a mean 1,247 (most 3,860).
+  its goal sample. Measured on parking_2 with reward-penalty (tools/car_stats.py), seeds
+  0-39: the embedding alone needed a mean 5,910 iterations (3 runs unsolved at 40,000);
+  re-ranking 3 / 5 / 8 / 10 / 16 candidates a mean 1,400 / 1,069 / 1,290 / 1,247 / 1,353
+  (most 6,910 / 4,727 / 5,858 / 3,860 / 5,892); seeds 40-79: 5 / 8 / 10 candidates 1,084 /
+  1,102 / 1,133. Five it is: the best mean and the cheapest of the good ones.
 
 The bidirectional planner joins goal-tree edges end to start: a reversed
 Reeds-Shepp curve is a Reeds-Shepp curve, but a Dubins car cannot reverse, so there
@@ -38,7 +40,7 @@ from lazyground.settings import Kinematics
 
 _TURN = {"L": 1.0, "R": -1.0, "S": 0.0}  # heading change per radian of arc
 DENSE_SPACING = 0.1  # m: the largest gap between consecutive samples of a returned car path
-NN_CANDIDATES = 10  # nearest neighbours: the embedding's nearest nodes re-ranked by curve length
+NN_CANDIDATES = 5  # nearest neighbours: the embedding's nearest nodes re-ranked by curve length (see above)
 
 
 
