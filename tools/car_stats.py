@@ -1,6 +1,6 @@
 """Per-seed figures of the car planner (issue #17): iterations, planning time, gear changes, driven length.
 
-    PYTHONPATH=. python3 tools/car_stats.py parking_2 --seeds 0-39 --strategy reward-penalty
+    PYTHONPATH=. python3 tools/car_stats.py parking_2 --seeds 0-39 --strategy consecutive
 
 Prints one JSON line per seed and a summary: iterations (load-independent), the planner's
 process time (CPU seconds of the search alone, less sensitive to load than wall time),
@@ -18,9 +18,10 @@ import numpy as np
 
 from lazyground import api
 from lazyground.drake.world import DrakeWorld
+from lazyground.planning import rrt
 from lazyground.robots.car import planning_space
 from lazyground.scene import load_scene
-from lazyground.planning import rrt
+from lazyground.settings import Kinematics, Strategy
 
 
 def _seeds(text: str) -> range:
@@ -32,8 +33,8 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("scene")
     ap.add_argument("--seeds", default="0-19", help="first-last, inclusive")
-    ap.add_argument("--strategy", default="reward-penalty")
-    ap.add_argument("--kinematics", default="reeds-shepp")
+    ap.add_argument("--strategy", default=Strategy.REWARD_PENALTY.value)
+    ap.add_argument("--kinematics", default=Kinematics.REEDS_SHEPP.value)
     ap.add_argument("--max-iterations", type=int, default=40_000)
     args = ap.parse_args()
     scene = load_scene(args.scene)
