@@ -123,16 +123,15 @@ class CarSpace(ConfigSpace):
         curve is remembered (the planner steers along it next).
         """
         solve = curves.reeds_shepp_word if self.kinematics is Kinematics.REEDS_SHEPP else curves.dubins_word
-        ref, end = self.reference(np.asarray(nodes, float)), self._ref(q)
-        bound = np.maximum(np.hypot(ref[:, 0] - end[0], ref[:, 1] - end[1]),
-                           self.radius * np.abs(wrap_angle(end[2] - ref[:, 2])))
-        order, bound, ref = np.argsort(bound, kind="stable").tolist(), bound.tolist(), ref.tolist()
+        end, r = self._ref(q), self.radius
+        ref = [self._ref(a) for a in nodes]  # scalar maths: a handful of nodes, numpy's overhead would dominate
+        bound = [max(math.hypot(p[0] - end[0], p[1] - end[1]), r * abs(curves.mod2pi(end[2] - p[2]))) for p in ref]
         best, best_len, best_word = 0, math.inf, None
-        for i in order:
+        for i in sorted(range(len(ref)), key=bound.__getitem__):
             if bound[i] >= best_len:
                 break
-            word = solve(*curves.relative(ref[i], end, self.radius))
-            length = curves.word_length(word) * self.radius
+            word = solve(*curves.relative(ref[i], end, r))
+            length = curves.word_length(word) * r
             if length < best_len:
                 best, best_len, best_word = i, length, word
         self._remember(_key(nodes[best], q), tuple((k, s * self.radius) for k, s in best_word))
