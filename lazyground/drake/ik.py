@@ -34,7 +34,7 @@ from pydrake.solvers import IpoptSolver, SnoptSolver, SolverOptions
 from lazyground.drake.batch_ik import ITERATIONS as BATCH_ITERATIONS
 from lazyground.drake.batch_ik import BatchIKProblem, pose_errors, solve_batch
 from lazyground.drake.chain import chain_to_frame
-from lazyground.drake.reach import REACH_SEED, ReachMap, _build_reach_map, reach_key, reach_map  # noqa: F401  (re-exported)
+from lazyground.drake.reach import reach_map
 from lazyground.geometry import Pose, rpy_to_matrix
 from lazyground.goals import RoundRobinGoalSource, register_goal_source
 from lazyground.planning.problem import GoalSample
