@@ -22,8 +22,7 @@ Two ways to solve (``IKSettings.solver``):
 from __future__ import annotations
 
 import time
-from collections import deque
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
@@ -32,8 +31,7 @@ from pydrake.multibody.inverse_kinematics import InverseKinematics
 from pydrake.solvers import IpoptSolver, SnoptSolver, SolverOptions
 
 from lazyground.drake.batch_ik import ITERATIONS as BATCH_ITERATIONS
-from lazyground.drake.batch_ik import BatchIKProblem, pose_errors, solve_batch
-from lazyground.drake.chain import chain_to_frame
+from lazyground.drake.ik_batch import APPROACH_SCALES, BatchAttempts, Prepared, problem_for_frame
 from lazyground.drake.reach import reach_map
 from lazyground.geometry import Pose, rpy_to_matrix
 from lazyground.goals import RoundRobinGoalSource, register_goal_source
@@ -44,8 +42,6 @@ from lazyground.tolerance import ORIENTATION_TOLERANCE, POSITION_TOLERANCE, acce
 
 
 APPROACH_RESOLUTION = 0.01  # rad (or m): spacing of the collision checks along an approach segment
-APPROACH_SCALES = (1.0, 0.5, 0.25)  # fractions of a region's approach distance tried in turn
-PRE_POSE_ITERATIONS = 8  # batch solves of a pre-pose from its goal: 94-98 % converge within 5 (fetch_cans_1), none after 10
 
 
 @dataclass(frozen=True)
@@ -109,22 +105,6 @@ class IKCounters:
         }
 
 
-@dataclass
-class _Prepared:
-    """One attempt of a batch: its drawn target and IK answers, waiting for its collision checks."""
-
-    j: int  # region
-    after: int  # round-robin counter after it (-1: made outside a draw)
-    v: np.ndarray
-    frame: str
-    X_WT: np.ndarray  # target pose of the robot frame (4x4)
-    reason: str = ""  # set when the attempt failed before any solve ("out of reach")
-    answers: np.ndarray | None = None  # (restarts, plant positions)
-    ok: np.ndarray | None = None  # (restarts,) the answer meets the pose
-    pre: dict = field(default_factory=dict)  # restart -> (pre-pose answers (scales, positions), ok (scales,))
-    seconds: float = 0.0  # its share of the batch's time
-
-
 class IKGoalSource(RoundRobinGoalSource):
     """Valid goal configurations for pose regions (workspace, placement), by IK.
 
@@ -180,10 +160,9 @@ class IKGoalSource(RoundRobinGoalSource):
         self._lower[self._planned] = world.space.lower
         self._upper[self._planned] = world.space.upper
         self._last: list[np.ndarray | None] = [None] * len(self.regions)
-        self._problems = {f: self._batch_problem(f) for f in dict.fromkeys(frames)} if settings.solver == "batch" else {}
-        self._batched = bool(self._problems) and all(p is not None for p in self._problems.values())
-        self._queue: deque[_Prepared] = deque()
-        self._queue_rng: np.random.Generator | None = None
+        problems = {f: problem_for_frame(world, f) for f in dict.fromkeys(frames)} if settings.solver == "batch" else {}
+        # batches when the chain expresses every frame (else SNOPT on the plant, e.g. for a planar base)
+        self._batch = BatchAttempts(self, problems) if problems and None not in problems.values() else None
         if settings.solver in ("batch", "snopt") and SnoptSolver().available() and SnoptSolver().enabled():
             self._solver = SnoptSolver()
             self._options = SolverOptions()
@@ -251,17 +230,17 @@ class IKGoalSource(RoundRobinGoalSource):
 
     # --- one attempt -------------------------------------------------------------------------
     def attempt(self, j: int, rng: np.random.Generator, deadline: float) -> tuple[GoalSample | None, str]:
-        if self._batched:
+        if self._batch is not None:
             if self._stop(deadline) <= time.perf_counter():  # the stop first: a zero budget is spent at once
                 return None, "time"
-            return self._finish(self._prepare([(j, -1)], rng)[0], deadline)
+            return self._finish(self._batch.prepare([(j, -1)], rng)[0], deadline)
         region = self.regions[j]
         v = region.sample(rng)
         frame, X_WT = self.target_pose_for(region, v)
         if self.settings.reach_check and not reach_map(self.world, frame).plausible(X_WT.matrix(), self.settings.reach_margin):
             return None, "out of reach"
         seeds = [self._last[j]] if self._last[j] is not None and self.settings.warm_start else []
-        item = _Prepared(j, -1, v, frame, X_WT.matrix())
+        item = Prepared(j, -1, v, frame, X_WT.matrix())
         return self._first_valid(item, deadline, lambda k: self.solve(frame, X_WT, seeds[k] if k < len(seeds) else self._random_full(rng),
                                                                         counters=self.region_counters[j]),
                                  lambda k, q_full, scale: self.approach_from(region, v, q_full, scale))
@@ -270,7 +249,7 @@ class IKGoalSource(RoundRobinGoalSource):
         budget = self.settings.attempt_budget
         return deadline if budget is None else min(deadline, time.perf_counter() + budget)
 
-    def _first_valid(self, item: _Prepared, deadline: float, answer: Callable, approach: Callable) -> tuple[GoalSample | None, str]:
+    def _first_valid(self, item: Prepared, deadline: float, answer: Callable, approach: Callable) -> tuple[GoalSample | None, str]:
         """The attempt's sample from its first restart whose answer is within the limits and free, or why none.
 
         ``answer(k)`` is restart k's IK answer (full positions) or None; ``approach(k, q_full, scale)``
@@ -307,136 +286,31 @@ class IKGoalSource(RoundRobinGoalSource):
     # --- many attempts at once (solver "batch") ----------------------------------------------
     def batch_size(self, wanted: int) -> int:
         # The whole draw's budget is planned; attempts() solves it batch_attempts at a time, lazily.
-        return wanted * self._attempts_per_sample if self._batched else 1
+        return 1 if self._batch is None else wanted * self._attempts_per_sample
 
     def attempts(self, plan, rng, deadline):
-        if not self._batched:
+        if self._batch is None:
             yield from super().attempts(plan, rng, deadline)
             return
-        if rng is not self._queue_rng:  # answers drawn from another generator are not this draw's
-            self._queue.clear()
-            self._queue_rng = rng
         for i, (j, after) in enumerate(plan):
-            if self._queue and (self._queue[0].j, self._queue[0].after) != (j, after):
-                self._queue.clear()  # the round robin moved on differently (a region given up): solve afresh
-            if not self._queue:
-                before = plan[i - 1][1] if i else self._next
-                self._queue.extend(self._prepare(self.plan(before, max(self.settings.batch_attempts, 1)), rng))
-            item = self._queue.popleft()
+            item = self._batch.take(j, after, plan[i - 1][1] if i else self._next, rng)
             a0 = time.perf_counter()
             sample, reason = self._finish(item, deadline)
             yield sample, reason, item.seconds + time.perf_counter() - a0
 
-    def _prepare(self, plan: list[tuple[int, int]], rng: np.random.Generator) -> list[_Prepared]:
-        """Draw the planned attempts' targets and solve all their restarts in one batch per frame.
-
-        Every attempt is charged an equal share of the drawing and reach filtering, and
-        every attempt that reached the solver an equal share of the solve (each has
-        ``restarts`` rows that run side by side); pre-poses of the first answer of each
-        are solved here too, for the approach checks after.
-        """
-        s = self.settings
-        t0 = time.perf_counter()
-        items = []
-        for j, after in plan:
-            region = self.regions[j]
-            v = region.sample(rng)
-            items.append(_Prepared(j, after, v, self._frames[region.id], self._target_matrix(region, v)))
-        for frame in dict.fromkeys(it.frame for it in items):
-            group = [it for it in items if it.frame == frame]
-            if s.reach_check:
-                near = reach_map(self.world, frame).plausible_all(np.array([it.X_WT for it in group]), s.reach_margin)
-                for it in (it for it, ok in zip(group, near) if not ok):
-                    it.reason = "out of reach"
-        t1 = time.perf_counter()
-        for it in items:
-            it.seconds = (t1 - t0) / len(items)
-        for frame in dict.fromkeys(it.frame for it in items):
-            group = [it for it in items if it.frame == frame and not it.reason]
-            if group:
-                self._solve_group(frame, group, rng)
-        return items
-
-    def _solve_group(self, frame: str, group: list[_Prepared], rng: np.random.Generator) -> None:
-        s, problem = self.settings, self._problems[frame]
-        t0 = time.perf_counter()
-        starts = []
-        for it in group:
-            last = self._last[it.j] if s.warm_start else None
-            starts += [last if k == 0 and last is not None else self._random_full(rng) for k in range(s.restarts)]
-        answers, ok = self._solve_rows(problem, np.array(starts), np.repeat([it.X_WT for it in group], s.restarts, axis=0))
-        t1 = time.perf_counter()
-        share = (t1 - t0) / len(group)
-        for g, it in enumerate(group):
-            rows = slice(g * s.restarts, (g + 1) * s.restarts)
-            it.answers, it.ok = answers[rows], ok[rows]
-            it.seconds += share
-            for c in (self.counters, self.region_counters[it.j]):
-                c.add(s.restarts, int(it.ok.sum()), share)
-        # the pre-poses of every attempt's first answer, warm from it (where the approach check starts)
-        first = [(it, int(np.argmax(it.ok))) for it in group if it.ok.any() and any(self.regions[it.j].approach)]
-        if first:
-            self._solve_pre_poses(first)
-            share = (time.perf_counter() - t1) / len(first)
-            for it, _ in first:
-                it.seconds += share
-
-    def _solve_pre_poses(self, todo: list[tuple[_Prepared, int]]) -> None:
-        """Pre-poses at every APPROACH_SCALES for restart k of each attempt, from its answer, in one batch."""
-        n = len(APPROACH_SCALES)
-        starts, targets = [], []
-        for it, k in todo:
-            region = self.regions[it.j]
-            starts += [it.answers[k]] * n
-            targets += [it.X_WT @ self._approach_shift(region, sc) for sc in APPROACH_SCALES]
-        answers, ok = self._solve_rows(self._problems[todo[0][0].frame], np.array(starts), np.array(targets), PRE_POSE_ITERATIONS)
-        self.counters.add(len(ok), int(ok.sum()), 0.0)
-        for i, (it, k) in enumerate(todo):
-            it.pre[k] = (answers[i * n:(i + 1) * n], ok[i * n:(i + 1) * n])
-
-    def _solve_rows(self, problem: BatchIKProblem, starts_full: np.ndarray, targets: np.ndarray,
-                    iterations: int | None = None) -> tuple[np.ndarray, np.ndarray]:
-        """Batched IK from full starting positions; answers as full positions, ok judged as SNOPT's are."""
-        s, index = self.settings, problem.chain.index
-        q, _ = solve_batch(problem, starts_full[:, index], targets, s.position_tolerance, s.orientation_tolerance,
-                           s.batch_iterations if iterations is None else iterations)
-        answers = starts_full.copy()
-        answers[:, index] = q
-        X = problem.chain.forward(q)
-        max_dp, max_angle = accepted_error(s.position_tolerance, s.orientation_tolerance)
-        _, dp, angle = pose_errors(X, targets)
-        return answers, (np.linalg.norm(dp, axis=1) <= max_dp) & (angle <= max_angle)
-
-    def _finish(self, item: _Prepared, deadline: float) -> tuple[GoalSample | None, str]:
+    def _finish(self, item: Prepared, deadline: float) -> tuple[GoalSample | None, str]:
         """An attempt's collision checks (and approach), on its batch answers."""
         if item.reason:
             return None, item.reason
 
         def approach(k, q_full, scale):
             if k not in item.pre:  # an answer after the first: its pre-poses were not solved ahead
-                self._solve_pre_poses([(item, k)])
+                self._batch.solve_pre_poses([(item, k)])
             answers, ok = item.pre[k]
             i = APPROACH_SCALES.index(scale)
             return self._approach_free(answers[i][self._planned], q_full[self._planned]) if ok[i] else None
 
         return self._first_valid(item, deadline, lambda k: item.answers[k] if item.ok[k] else None, approach)
-
-    def _batch_problem(self, frame: str) -> BatchIKProblem | None:
-        """The chain to ``frame`` with its planned joints free, or None when the chain cannot express it."""
-        try:
-            chain = chain_to_frame(self._plant, self._plant.GetFrameByName(frame))
-        except ValueError:  # e.g. a planar base: SNOPT on the plant instead
-            return None
-        column = {int(i): c for c, i in enumerate(self._planned)}
-        free = np.array([int(i) in column for i in chain.index])
-        space = self.world.space
-        lower = np.array([space.lower[column[i]] if i in column else self.world.q_full[i] for i in chain.index], float)
-        upper = np.array([space.upper[column[i]] if i in column else self.world.q_full[i] for i in chain.index], float)
-        # a revolute joint whose limits span a full turn reaches every angle: IK may wrap it
-        # (the answer stays within the limits), where clipping would leave it stuck at +-pi
-        wrap = np.array([i in column and (bool(space.wrap[column[i]]) or (kind == 0 and hi - lo >= 2 * np.pi - 1e-9))
-                         for i, kind, lo, hi in zip(chain.index, chain.kinds, lower, upper)])
-        return BatchIKProblem(chain, free, lower, upper, wrap)
 
     def solve(self, frame: str, X_WT: Pose, seed_full: np.ndarray, counters: IKCounters | None = None) -> np.ndarray | None:
         """Full plant positions putting ``frame`` at ``X_WT`` (within tolerance) by one Drake IK solve, or None.
