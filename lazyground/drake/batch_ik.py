@@ -20,7 +20,7 @@ import numpy as np
 
 from lazyground.drake.chain import Chain
 
-ITERATIONS = 20  # per problem; converged from random starts on fetch_cans_1: 83 % by 10, 94.5 % by 20, 95.2 % by 30 (SNOPT 64 %)
+ITERATIONS = 15  # per problem; converged from random starts on fetch_cans_1: 83 % by 10, 93 % by 15, 95 % by 30 (SNOPT 64 %)
 DAMPING = 0.05  # initial damping (m or rad), per problem
 MIN_DAMPING, MAX_DAMPING = 1e-6, 1e3
 ROTATION_WEIGHT = 0.3  # m per rad: how a rotation error weighs against a position error in the step
