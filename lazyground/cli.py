@@ -2,7 +2,9 @@
 
 Exit codes: 0 solved / done, 1 a planning failure status (timeout, invalid
 start, no valid goal), 2 bad input (scene, request, arguments), 3 an internal
-error (a bug: ``--debug`` shows the traceback), 130 interrupted.
+error (a bug: ``--debug`` shows the traceback), 130 interrupted, 141 the reader
+of the output went away (``lazyground plan ... --json | head``: silent, as any
+Unix tool stopped by SIGPIPE).
 """
 
 from __future__ import annotations
@@ -19,8 +21,7 @@ from lazyground.interrupt import work_begins
 from lazyground.motion import cli_options as motion_options
 from lazyground.settings import add_cli_options, cli_values
 
-EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
-REPO_ROOT = Path(__file__).resolve().parents[1]
+EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_PIPE_CLOSED = 0, 1, 2, 3, 130, 141
 
 
 class UsageError(Exception):
@@ -256,6 +257,12 @@ def main(argv: list[str] | None = None) -> int:
     return code
 
 
+def _silence_stdout() -> None:
+    """Point stdout at /dev/null, so the interpreter's final flush of a closed pipe raises nothing."""
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+
+
 def _interrupted(exc: BaseException) -> bool:
     """Whether ``exc`` was caused by Ctrl-C (pydrake turns it into "ImportError: initialization failed")."""
     while exc is not None:
@@ -287,6 +294,9 @@ def _main(argv: list[str]) -> int:
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    except BrokenPipeError:  # the reader closed our output (`| head`): nothing more to say, to anyone
+        _silence_stdout()
+        return EXIT_PIPE_CLOSED
     except Exception as exc:  # a bug: one line unless --debug
         if _interrupted(exc):
             print("interrupted", file=sys.stderr)

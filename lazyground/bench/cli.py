@@ -23,11 +23,10 @@ import time
 from pathlib import Path
 
 from lazyground.bench import arms
+from lazyground.bundled import bundled_scene, scene_names as bundled_names
 from lazyground.bench.runner import ALGORITHMS, RunSpec, execute, row_key, Progress
 from lazyground.settings import BY_NAME, Algorithm, Kinematics, Strategy
 
-REPO_ROOT = Path(__file__).resolve().parents[2]
-SCENES_DIR = REPO_ROOT / "yaml_scenes"
 ALL_STRATEGIES = (Strategy.CONSECUTIVE, Strategy.RANDOM, Strategy.REWARD_PENALTY)  # the tables' column order
 TABLES = {
     1: dict(scenes=("parking_1", "parking_2"), strategies=ALL_STRATEGIES, biases=(0.05,), runs=1000,
@@ -88,10 +87,10 @@ def resolve_scene(name: str) -> str | None:
     """A scene key: ``arm:<dof>``, a file path, or a name in yaml_scenes/; None when missing."""
     if arms.parse_arm_key(name) is not None:
         return name
-    for cand in (Path(name), SCENES_DIR / name, SCENES_DIR / f"{name}.yaml"):
-        if cand.is_file():
-            return str(cand)
-    return None
+    if Path(name).is_file():
+        return name
+    bundled = bundled_scene(name)  # a bare name, from any directory (installed or source tree)
+    return str(bundled) if bundled is not None else None
 
 
 def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
@@ -118,7 +117,7 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
         key = resolve_scene(name)
         (keys if key else missing).append(key or name)
     if missing:
-        notes.append(f"missing scenes (not in {SCENES_DIR.relative_to(REPO_ROOT)}/): {', '.join(missing)}")
+        notes.append(f"missing scenes (neither files nor bundled scenes: {', '.join(bundled_names())}): {', '.join(missing)}")
     if not keys:
         raise BenchUsageError(f"no scene to run: {notes[0]}")
     algorithms = _checked("algorithms", "algorithm", _csv_list(args.algorithms, preset.get("algorithms", (Algorithm.RRT,))))

@@ -147,3 +147,13 @@ def test_ground_json(capsys):
     assert doc["ambiguous"] is True and doc["action"] == "park"
     assert {i["id"] for i in doc["interpretations"]} == {"park:spot_b1", "park:spot_b9", "park:spot_t3", "park:spot_t10"}
     assert all(len(i["goal_regions"]) == 2 for i in doc["interpretations"])
+
+
+def test_reader_closing_the_pipe_is_silent():
+    """`lazyground plan ... --json | head`: the reader has gone before the report is written."""
+    proc = subprocess.Popen([sys.executable, "-m", "lazyground", "plan", P1, "park", "--json", "--seed", "0", *BY_SEED],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=ROOT)
+    proc.stdout.close()  # before the child writes anything: its first write meets a closed pipe
+    err = proc.stderr.read().decode()
+    assert proc.wait() == 141
+    assert err == ""
