@@ -10,7 +10,7 @@ import pytest
 pytest.importorskip("pydrake")
 
 import grounding  # noqa: E402
-from lazyground.drake.batch_ik import BatchIKProblem, pose_errors, solve_batch  # noqa: E402
+from lazyground.drake.batch_ik import SETTLE, BatchIKProblem, pose_errors, solve_batch  # noqa: E402
 from lazyground.drake.chain import chain_to_frame  # noqa: E402
 from lazyground.drake.ik import IKGoalSource, IKSettings  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
@@ -54,9 +54,25 @@ def test_random_reachable_targets_are_met_within_tolerance_and_limits(cans1):
         full[problem.chain.index] = q[k]
         plant.SetPositions(context, full)
         X = plant.CalcRelativeTransform(context, plant.world_frame(), plant.GetFrameByName("gripper_link")).GetAsMatrix4()
-        assert np.linalg.norm(X[:3, 3] - targets[k, :3, 3]) <= 0.002 + 1e-9
+        # inside the box and the cone (to SETTLE), as SNOPT's constraints: on their boundary, not at the target
+        assert np.all(np.abs(X[:3, 3] - targets[k, :3, 3]) <= (1 + SETTLE) * 0.002 + 1e-12)
         R = targets[k, :3, :3].T @ X[:3, :3]
-        assert np.arccos(np.clip((np.trace(R) - 1) / 2, -1, 1)) <= 0.01 + 1e-9
+        assert np.arccos(np.clip((np.trace(R) - 1) / 2, -1, 1)) <= (1 + SETTLE) * 0.01 + 1e-12
+
+
+def test_restarts_of_one_target_end_at_different_points_of_its_tolerance(cans1):
+    """Answers stop on the tolerance's boundary they came to, as SNOPT's: the room a tight grasp needs."""
+    _, world, _ = cans1
+    problem = _fetch_problem(world)
+    rng = np.random.default_rng(5)
+    target = problem.chain.forward(world.space.sample(rng)[None])
+    q, done = solve_batch(problem, np.array([world.space.sample(rng) for _ in range(40)]), np.repeat(target, 40, axis=0),
+                          0.002, 0.01)
+    X = problem.chain.forward(q[done])
+    dp = X[:, :3, 3] - target[0, :3, 3]
+    assert done.sum() >= 30
+    assert np.median(np.abs(dp).max(axis=1)) > 0.0015  # most end on the box (driven to the target: ~0.0003)
+    assert np.all(dp.std(axis=0) > 0.0005)  # on different sides of it
 
 
 def test_held_joints_stay_where_the_starts_put_them(cans1):
