@@ -51,6 +51,7 @@ def main(argv=None) -> int:
     ap.add_argument("--seeds", type=int, default=20)
     ap.add_argument("--resamples", type=int, default=5)
     ap.add_argument("--solvers", default="snopt,batch")
+    ap.add_argument("--batch-attempts", type=int, default=DEFAULT_IK_SETTINGS.batch_attempts)
     args = ap.parse_args(argv)
     print("| scene | solver | runs | median CPU ms / goal sample | valid / attempt | IK solves / sample | IK success | checks / sample |")
     print("|---|---|---|---|---|---|---|---|")
@@ -63,10 +64,10 @@ def main(argv=None) -> int:
         solvers = args.solvers.split(",")
         runs = {s: [] for s in solvers}
         for s in solvers:  # build the reach map and warm the caches outside the timed runs
-            one_run(world, regions, settings, replace(DEFAULT_IK_SETTINGS, solver=s, attempt_budget=None), 10**6, 0)
+            one_run(world, regions, settings, replace(DEFAULT_IK_SETTINGS, solver=s, attempt_budget=None, batch_attempts=args.batch_attempts), 10**6, 0)
         for seed in range(args.seeds):
             for s in solvers:
-                runs[s].append(one_run(world, regions, settings, replace(DEFAULT_IK_SETTINGS, solver=s, attempt_budget=None),
+                runs[s].append(one_run(world, regions, settings, replace(DEFAULT_IK_SETTINGS, solver=s, attempt_budget=None, batch_attempts=args.batch_attempts),
                                        seed, args.resamples))
         for s in solvers:
             rs = runs[s]

@@ -21,6 +21,7 @@ Two ways to solve (``IKSettings.solver``):
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
 from typing import Callable
@@ -42,6 +43,7 @@ from lazyground.tolerance import ORIENTATION_TOLERANCE, POSITION_TOLERANCE, acce
 
 
 APPROACH_RESOLUTION = 0.01  # rad (or m): spacing of the collision checks along an approach segment
+LOOK_AHEAD_MIN = 16  # fewest attempts the batch solver solves at once (below, one iteration's overhead dominates)
 
 
 @dataclass(frozen=True)
@@ -65,7 +67,7 @@ class IKSettings:
     # clock, an attempt is bounded by restarts x iterations only (tests: outcomes independent of load)
     major_iterations: int = 60  # SNOPT major iterations; IPOPT max_iter is 3x this
     solver: str = "batch"  # "batch" (numpy damped least squares, many attempts at once), "snopt" or "ipopt"
-    batch_attempts: int = 64  # attempts solved together by "batch" (a look-ahead later draws take from)
+    batch_attempts: int = 128  # most attempts solved together by "batch" (a look-ahead later draws take from)
     batch_iterations: int = BATCH_ITERATIONS  # damped least-squares iterations per solve
     reach_check: bool = True  # reject targets whose wrist point is far outside the sampled reach
     reach_margin: float = 0.08  # m, distance to the nearest sampled wrist point that still counts
@@ -120,7 +122,7 @@ class IKGoalSource(RoundRobinGoalSource):
         SceneError: the robot has no frame a region constrains.
 
     A sample records ``extra = {"X_WG": Pose, "v": 6-vector, "frame": name}``.
-    With the ``batch`` solver, attempts are solved ``batch_attempts`` at a time
+    With the ``batch`` solver, attempts are solved up to ``batch_attempts`` at a time
     ahead of the draw; the answers not used yet wait for the next draw with the
     same generator (another generator drops them, so a draw's samples come from
     its own generator's stream).
@@ -163,6 +165,7 @@ class IKGoalSource(RoundRobinGoalSource):
         problems = {f: problem_for_frame(world, f) for f in dict.fromkeys(frames)} if settings.solver == "batch" else {}
         # batches when the chain expresses every frame (else SNOPT on the plant, e.g. for a planar base)
         self._batch = BatchAttempts(self, problems) if problems and None not in problems.values() else None
+        self._wanted = 1  # samples the current draw still wants (sizes the batch solver's look-ahead)
         if settings.solver in ("batch", "snopt") and SnoptSolver().available() and SnoptSolver().enabled():
             self._solver = SnoptSolver()
             self._options = SolverOptions()
@@ -285,7 +288,8 @@ class IKGoalSource(RoundRobinGoalSource):
 
     # --- many attempts at once (solver "batch") ----------------------------------------------
     def batch_size(self, wanted: int) -> int:
-        # The whole draw's budget is planned; attempts() solves it batch_attempts at a time, lazily.
+        # The whole draw's budget is planned; attempts() solves it a look-ahead at a time, lazily.
+        self._wanted = wanted
         return 1 if self._batch is None else wanted * self._attempts_per_sample
 
     def attempts(self, plan, rng, deadline):
@@ -293,10 +297,23 @@ class IKGoalSource(RoundRobinGoalSource):
             yield from super().attempts(plan, rng, deadline)
             return
         for i, (j, after) in enumerate(plan):
-            item = self._batch.take(j, after, plan[i - 1][1] if i else self._next, rng)
+            item = self._batch.take(j, after, plan[i - 1][1] if i else self._next, rng, self._look_ahead())
             a0 = time.perf_counter()
             sample, reason = self._finish(item, deadline)
+            self._wanted -= sample is not None
             yield sample, reason, item.seconds + time.perf_counter() - a0
+
+    def _look_ahead(self) -> int:
+        """How many attempts to solve at once: enough for the samples the draw still wants at the
+        success rate so far (prior 1 in 4), half as many again, within [LOOK_AHEAD_MIN, batch_attempts].
+
+        Bigger batches cost less per solve (one iteration's numpy overhead is shared), but what a
+        plan never draws is wasted: a fixed 64 left ~1/3 of the solves unused on fetch_cans_1.
+        """
+        valid, attempts = sum(st.valid for st in self.stats), sum(st.attempts for st in self.stats)
+        rate = (valid + 1) / (attempts + 4)
+        need = math.ceil(1.5 * max(self._wanted, 1) / rate)
+        return int(min(max(need, LOOK_AHEAD_MIN), max(self.settings.batch_attempts, 1)))
 
     def _finish(self, item: Prepared, deadline: float) -> tuple[GoalSample | None, str]:
         """An attempt's collision checks (and approach), on its batch answers."""

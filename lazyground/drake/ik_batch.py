@@ -60,11 +60,11 @@ class BatchAttempts:
         self.queue: deque[Prepared] = deque()
         self.rng: np.random.Generator | None = None
 
-    def take(self, j: int, after: int, before: int, rng: np.random.Generator) -> Prepared:
+    def take(self, j: int, after: int, before: int, rng: np.random.Generator, look_ahead: int) -> Prepared:
         """The prepared attempt on region ``j`` at round-robin counter ``before`` (``after`` once made).
 
         From the queue when it holds that attempt for this generator; otherwise the queue is
-        dropped and the next ``batch_attempts`` attempts from ``before`` are prepared.
+        dropped and the next ``look_ahead`` attempts from ``before`` are prepared.
         """
         if rng is not self.rng:  # answers drawn from another generator are not this draw's
             self.queue.clear()
@@ -72,7 +72,7 @@ class BatchAttempts:
         if self.queue and (self.queue[0].j, self.queue[0].after) != (j, after):
             self.queue.clear()  # the round robin moved on differently (a region given up): solve afresh
         if not self.queue:
-            self.queue.extend(self.prepare(self.source.plan(before, max(self.source.settings.batch_attempts, 1)), rng))
+            self.queue.extend(self.prepare(self.source.plan(before, look_ahead), rng))
         return self.queue.popleft()
 
     def prepare(self, plan: list[tuple[int, int]], rng: np.random.Generator) -> list[Prepared]:
