@@ -15,6 +15,7 @@ import numpy as np
 from pydrake.planning import LinearDistanceAndInterpolationProvider, SceneGraphCollisionChecker
 
 from lazyground.drake.coordinates import Coordinates
+from lazyground.drake.parallel import parallel_batch
 
 # Drake needs a positive step at construction; a checker built without a resolution
 # replaces this once, before its first edge check, and never again.
@@ -48,6 +49,8 @@ class DrakeChecker:
         )
         self.check_time = 0.0
         self.checks = 0
+        self._context = self.drake.model_context()  # the main thread's context (the one single checks use)
+        self._penetration_first = _candidates_all_checked(self.drake)
 
     @property
     def edge_resolution(self) -> float | None:
@@ -60,22 +63,46 @@ class DrakeChecker:
 
     def config_free(self, q: np.ndarray) -> bool:
         t0 = time.perf_counter()
-        free = self.drake.CheckConfigCollisionFree(self.coordinates.full(q))
+        free = self._free(self.coordinates.full(q))
         self.check_time += time.perf_counter() - t0
         self.checks += 1
-        return bool(free)
+        return free
+
+    def _free(self, q_full: np.ndarray) -> bool:
+        """Drake's config check, answered by a cheaper boolean query first when that query can decide.
+
+        Drake's checker asks for every geometry pair's signed distance up to the padding,
+        which costs ~125 µs on a colliding Fetch configuration (penetration depths) and
+        ~65 µs on a free one. SceneGraph's boolean ``HasCollisions`` answers in ~25 µs; when
+        it finds a penetration, Drake's check would too (every pair SceneGraph considers is
+        one the checker checks, with one padding, not negative: see _candidates_all_checked).
+        Otherwise the distance query runs on the same, already posed context: the checker's
+        own test, so the answer is Drake's either way (benchmarks/RESULTS.md, #19).
+        """
+        if not self._penetration_first:
+            return bool(self.drake.CheckConfigCollisionFree(q_full))
+        if self._penetrates(q_full):
+            return False
+        return not self._context.GetQueryObject().ComputeSignedDistancePairwiseClosestPoints(self.drake.GetLargestPadding())
+
+    def _penetrates(self, q_full: np.ndarray) -> bool:
+        """SceneGraph's boolean collision query at q_full (left posed in the main thread's context)."""
+        self.drake.UpdatePositions(q_full)
+        return self._context.GetQueryObject().HasCollisions()
 
     def configs_free(self, qs: np.ndarray) -> np.ndarray:
         qs = np.atleast_2d(qs)
         if len(qs) == 1:
             return np.array([self.config_free(qs[0])])
         t0 = time.perf_counter()
-        # Serial on purpose: Drake's parallel batch (OpenMP) was at best 20 % faster here under load, and once a
-        # process has used its OpenMP pool, a bench worker forked from it hangs in its first parallel batch (#19).
-        free = self.drake.CheckConfigsCollisionFree(list(self.coordinates.full(qs)), parallelize=False)
+        free = self._batch(list(self.coordinates.full(qs)))
         self.check_time += time.perf_counter() - t0
         self.checks += len(qs)
-        return np.asarray(free, bool)
+        return free
+
+    def _batch(self, configs: list[np.ndarray]) -> np.ndarray:
+        """Drake's batch check, on several threads when the batch is large enough (lazyground.drake.parallel)."""
+        return np.asarray(self.drake.CheckConfigsCollisionFree(configs, parallelize=parallel_batch(len(configs))), bool)
 
     def edge_free(self, a: np.ndarray, b: np.ndarray, resolution: float) -> bool:
         """Whether the motion a → b is free, checked in C++ every ``resolution`` with early exit.
@@ -88,7 +115,22 @@ class DrakeChecker:
         Raises:
             ValueError: ``resolution`` is not this checker's fixed resolution.
         """
-        return bool(self._edge(self.drake.CheckEdgeCollisionFree, a, b, resolution))
+        return bool(self._edge(self._edge_free, a, b, resolution))
+
+    def _edge_free(self, qa: np.ndarray, qb: np.ndarray) -> bool:
+        """Drake's ``CheckEdgeCollisionFree``, after SceneGraph's boolean query at b.
+
+        Most of a planner's steps end in collision (on fetch_boxes_3, 70-87 % of the
+        extensions), and Drake checks b first but with its full distance query; the
+        boolean query rejects those edges ~4x cheaper. An edge it lets through gets
+        Drake's own check (b, then a and the steps towards b), so the answer is Drake's.
+        Replayed on a plan's edges this was the cheapest of three variants; checking
+        the steps ourselves in one batch was slower (Python overhead on the cheap car
+        checks, no early exit on the arm; benchmarks/RESULTS.md, #19).
+        """
+        if self._penetration_first and self._penetrates(qb):
+            return False
+        return bool(self.drake.CheckEdgeCollisionFree(qa, qb))
 
     def edge_fraction(self, a: np.ndarray, b: np.ndarray, resolution: float) -> float:
         """The largest t in [0, 1] with a → a + t (b - a) free at ``resolution`` (1: all free; 0: blocked at once).
@@ -129,6 +171,27 @@ class DrakeChecker:
                 continue
             pairs.append((_geometry_name(plant, inspector, p.id_A), _geometry_name(plant, inspector, p.id_B)))
         return sorted(set(pairs))
+
+
+def _candidates_all_checked(checker) -> bool:
+    """Whether every geometry pair SceneGraph may report is a pair the checker checks, with one padding.
+
+    Then a penetration SceneGraph finds is a collision for the checker, and a pair it
+    reports within the padding is one too (the checker's own rule), so its queries
+    can stand in for the checker's. Decided once, at construction: lazyground never
+    changes a checker's filters or padding afterwards.
+    """
+    plant = checker.plant()
+    inspector = checker.model().scene_graph().model_inspector()
+    paddings = checker.GetPaddingMatrix()
+    bodies = set()
+    for ga, gb in inspector.GetCollisionCandidates():
+        a, b = (plant.GetBodyFromFrameId(inspector.GetFrameId(g)) for g in (ga, gb))
+        if a is None or b is None or checker.IsCollisionFilteredBetween(a, b):
+            return False
+        bodies.add((int(a.index()), int(b.index())))
+    pads = {paddings[i, j] for i, j in bodies}
+    return pads <= {checker.GetLargestPadding()} and checker.GetLargestPadding() >= 0.0
 
 
 def _geometry_name(plant, inspector, gid) -> str:

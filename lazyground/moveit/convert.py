@@ -148,7 +148,7 @@ def _start(data: dict, source: str, options: StartOptions, defaults: RobotDefaul
         warnings.append(f"no robot_state.joint_state: starting from {base_source}")
     start, start_source, more = resolve_start(base, base_source, options, defaults, tuple(defaults.planned_joints))
     warnings += more
-    start, more = clamp_to_limits(start, urdf_limits(model), f"{source} ({start_source})")
+    start, more = clamp_to_limits(start, urdf_limits(model), source, start_source)
     warnings += more
     return {j: _round(v) for j, v in start.items()}, start_source
 

@@ -161,8 +161,15 @@ def urdf_limits(model_file: str | Path) -> dict[str, tuple[float, float]]:
     return out
 
 
-def clamp_to_limits(start: dict[str, float], limits: dict[str, tuple[float, float]], source: str) -> tuple[dict[str, float], list[str]]:
+def clamp_to_limits(start: dict[str, float], limits: dict[str, tuple[float, float]], source: str,
+                    start_source: str) -> tuple[dict[str, float], list[str]]:
     """The start with values within LIMIT_TOLERANCE outside a limit clamped (one warning each).
+
+    Args:
+        start: joint -> value.
+        limits: joint -> (lower, upper), e.g. from :func:`urdf_limits`.
+        source: the file the start belongs to (every error begins with it).
+        start_source: where the values came from ("the scene's robot_state", a named pose, ...).
 
     Raises:
         SceneError: a value further outside its limits (names the joint, value and limits).
@@ -178,7 +185,7 @@ def clamp_to_limits(start: dict[str, float], limits: dict[str, tuple[float, floa
             out[joint] = min(max(value, lo), hi)
             warnings.append(f"start {joint} = {value:.3g} is just outside its limits [{lo:g}, {hi:g}]: clamped to {out[joint]:g}")
         else:
-            raise SceneError(f"{source}: start {joint} = {value:g} is outside its limits [{lo:g}, {hi:g}]")
+            raise SceneError(f"{source}: start {joint} = {value:g} ({start_source}) is outside its limits [{lo:g}, {hi:g}]")
     return out, warnings
 
 
@@ -198,5 +205,5 @@ def override_scene_start(scene, options: StartOptions):
     defaults = defaults_for_model(scene.robot.model) or RobotDefaults(model=scene.robot.model)
     planned = tuple(scene.robot.planned_joints or scene.robot.start)
     start, source, warnings = resolve_start(scene.robot.start, "the scene's start", options, defaults, planned)
-    start, more = clamp_to_limits(start, urdf_limits(scene.robot.model), f"{scene.source} ({source})")
+    start, more = clamp_to_limits(start, urdf_limits(scene.robot.model), str(scene.source), source)
     return replace(scene, robot=replace(scene.robot, start={**scene.robot.start, **start})), warnings + more

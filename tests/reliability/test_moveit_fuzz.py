@@ -10,7 +10,7 @@ from __future__ import annotations
 import copy
 
 import yaml
-from hypothesis import HealthCheck, given, settings, strategies as st
+from hypothesis import HealthCheck, example, given, settings, strategies as st
 
 from lazyground.bench.moveit_corpus import CORPUS
 from lazyground.moveit import convert_moveit
@@ -34,6 +34,7 @@ PATHS = [p for p in _paths(BASE) if p]
 
 @FUZZ
 @given(st.lists(st.tuples(st.sampled_from(PATHS), st.booleans(), VALUES), min_size=1, max_size=3))
+@example(mutations=[(("robot_state", "joint_state", "position", 2), False, 1)])  # a start outside the joint limits
 def test_mutated_scenes_convert_or_fail_in_one_line(mutations):
     data = copy.deepcopy(BASE)
     for path, delete, value in mutations:
