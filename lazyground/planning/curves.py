@@ -48,19 +48,21 @@ def _tau_omega(u, v, xi, eta, phi):
     return tau, mod2pi(tau - u + v - phi)
 
 
-# --- base words: (x, y, phi) of the goal in the start frame (radius 1) -> segments or None
+# --- base words: (x, y, phi) of the goal in the start frame (radius 1), with sin(phi) and cos(phi)
+# -> the segments' signed lengths (their kinds are in _BASE) or None
 
 
-def _lsl(x, y, phi):  # 8.1  L+ S+ L+
-    u, t = math.hypot(x - math.sin(phi), y - 1.0 + math.cos(phi)), math.atan2(y - 1.0 + math.cos(phi), x - math.sin(phi))
+def _lsl(x, y, phi, sp, cp):  # 8.1  L+ S+ L+
+    xi, eta = x - sp, y - 1.0 + cp
+    u, t = math.hypot(xi, eta), math.atan2(eta, xi)
     v = mod2pi(phi - t)
     if t >= -ZERO and v >= -ZERO:
-        return (("L", t), ("S", u), ("L", v))
+        return t, u, v
     return None
 
 
-def _lsr(x, y, phi):  # 8.2  L+ S+ R+
-    xi, eta = x + math.sin(phi), y - 1.0 - math.cos(phi)
+def _lsr(x, y, phi, sp, cp):  # 8.2  L+ S+ R+
+    xi, eta = x + sp, y - 1.0 - cp
     u1 = xi * xi + eta * eta
     if u1 < 4.0:
         return None
@@ -68,12 +70,12 @@ def _lsr(x, y, phi):  # 8.2  L+ S+ R+
     t = mod2pi(math.atan2(eta, xi) + math.atan2(2.0, u))
     v = mod2pi(t - phi)
     if t >= -ZERO and v >= -ZERO:
-        return (("L", t), ("S", u), ("R", v))
+        return t, u, v
     return None
 
 
-def _lrl(x, y, phi):  # 8.3 / 8.4  L+ R- L
-    xi, eta = x - math.sin(phi), y - 1.0 + math.cos(phi)
+def _lrl(x, y, phi, sp, cp):  # 8.3 / 8.4  L+ R- L
+    xi, eta = x - sp, y - 1.0 + cp
     rho = math.hypot(xi, eta)
     if rho > 4.0:
         return None
@@ -81,24 +83,24 @@ def _lrl(x, y, phi):  # 8.3 / 8.4  L+ R- L
     t = mod2pi(math.atan2(eta, xi) + 0.5 * u + PI)
     v = mod2pi(phi - t + u)
     if t >= -ZERO and u <= ZERO:
-        return (("L", t), ("R", u), ("L", v))
+        return t, u, v
     return None
 
 
-def _lrlr_a(x, y, phi):  # 8.7  L+ R+u L-u R-
-    xi, eta = x + math.sin(phi), y - 1.0 - math.cos(phi)
+def _lrlr_a(x, y, phi, sp, cp):  # 8.7  L+ R+u L-u R-
+    xi, eta = x + sp, y - 1.0 - cp
     rho = 0.25 * (2.0 + math.hypot(xi, eta))
     if rho > 1.0:
         return None
     u = math.acos(rho)
     t, v = _tau_omega(u, -u, xi, eta, phi)
     if t >= -ZERO and v <= ZERO:
-        return (("L", t), ("R", u), ("L", -u), ("R", v))
+        return t, u, -u, v
     return None
 
 
-def _lrlr_b(x, y, phi):  # 8.8  L+ R-u L-u R+
-    xi, eta = x + math.sin(phi), y - 1.0 - math.cos(phi)
+def _lrlr_b(x, y, phi, sp, cp):  # 8.8  L+ R-u L-u R+
+    xi, eta = x + sp, y - 1.0 - cp
     rho = (20.0 - xi * xi - eta * eta) / 16.0
     if not 0.0 <= rho <= 1.0:
         return None
@@ -107,12 +109,12 @@ def _lrlr_b(x, y, phi):  # 8.8  L+ R-u L-u R+
         return None
     t, v = _tau_omega(u, u, xi, eta, phi)
     if t >= -ZERO and v >= -ZERO:
-        return (("L", t), ("R", u), ("L", u), ("R", v))
+        return t, u, u, v
     return None
 
 
-def _lrsl(x, y, phi):  # 8.9  L+ R-pi/2 S- L-
-    xi, eta = x - math.sin(phi), y - 1.0 + math.cos(phi)
+def _lrsl(x, y, phi, sp, cp):  # 8.9  L+ R-pi/2 S- L-
+    xi, eta = x - sp, y - 1.0 + cp
     rho = math.hypot(xi, eta)
     if rho < 2.0:
         return None
@@ -121,24 +123,24 @@ def _lrsl(x, y, phi):  # 8.9  L+ R-pi/2 S- L-
     t = mod2pi(math.atan2(eta, xi) + math.atan2(r, -2.0))
     v = mod2pi(phi - HALF_PI - t)
     if t >= -ZERO and u <= ZERO and v <= ZERO:
-        return (("L", t), ("R", -HALF_PI), ("S", u), ("L", v))
+        return t, -HALF_PI, u, v
     return None
 
 
-def _lrsr(x, y, phi):  # 8.10  L+ R-pi/2 S- R-
-    xi, eta = x + math.sin(phi), y - 1.0 - math.cos(phi)
+def _lrsr(x, y, phi, sp, cp):  # 8.10  L+ R-pi/2 S- R-
+    xi, eta = x + sp, y - 1.0 - cp
     rho, t = math.hypot(-eta, xi), math.atan2(xi, -eta)
     if rho < 2.0:
         return None
     u = 2.0 - rho
     v = mod2pi(t + HALF_PI - phi)
     if t >= -ZERO and u <= ZERO and v <= ZERO:
-        return (("L", t), ("R", -HALF_PI), ("S", u), ("R", v))
+        return t, -HALF_PI, u, v
     return None
 
 
-def _lrslr(x, y, phi):  # 8.11  L+ R-pi/2 S- L-pi/2 R+
-    xi, eta = x + math.sin(phi), y - 1.0 - math.cos(phi)
+def _lrslr(x, y, phi, sp, cp):  # 8.11  L+ R-pi/2 S- L-pi/2 R+
+    xi, eta = x + sp, y - 1.0 - cp
     rho = math.hypot(xi, eta)
     if rho < 2.0:
         return None
@@ -148,14 +150,18 @@ def _lrslr(x, y, phi):  # 8.11  L+ R-pi/2 S- L-pi/2 R+
     t = mod2pi(math.atan2((4.0 - u) * xi - 2.0 * eta, -2.0 * xi + (u - 4.0) * eta))
     v = mod2pi(t - phi)
     if t >= -ZERO and v >= -ZERO:
-        return (("L", t), ("R", -HALF_PI), ("S", u), ("L", -HALF_PI), ("R", v))
+        return t, -HALF_PI, u, -HALF_PI, v
     return None
 
 
 _SWAP = {"L": "R", "R": "L", "S": "S"}
-# (base word, whether its "backwards" image is a distinct word: only the words
-# that are not palindromic in shape need it)
-_BASE = ((_lsl, False), (_lsr, False), (_lrl, True), (_lrlr_a, False), (_lrlr_b, False), (_lrsl, True), (_lrsr, True), (_lrslr, False))
+# (base word, its segments' kinds, whether its "backwards" image is a distinct word: only the
+# words that are not palindromic in shape need it)
+_BASE = ((_lsl, "LSL", False), (_lsr, "LSR", False), (_lrl, "LRL", True), (_lrlr_a, "LRLR", False),
+         (_lrlr_b, "LRLR", False), (_lrsl, "LRSL", True), (_lrsr, "LRSR", True), (_lrslr, "LRSLR", False))
+# time flip negates lengths (the query's x), reflection swaps L and R (the query's y); phi flips
+# sign when exactly one of them applies: (sign of x, sign of y, flip, mirror)
+_SYMMETRIES = ((1.0, 1.0, False, False), (-1.0, 1.0, True, False), (1.0, -1.0, False, True), (-1.0, -1.0, True, True))
 
 
 def word_length(word: Word) -> float:
@@ -163,27 +169,33 @@ def word_length(word: Word) -> float:
 
 
 def reeds_shepp_word(x: float, y: float, phi: float) -> Word:
-    """The shortest Reeds-Shepp word to (x, y, phi) in the start frame, radius 1."""
+    """The shortest Reeds-Shepp word to (x, y, phi) in the start frame, radius 1.
+
+    The base words return bare lengths and the winner alone becomes a word: this runs once per
+    nearest-neighbour candidate, and building ~30 words of tuples per query cost a third of it.
+    """
     best, best_len = None, math.inf
-    xb, yb = x * math.cos(phi) + y * math.sin(phi), x * math.sin(phi) - y * math.cos(phi)
-    for base, backwards in _BASE:
+    sp, cp = math.sin(phi), math.cos(phi)
+    xb, yb = x * cp + y * sp, x * sp - y * cp
+    for base, kinds, backwards in _BASE:
         for gx, gy, reverse in ((x, y, False), (xb, yb, True)) if backwards else ((x, y, False),):
-            # time flip negates lengths, reflection swaps L and R; both act on the query as sign flips
-            for sx, sy, flip, mirror in ((1, 1, False, False), (-1, 1, True, False), (1, -1, False, True), (-1, -1, True, True)):
-                word = base(sx * gx, sy * gy, phi if flip == mirror else -phi)
-                if word is None:
+            for sx, sy, flip, mirror in _SYMMETRIES:
+                same = flip == mirror  # sin(-phi) = -sin(phi): one sine serves every query
+                lengths = base(sx * gx, sy * gy, phi if same else -phi, sp if same else -sp, cp)
+                if lengths is None:
                     continue
-                length = word_length(word)
-                if length >= best_len:
-                    continue
-                if reverse:
-                    word = word[::-1]
-                if flip:
-                    word = tuple((k, -s) for k, s in word)
-                if mirror:
-                    word = tuple((_SWAP[k], s) for k, s in word)
-                best, best_len = word, length
-    return best
+                length = sum(map(abs, lengths))
+                if length < best_len:
+                    best, best_len = (kinds, lengths, reverse, flip, mirror), length
+    kinds, lengths, reverse, flip, mirror = best
+    word = tuple(zip(kinds, lengths))
+    if reverse:
+        word = word[::-1]
+    if flip:
+        word = tuple((k, -s) for k, s in word)
+    if mirror:
+        word = tuple((_SWAP[k], s) for k, s in word)
+    return word
 
 
 def _arc(a: float) -> float:

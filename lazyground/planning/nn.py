@@ -95,6 +95,28 @@ class NearestNeighbors:
                 best = lo + j
         return int(best)
 
+    def nearest_k(self, x: np.ndarray, k: int) -> np.ndarray:
+        """Indices of the ``k`` nearest points (fewer if there are fewer), nearest first.
+
+        Removed points sort last (they sit at ``FAR``); the caller filters them.
+        """
+        idx, d2 = [], []
+        for tree, off in ((self._main, 0), (self._recent, self._main_end)):
+            if tree is not None:
+                d, j = tree.query(x, k=min(k, tree.n))
+                keep = np.atleast_1d(j) < tree.n  # cKDTree pads missing neighbours with n
+                idx.append(np.atleast_1d(j)[keep] + off)
+                d2.append(np.atleast_1d(d)[keep] ** 2)
+        lo = self._recent_end if self._main is not None else 0
+        if lo < self._size:
+            g = self._sq[lo : self._size] - 2.0 * (self._points[lo : self._size] @ x) + x @ x
+            j = np.argpartition(g, k - 1)[:k] if len(g) > k else np.arange(len(g))
+            idx.append(lo + j)
+            d2.append(g[j])
+        idx, d2 = np.concatenate(idx), np.concatenate(d2)
+        order = np.argsort(d2, kind="stable")[:k]
+        return idx[order]
+
     def _rebuild_main(self) -> None:
         self._main_end = self._recent_end = self._size
         self._main = cKDTree(self._points[: self._size]) if self._size else None

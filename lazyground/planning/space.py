@@ -20,6 +20,7 @@ class ConfigSpace:
     """Bounded coordinates with per-coordinate metric weights; ``wrap`` marks angles."""
 
     linear_edges = True  # edges are straight in these coordinates (a checker may interpolate linearly)
+    nn_candidates = 1  # nearest neighbours: the embedding's nearest is the nearest (see Tree.nearest)
 
     names: tuple[str, ...]
     lower: np.ndarray
@@ -121,6 +122,10 @@ class ConfigSpace:
         if len(self._ang):
             q[self._ang] = wrap_angle(q[self._ang])
         return q, False
+
+    def closest(self, nodes, q: np.ndarray) -> int:
+        """Index of the node of ``nodes`` (a non-empty sequence) nearest to ``q`` in this space's distance."""
+        return int(np.argmin([self.distance(a, q) for a in nodes]))
 
     def clip(self, q: np.ndarray) -> np.ndarray:
         return np.clip(q, self.lower, self.upper)

@@ -51,13 +51,24 @@ class Tree:
         return i
 
     def nearest(self, q: np.ndarray, label: int | None = None) -> int:
-        """The nearest live node (of one label's subtree if given), or -1 if there is none."""
+        """The nearest live node (of one label's subtree if given), or -1 if there is none.
+
+        A space with ``nn_candidates`` > 1 (a car) ranks that many nearest nodes of the
+        embedding by its own :meth:`closest` (the driving distance to ``q``).
+        """
         x = self.space.embed(q)
         if label is None:
-            i = self.nn.nearest(x) if len(self.nn) else -1
+            nn, members = (self.nn, None) if len(self.nn) else (None, None)
         else:
             nn, members = self._label_nn.get(label, (None, None))
-            i = members[nn.nearest(x)] if nn is not None else -1
+        if nn is None:
+            return -1
+        if self.space.nn_candidates > 1:
+            near = nn.nearest_k(x, self.space.nn_candidates)
+            near = [j for j in (near if members is None else (members[j] for j in near)) if self.alive[j]]
+            return near[self.space.closest([self.nodes[j] for j in near], q)] if near else -1
+        i = nn.nearest(x)
+        i = i if members is None else members[i]
         return i if i >= 0 and self.alive[i] else -1
 
     def chain(self, i: int) -> list[int]:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from lazyground.goals import goal_source_for
+from lazyground.motion.car_shortcut import shorten_car_result, with_car_shortcut
 from lazyground.motion.pipeline import motion_for_world
 from lazyground.planning.rrt import solve
 from lazyground.robots.car import planning_space
@@ -34,9 +35,13 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     source = make_goal_source(world, grounding.goal_regions)
     space = planning_space(scene, world.space, settings.kinematics)  # a car's curves, or world.space
     result = solve(space, world, source, world.start, settings, rng, seed=seed, keep_tree=keep_tree)
-    # shortened and timed (issue #16); a car's path is timed as driven, resting at every gear
-    # change (a shortcut would interpolate straight lines off its curves)
+    # shortened and timed (issue #16); a car's path is shortened along its own curves (#17), then
+    # timed as driven, resting at every gear change (a straight shortcut would leave the curves)
+    cut = None
+    if not space.linear_edges:
+        result, cut = shorten_car_result(space, world, result, settings, rng)
     stops = None if space.linear_edges or not result.solved else space.cusp_indices(result.path)
     result, motion = motion_for_world(world, result, settings, rng, stops=stops)
+    motion = with_car_shortcut(motion, cut)
     notes = (motion.note,) if motion is not None and motion.note else ()
     return Outcome(result, (Step(grounding.action, result, setup_s, motion=motion),), world.space.names, notes)

@@ -230,3 +230,32 @@ def test_planned_car_paths_are_drivable(kinematics):
         if kinematics == "dubins":
             assert res.cusps == 0
     assert solved == 3
+
+
+@pytest.mark.parametrize("kinematics", sorted(SOLVERS))
+def test_closest_is_the_shortest_curve_among_candidates(kinematics):
+    """The bound-pruned ranking returns the node with the shortest curve to q (its length, ties aside)."""
+    space = make_space(BASE, kinematics, R, OFFSET)
+    rng = np.random.default_rng(7)
+    for _ in range(200):
+        q = space.sample(rng)
+        nodes = [q + rng.normal(0.0, [3.0, 3.0, 1.0]) for _ in range(int(rng.integers(1, 16)))]
+        lengths = [make_space(BASE, kinematics, R, OFFSET).distance(a, q) for a in nodes]
+        assert lengths[space.closest(nodes, q)] == pytest.approx(min(lengths), rel=1e-9, abs=1e-9)
+
+
+def test_tree_nearest_ranks_a_cars_candidates_by_driving_distance():
+    """Beside the car, facing it, is near in the embedding but far to drive; a node behind it is not."""
+    from lazyground.planning.tree import Tree
+
+    space = make_space(BASE, "reeds-shepp", R, 0.0)
+    q = np.array([20.0, 15.0, 0.0])
+    aside = np.array([20.0, 16.0, 0.0])  # 1 m to the left, same heading: an S-manoeuvre
+    behind = np.array([18.5, 15.0, 0.0])  # 1.5 m straight back
+    tree = Tree(space)
+    tree.add_root(aside)
+    tree.add(behind, 0)
+    assert space.distance(aside, q) > space.distance(behind, q) == pytest.approx(1.5)
+    assert np.linalg.norm(space.embed(aside) - space.embed(q)) < np.linalg.norm(space.embed(behind) - space.embed(q))
+    assert tree.nearest(q) == 1
+    assert Tree(BASE).nearest(q) == -1  # an empty tree has none

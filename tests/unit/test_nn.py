@@ -38,3 +38,23 @@ def test_removed_points_are_never_returned(brute_limit):
         assert j not in gone
         alive = np.setdiff1d(np.arange(200), gone)
         assert np.isclose(np.linalg.norm(pts[j] - q), np.linalg.norm(pts[alive] - q, axis=1).min())
+
+
+@PATHS
+def test_k_nearest_match_brute_force_through_growth_and_removal(brute_limit):
+    rng = np.random.default_rng(2)
+    nn = NearestNeighbors(3, capacity=8, buffer=16, brute_limit=brute_limit)
+    pts = rng.random((1500, 3))
+    gone = set()
+    for i, p in enumerate(pts):
+        nn.add(p)
+        if i % 97 == 96:  # removals between inserts, as a pruned branch
+            nn.remove([i - 5, i - 3])
+            gone |= {i - 5, i - 3}
+        if i % 7 == 0:
+            q, k = rng.random(3), int(rng.integers(1, 12))
+            got = [j for j in nn.nearest_k(q, k) if j not in gone]
+            alive = np.setdiff1d(np.arange(i + 1), sorted(gone))
+            d = np.linalg.norm(pts[alive] - q, axis=1)
+            assert len(got) == min(k, len(alive))  # removed points sort last (they sit far away)
+            assert np.allclose(np.linalg.norm(pts[got] - q, axis=1), np.sort(d)[: len(got)]), (i, got)
