@@ -32,7 +32,7 @@ from pydrake.multibody.inverse_kinematics import InverseKinematics
 from pydrake.solvers import IpoptSolver, SnoptSolver, SolverOptions
 
 from lazyground.drake.batch_ik import ITERATIONS as BATCH_ITERATIONS
-from lazyground.drake.ik_batch import APPROACH_SCALES, BatchAttempts, Prepared, problem_for_frame
+from lazyground.drake.ik_attempts import APPROACH_SCALES, BatchAttempts, Prepared, problem_for_frame
 from lazyground.drake.reach import reach_map
 from lazyground.geometry import Pose, rpy_to_matrix
 from lazyground.goals import RoundRobinGoalSource, register_goal_source
