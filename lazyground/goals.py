@@ -16,7 +16,7 @@ is imported (any ``DrakeWorld`` has imported it).
 from __future__ import annotations
 
 import time
-from typing import Callable
+from typing import Callable, Iterator
 
 import numpy as np
 
@@ -57,24 +57,66 @@ class RoundRobinGoalSource:
         t0 = time.perf_counter()
         try:
             while len(out) < n and budget > 0 and not self.exhausted() and time.perf_counter() < deadline:
-                j = self._next % len(self.regions)
-                self._next += 1
-                if self.region_exhausted(j):
-                    continue
-                budget -= 1
-                st = self.stats[j]
-                st.attempts += 1
-                a0 = time.perf_counter()
-                sample, reason = self.attempt(j, rng, deadline)
-                st.time += time.perf_counter() - a0
-                if sample is None:
-                    st.fail(reason)
-                else:
-                    st.valid += 1
-                    out.append(sample)
+                plan = self.plan(self._next, min(budget, self.batch_size(n - len(out))))
+                results = self.attempts(plan, rng, deadline)
+                try:
+                    for j, after in plan:  # the attempts in round-robin order, as if made one by one
+                        if len(out) >= n or budget <= 0 or time.perf_counter() >= deadline:
+                            break
+                        sample, reason, seconds = next(results)
+                        self._next = after
+                        budget -= 1
+                        st = self.stats[j]
+                        st.attempts += 1
+                        st.time += seconds
+                        if sample is None:
+                            st.fail(reason)
+                        else:
+                            st.valid += 1
+                            out.append(sample)
+                finally:
+                    results.close()
         finally:
             self._time += time.perf_counter() - t0
         return out
+
+    def plan(self, position: int, k: int) -> list[tuple[int, int]]:
+        """The next ``k`` attempts in round-robin order from counter ``position``: (region, counter after it).
+
+        Exhausted regions are skipped, and a region without a valid sample gets no
+        more planned attempts than it has left before it is given up (as if each
+        planned attempt failed). Fewer than ``k`` when no region can take one.
+        """
+        m = len(self.regions)
+        left = [self._give_up_after - st.attempts if st.valid == 0 else k for st in self.stats]
+        out: list[tuple[int, int]] = []
+        idle = 0  # regions passed in a row without a planned attempt
+        while len(out) < k and idle < m:
+            j = position % m
+            position += 1
+            if left[j] > 0:
+                left[j] -= 1
+                out.append((j, position))
+                idle = 0
+            else:
+                idle += 1
+        return out
+
+    def batch_size(self, wanted: int) -> int:
+        """How many attempts to plan at once when ``wanted`` samples are missing (1: one at a time)."""
+        return 1
+
+    def attempts(self, plan: list[tuple[int, int]], rng: np.random.Generator,
+                 deadline: float) -> Iterator[tuple[GoalSample | None, str, float]]:
+        """(sample or None, failure reason, seconds) for the planned attempts, in order, made lazily.
+
+        The caller stops taking results once it has enough (closing the generator);
+        the default makes each :meth:`attempt` only when its result is asked for.
+        """
+        for j, _ in plan:
+            a0 = time.perf_counter()
+            sample, reason = self.attempt(j, rng, deadline)
+            yield sample, reason, time.perf_counter() - a0
 
     def attempt(self, j: int, rng: np.random.Generator, deadline: float) -> tuple[GoalSample | None, str]:
         """One try at a valid sample in region j: (sample, "") or (None, reason)."""

@@ -99,5 +99,6 @@ def peer_setup(problem, spec, counterpart: Algorithm) -> PeerSetup:
     samples = []
     while not samples and not source.exhausted() and time.perf_counter() < deadline:
         samples = source.draw(settings.initial_goal_samples, rng, deadline)
-    fields = dict(grounding_s=grounding_s, goal_sampling_s=source.sample_time, goal_samples=len(samples), resamplings=0)
+    fields = dict(grounding_s=grounding_s, goal_sampling_s=source.sample_time, goal_samples=len(samples), resamplings=0,
+                  goal_attempts=sum(st.attempts for st in source.stats))
     return PeerSetup(world, tuple(regions), settings, samples, fields, t0, deadline, world.check_time, world.checks)

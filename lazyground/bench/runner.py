@@ -35,6 +35,7 @@ FIELDS = (
     "raw_path_length", "shortcut_s", "timing_s", "duration_s",  # after the solve (lazyground.motion; #16)
     "direct_path_length",  # start to goal in a straight line: the shortened length's lower bound (#16)
     "collision_checks",  # the planner's own checks (#19)
+    "goal_attempts",  # goal-sampling attempts over all regions, failed ones included (#19)
 )
 
 
@@ -203,6 +204,7 @@ def result_fields(result, grounding_s: float, interpretation: str, region: str) 
         path_length=result.path_length,
         message=result.message,
         collision_checks=result.collision_checks,
+        goal_attempts=sum(st.attempts for st in result.region_stats),
     )
 
 

@@ -144,12 +144,13 @@ def markdown_table(rows: list[dict], title: str = "") -> str:
 def time_split_table(rows: list[dict]) -> str:
     """Where the time goes, over every finished run (timeouts too: their time is planning time as well):
     mean seconds of grounding, goal sampling, collision checking and the rest, and the rest's share of the
-    total time (the planner's own time)."""
+    total time (the planner's own time); the median goal-sampling milliseconds per valid goal sample
+    (failed attempts included) and valid samples per attempt over all runs; checks per run and time per check."""
     rows = [r for r in rows if r["status"] != "interrupted"]
     if not rows:
         return "(no finished runs)\n"
     head = ["Scene", "Strategy", "Bias %", "runs", "solved", "time", "grounding", "goal sampling", "collision", "other",
-            "other share", "checks", "µs/check"]
+            "other share", "IK ms / goal sample", "valid / attempt", "checks", "µs/check"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for label, b, scene, rs in _rows_by_config_and_scene(rows):
         m = {k: np.mean([float(r[k]) for r in rs]) for k in ("time_s", "grounding_s", "goal_sampling_s", "collision_s", "other_s")}
@@ -157,8 +158,19 @@ def time_split_table(rows: list[dict]) -> str:
         solved = sum(r["status"] == "solved" for r in rs)
         lines.append(f"| {scene} | {label} | {b} | {len(rs)} | {solved} | {m['time_s']:.3f} | {m['grounding_s']:.3f} | "
                      f"{m['goal_sampling_s']:.3f} | {m['collision_s']:.3f} | {m['other_s']:.3f} | {share * 100:.0f}% | "
-                     f"{_checks_cells(rs)} |")
+                     f"{_goal_sampling_cells(rs)} | {_checks_cells(rs)} |")
     return "\n".join(lines) + "\n"
+
+
+def _goal_sampling_cells(rows: list[dict]) -> str:
+    """Median goal-sampling ms per valid goal sample over runs with one, and valid samples per attempt
+    over all runs ("-" where a CSV has no attempt counts, e.g. an older one)."""
+    sampled = [r for r in rows if float(r.get("goal_samples") or 0) > 0]
+    ms = f"{np.median([1e3 * float(r['goal_sampling_s']) / float(r['goal_samples']) for r in sampled]):.1f}" if sampled else "-"
+    counted = [r for r in rows if str(r.get("goal_attempts", "")).strip() not in ("", "0")]
+    rate = (f"{sum(float(r['goal_samples']) for r in counted) / sum(float(r['goal_attempts']) for r in counted):.3f}"
+            if counted else "-")
+    return f"{ms} | {rate}"
 
 
 def _checks_cells(rows: list[dict]) -> str:

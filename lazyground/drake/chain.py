@@ -55,8 +55,9 @@ class Chain:
         axes_W = np.empty((B, self.n, 3))
         c, s = np.cos(q), np.sin(q)
         for k in range(self.n):
-            p += R @ self.X_before[k, :3, 3]
-            R = R @ self.X_before[k, :3, :3]
+            # R @ A for a constant A as one (3B, 3) product: numpy's stacked matmul is ~5x slower here
+            p += (R.reshape(-1, 3) @ self.X_before[k, :3, 3]).reshape(B, 3)
+            R = (R.reshape(-1, 3) @ self.X_before[k, :3, :3]).reshape(B, 3, 3)
             origins[:, k] = p
             axes_W[:, k] = R[:, :, 2]
             if self.kinds[k] == PRISMATIC:
@@ -66,8 +67,8 @@ class Chain:
                 ck, sk = c[:, k, None], s[:, k, None]
                 R[:, :, 0] = x * ck + R[:, :, 1] * sk
                 R[:, :, 1] = R[:, :, 1] * ck - x * sk
-        p += R @ self.X_after[:3, 3]
-        R = R @ self.X_after[:3, :3]
+        p += (R.reshape(-1, 3) @ self.X_after[:3, 3]).reshape(B, 3)
+        R = (R.reshape(-1, 3) @ self.X_after[:3, :3]).reshape(B, 3, 3)
         X = np.zeros((B, 4, 4))
         X[:, :3, :3], X[:, :3, 3], X[:, 3, 3] = R, p, 1.0
         if not jacobian:

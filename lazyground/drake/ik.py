@@ -1,29 +1,40 @@
 """Goal sampling for workspace goal regions by inverse kinematics.
 
 One attempt on a region: draw a 6-vector v in the region, turn it into a
-target pose of the end-effector frame, solve Drake ``InverseKinematics`` for
-that pose over the planned coordinates (kinematics only: position box and
-orientation cone, joint limits as variable bounds), then confirm the answer
-with the collision checker. No minimum-distance constraint: with one, failed
-solves cost 0.3-0.8 s each (issue 7); without it a failed solve stops at the
-iteration limit after a few milliseconds, and collisions are checked after.
+target pose of the end-effector frame, solve IK for that pose over the planned
+coordinates from ``restarts`` random starts (kinematics only: position box and
+orientation cone, joint limits), then confirm the first answer that meets the
+pose with the collision checker, and its straight approach from a pre-pose.
+
+Two ways to solve (``IKSettings.solver``):
+
+* ``batch`` (the default): every attempt of a look-ahead in round-robin order
+  is solved at once by damped least squares on the numpy chain
+  (:mod:`lazyground.drake.batch_ik`), ~0.1 ms per solve against ~1.5 ms for a
+  SNOPT program built per solve; collision checks then run attempt by attempt,
+  only as far as the draw needs (#19).
+* ``snopt`` / ``ipopt``: Drake ``InverseKinematics``, one solve at a time; also
+  what ``batch`` falls back to for a frame the chain cannot express (a planar
+  or floating base). No minimum-distance constraint: with one, failed solves
+  cost 0.3-0.8 s each (issue 7); collisions are checked after.
 """
 
 from __future__ import annotations
 
+import math
 import time
-from collections import OrderedDict
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 from pydrake.math import RotationMatrix
 from pydrake.multibody.inverse_kinematics import InverseKinematics
-from pydrake.multibody.tree import RevoluteJoint
 from pydrake.solvers import IpoptSolver, SnoptSolver, SolverOptions
-from scipy.spatial import cKDTree
 
-from lazyground.drake.chain import chain_to_frame, joints_to_world
-from lazyground.geometry import Pose
+from lazyground.drake.batch_ik import ITERATIONS as BATCH_ITERATIONS
+from lazyground.drake.ik_attempts import APPROACH_SCALES, BatchAttempts, Prepared, problem_for_frame
+from lazyground.drake.reach import reach_map
+from lazyground.geometry import Pose, rpy_to_matrix
 from lazyground.goals import RoundRobinGoalSource, register_goal_source
 from lazyground.planning.problem import GoalSample
 from lazyground.regions import PlacementRegion, PoseRegion, WorkspaceRegion
@@ -32,7 +43,7 @@ from lazyground.tolerance import ORIENTATION_TOLERANCE, POSITION_TOLERANCE, acce
 
 
 APPROACH_RESOLUTION = 0.01  # rad (or m): spacing of the collision checks along an approach segment
-APPROACH_SCALES = (1.0, 0.5, 0.25)  # fractions of a region's approach distance tried in turn
+LOOK_AHEAD_MIN = 16  # fewest attempts the batch solver solves at once (below, one iteration's overhead dominates)
 
 
 @dataclass(frozen=True)
@@ -53,9 +64,11 @@ class IKSettings:
     orientation_tolerance: float = ORIENTATION_TOLERANCE  # rad, angle between target and solved orientation
     restarts: int = 3
     attempt_budget: float | None = 0.25  # s per attempt (also bounded by the planner's deadline); None: no
-    # clock, an attempt is bounded by restarts x major_iterations only (tests: outcomes independent of load)
+    # clock, an attempt is bounded by restarts x iterations only (tests: outcomes independent of load)
     major_iterations: int = 60  # SNOPT major iterations; IPOPT max_iter is 3x this
-    solver: str = "snopt"  # "snopt" or "ipopt"
+    solver: str = "batch"  # "batch" (numpy damped least squares, many attempts at once), "snopt" or "ipopt"
+    batch_attempts: int = 128  # most attempts solved together by "batch" (a look-ahead later draws take from)
+    batch_iterations: int = BATCH_ITERATIONS  # damped least-squares iterations per solve
     reach_check: bool = True  # reject targets whose wrist point is far outside the sampled reach
     reach_margin: float = 0.08  # m, distance to the nearest sampled wrist point that still counts
     warm_start: bool = False  # first restart from the region's last valid solution (one IK branch)
@@ -74,6 +87,13 @@ class IKCounters:
     successes: int = 0  # solves whose answer met the pose within tolerance
     time: float = 0.0
     success_time: float = 0.0
+
+    def add(self, solves: int, successes: int, seconds: float) -> None:
+        """Count ``solves`` solves taking ``seconds`` together, ``successes`` of them successful (time split evenly)."""
+        self.solves += solves
+        self.successes += successes
+        self.time += seconds
+        self.success_time += seconds * successes / solves if solves else 0.0
 
     def to_json(self) -> dict:
         return {
@@ -97,19 +117,39 @@ class IKGoalSource(RoundRobinGoalSource):
         settings: IK tolerances and per-attempt limits (default: DEFAULT_IK_SETTINGS).
         **kwargs: :class:`RoundRobinGoalSource` options.
 
+    Raises:
+        ValueError: a region is not a pose region, or a placement region without a carried object.
+        SceneError: the robot has no frame a region constrains.
+
     A sample records ``extra = {"X_WG": Pose, "v": 6-vector, "frame": name}``.
+    With the ``batch`` solver, attempts are solved up to ``batch_attempts`` at a time
+    ahead of the draw; the answers not used yet wait for the next draw with the
+    same generator (another generator drops them, so a draw's samples come from
+    its own generator's stream).
     """
 
     def __init__(self, regions: tuple[PoseRegion, ...], world, settings: IKSettings | None = None, **kwargs):
         super().__init__(regions, **kwargs)
         settings = DEFAULT_IK_SETTINGS if settings is None else settings
         attached = getattr(world, "attached", None)
+        frames = []
         for r in self.regions:
             if not isinstance(r, PoseRegion):
                 raise ValueError(f"region {r.id} is a {r.kind} region, not a pose region; use its registered goal source")
             frame = r.robot_target(r.X_WR, attached)[0]  # raises for a placement without a carried object
             if not world.plant.HasFrameNamed(frame):  # a scene/request mismatch, not a bug
                 raise SceneError(f"{world.scene.source}: robot: no frame {frame!r} to reach goal region {r.id} with (set robot.end_effector)")
+            frames.append(frame)
+        # X_WT = X_WR · X_RS(v) · X_SE · X_ET, where robot_target's X_ET takes the region's
+        # target to the robot frame (identity, or the carried object's grasp); the approach,
+        # given in the target's axes, is d = X_ET^-1 · T(approach) · X_ET in the robot frame's
+        self._frames = dict(zip((r.id for r in self.regions), frames))
+        self._factors = {}
+        for r in self.regions:
+            X_ET = r.robot_target(Pose(), attached)[1].matrix()
+            T = np.eye(4)
+            T[:3, 3] = r.approach
+            self._factors[r.id] = (r.X_WR.matrix(), r.X_SE.matrix() @ X_ET, (np.linalg.inv(X_ET) @ T @ X_ET)[:3, 3])
         self.world = world
         self.settings = settings
         self.counters = IKCounters()
@@ -122,7 +162,11 @@ class IKGoalSource(RoundRobinGoalSource):
         self._lower[self._planned] = world.space.lower
         self._upper[self._planned] = world.space.upper
         self._last: list[np.ndarray | None] = [None] * len(self.regions)
-        if settings.solver == "snopt" and SnoptSolver().available() and SnoptSolver().enabled():
+        problems = {f: problem_for_frame(world, f) for f in dict.fromkeys(frames)} if settings.solver == "batch" else {}
+        # batches when the chain expresses every frame (else SNOPT on the plant, e.g. for a planar base)
+        self._batch = BatchAttempts(self, problems) if problems and None not in problems.values() else None
+        self._wanted = 1  # samples the current draw still wants (sizes the batch solver's look-ahead)
+        if settings.solver in ("batch", "snopt") and SnoptSolver().available() and SnoptSolver().enabled():
             self._solver = SnoptSolver()
             self._options = SolverOptions()
             self._options.SetOption(SnoptSolver.id(), "Major iterations limit", settings.major_iterations)
@@ -133,18 +177,32 @@ class IKGoalSource(RoundRobinGoalSource):
             self._options.SetOption(IpoptSolver.id(), "print_level", 0)
 
     # --- hooks -------------------------------------------------------------------------------
-    def target_pose_for(self, region: PoseRegion, v: np.ndarray, approach: bool = False) -> tuple[str, Pose]:
+    def target_pose_for(self, region: PoseRegion, v: np.ndarray, approach: bool = False, scale: float = 1.0) -> tuple[str, Pose]:
         """The robot frame to constrain and its target pose X_WT for a draw ``v`` of ``region``.
 
         The region says which frame (:meth:`PoseRegion.robot_target`): a workspace
         region its end-effector frame, a placement region the body carrying the
         world's attached object. With ``approach``, the pre-pose: the target moved
-        by ``region.approach`` in its own axes.
+        by ``scale`` times ``region.approach`` in its own axes.
         """
-        X_WT = region.pose_in_world(v)
+        X = self._target_matrix(region, v)
         if approach:
-            X_WT = X_WT.compose(Pose(tuple(region.approach)))
-        return region.robot_target(X_WT, getattr(self.world, "attached", None))
+            X = X @ self._approach_shift(region, scale)
+        return self._frames[region.id], Pose.from_matrix(X)
+
+    def _target_matrix(self, region: PoseRegion, v: np.ndarray) -> np.ndarray:
+        """X_WT (4x4) of the robot frame for a draw ``v``: X_WR · X_RS(v) · X_ST, with X_ST from the region and robot."""
+        X_WR, X_ST, _ = self._factors[region.id]
+        X_RS = np.eye(4)
+        X_RS[:3, :3] = rpy_to_matrix(v[3:6])
+        X_RS[:3, 3] = v[:3]
+        return X_WR @ X_RS @ X_ST
+
+    def _approach_shift(self, region: PoseRegion, scale: float) -> np.ndarray:
+        """The pre-pose of a target X_WT is X_WT times this: ``scale`` x the approach, in the robot frame's axes."""
+        shift = np.eye(4)
+        shift[:3, 3] = scale * self._factors[region.id][2]
+        return shift
 
     def approach_from(self, region: PoseRegion, v: np.ndarray, q_full: np.ndarray, scale: float = 1.0) -> np.ndarray | None:
         """The pre-pose configuration for a goal at ``q_full``, if its straight approach is free.
@@ -153,38 +211,60 @@ class IKGoalSource(RoundRobinGoalSource):
         from ``q_full`` so it stays on the same IK branch; the joint-space segment
         from it to the goal is collision-checked every APPROACH_RESOLUTION.
         """
-        frame, X_pre = self.target_pose_for(region, v, approach=True)
-        if scale != 1.0:
-            X_goal = self.target_pose_for(region, v)[1].matrix()
-            X = X_pre.matrix()
-            X[:3, 3] = X_goal[:3, 3] + scale * (X[:3, 3] - X_goal[:3, 3])
-            X_pre = Pose.from_matrix(X)
+        frame, X_pre = self.target_pose_for(region, v, approach=True, scale=scale)
         pre_full = self.solve(frame, X_pre, q_full)
-        if pre_full is None:
-            return None
-        pre, q = pre_full[self._planned], q_full[self._planned]
+        return None if pre_full is None else self._approach_free(pre_full[self._planned], q_full[self._planned])
+
+    def _approach_free(self, pre: np.ndarray, q: np.ndarray) -> np.ndarray | None:
+        """``pre`` if it is within the limits and the segment pre -> q (q known free) is free, else None.
+
+        Checked every APPROACH_RESOLUTION, every fourth configuration first: a blocked
+        approach is usually blocked over several of them, so it is found in a few checks.
+        """
         if not self.world.space.within_bounds(pre):
             return None
-        if not np.all(self.world.configs_free(self.world.space.discretize(pre, q, APPROACH_RESOLUTION))):
-            return None
+        path = self.world.space.discretize(pre, q, APPROACH_RESOLUTION)[:-1]
+        coarse = np.zeros(len(path), bool)
+        coarse[::4] = True
+        for part in (path[coarse], path[~coarse]):
+            if len(part) and not np.all(self.world.configs_free(part)):
+                return None
         return pre
 
     # --- one attempt -------------------------------------------------------------------------
     def attempt(self, j: int, rng: np.random.Generator, deadline: float) -> tuple[GoalSample | None, str]:
+        if self._batch is not None:
+            if self._stop(deadline) <= time.perf_counter():  # the stop first: a zero budget is spent at once
+                return None, "time"
+            return self._finish(self._batch.prepare([(j, -1)], rng)[0], deadline)
         region = self.regions[j]
         v = region.sample(rng)
         frame, X_WT = self.target_pose_for(region, v)
         if self.settings.reach_check and not reach_map(self.world, frame).plausible(X_WT.matrix(), self.settings.reach_margin):
             return None, "out of reach"
-        budget = self.settings.attempt_budget
-        stop = deadline if budget is None else min(deadline, time.perf_counter() + budget)
         seeds = [self._last[j]] if self._last[j] is not None and self.settings.warm_start else []
+        item = Prepared(j, -1, v, frame, X_WT.matrix())
+        return self._first_valid(item, deadline, lambda k: self.solve(frame, X_WT, seeds[k] if k < len(seeds) else self._random_full(rng),
+                                                                        counters=self.region_counters[j]),
+                                 lambda k, q_full, scale: self.approach_from(region, v, q_full, scale))
+
+    def _stop(self, deadline: float) -> float:
+        budget = self.settings.attempt_budget
+        return deadline if budget is None else min(deadline, time.perf_counter() + budget)
+
+    def _first_valid(self, item: Prepared, deadline: float, answer: Callable, approach: Callable) -> tuple[GoalSample | None, str]:
+        """The attempt's sample from its first restart whose answer is within the limits and free, or why none.
+
+        ``answer(k)`` is restart k's IK answer (full positions) or None; ``approach(k, q_full, scale)``
+        the pre-pose at ``scale`` of the approach for it, or None when blocked.
+        """
+        j, region = item.j, self.regions[item.j]
+        stop = self._stop(deadline)
         reason = "time"
         for k in range(self.settings.restarts):
             if time.perf_counter() >= stop:
                 break
-            seed = seeds[k] if k < len(seeds) else self._random_full(rng)
-            q_full = self.solve(frame, X_WT, seed, counters=self.region_counters[j])
+            q_full = answer(k)
             if q_full is None:
                 reason = "ik failed" if reason != "in collision" else reason
                 continue
@@ -196,18 +276,71 @@ class IKGoalSource(RoundRobinGoalSource):
                 reason = "in collision"  # another restart may find a collision-free branch
                 continue
             self._last[j] = q_full
+            extra = {"X_WG": Pose.from_matrix(item.X_WT), "v": item.v, "frame": item.frame}
             # Aim at a pre-pose when its straight approach is free: the full distance, then
             # shorter ones; under a low shelf board only the goal itself may be left.
             for scale in APPROACH_SCALES if any(region.approach) else ():
-                pre = self.approach_from(region, v, q_full, scale)
+                pre = approach(k, q_full, scale)
                 if pre is not None:
-                    extra = {"X_WG": X_WT, "v": v, "frame": frame, "approach_scale": scale}
-                    return GoalSample(q=pre, region=j, final=q, extra=extra), ""
-            return GoalSample(q=q, region=j, extra={"X_WG": X_WT, "v": v, "frame": frame}), ""
+                    return GoalSample(q=pre, region=j, final=q, extra=extra | {"approach_scale": scale}), ""
+            return GoalSample(q=q, region=j, extra=extra), ""
         return None, reason
 
+    # --- many attempts at once (solver "batch") ----------------------------------------------
+    def batch_size(self, wanted: int) -> int:
+        # The whole draw's budget is planned; attempts() solves it a look-ahead at a time, lazily.
+        self._wanted = wanted
+        return 1 if self._batch is None else wanted * self._attempts_per_sample
+
+    def attempts(self, plan, rng, deadline):
+        if self._batch is None:
+            yield from super().attempts(plan, rng, deadline)
+            return
+        for i, (j, after) in enumerate(plan):
+            item = self._batch.take(j, after, plan[i - 1][1] if i else self._next, rng, self._look_ahead())
+            a0 = time.perf_counter()
+            sample, reason = self._finish(item, deadline)
+            self._wanted -= sample is not None
+            yield sample, reason, item.seconds + time.perf_counter() - a0
+
+    def _look_ahead(self) -> int:
+        """How many attempts to solve at once: enough for the samples the draw still wants at the
+        success rate so far (prior 1 in 4), half as many again, within [LOOK_AHEAD_MIN, batch_attempts].
+
+        Bigger batches cost less per solve (one iteration's numpy overhead is shared), but what a
+        plan never draws is wasted: a fixed 64 left ~1/3 of the solves unused on fetch_cans_1.
+        """
+        valid, attempts = sum(st.valid for st in self.stats), sum(st.attempts for st in self.stats)
+        rate = (valid + 1) / (attempts + 4)
+        need = math.ceil(1.5 * max(self._wanted, 1) / rate)
+        return int(min(max(need, LOOK_AHEAD_MIN), max(self.settings.batch_attempts, 1)))
+
+    def _finish(self, item: Prepared, deadline: float) -> tuple[GoalSample | None, str]:
+        """An attempt's collision checks (and approach), on its batch answers."""
+        if item.reason:
+            return None, item.reason
+
+        def approach(k, q_full, scale):
+            if k not in item.pre:  # an answer after the first: its pre-poses were not solved ahead
+                self._batch.solve_pre_poses([(item, k)])
+            answers, ok = item.pre[k]
+            i = APPROACH_SCALES.index(scale)
+            return self._approach_free(answers[i][self._planned], q_full[self._planned]) if ok[i] else None
+
+        return self._first_valid(item, deadline, lambda k: item.answers[k] if item.ok[k] else None, approach)
+
     def solve(self, frame: str, X_WT: Pose, seed_full: np.ndarray, counters: IKCounters | None = None) -> np.ndarray | None:
-        """Full plant positions putting ``frame`` at ``X_WT`` (within tolerance), or None."""
+        """Full plant positions putting ``frame`` at ``X_WT`` (within tolerance) by one Drake IK solve, or None.
+
+        Args:
+            frame: the robot frame to place.
+            X_WT: its target world pose.
+            seed_full: the initial guess (full plant positions; clipped to the limits).
+            counters: a region's counters, counted besides the source's.
+
+        Returns:
+            the positions, judged by forward kinematics (not by the solver's status), or None.
+        """
         s = self.settings
         plant = self._plant
         t0 = time.perf_counter()
@@ -231,11 +364,7 @@ class IKGoalSource(RoundRobinGoalSource):
         dt = time.perf_counter() - t0
         for c in (self.counters, counters):
             if c is not None:
-                c.solves += 1
-                c.time += dt
-                if ok:
-                    c.successes += 1
-                    c.success_time += dt
+                c.add(1, int(ok), dt)
         return q_sol if ok else None
 
     # --- kinematics helpers ------------------------------------------------------------------
@@ -269,87 +398,3 @@ def region_coordinates(region: PoseRegion, X_WG: np.ndarray) -> np.ndarray:
 register_goal_source((WorkspaceRegion.kind, PlacementRegion.kind), IKGoalSource)
 
 
-# --- a cheap reachability filter ------------------------------------------------------------
-REACH_SAMPLES = 10000
-REACH_SEED = 20190520  # the map is a deterministic property of the robot, not of a plan's rng
-REACH_CACHE_SIZE = 8  # reach maps kept at once (robots x end-effector frames); ~0.3 MB each
-_REACH_MAPS: "OrderedDict[tuple, ReachMap]" = OrderedDict()  # reach_key -> map, least recently used first
-
-
-@dataclass(frozen=True)
-class ReachMap:
-    """Where the robot's wrist point can be: world positions over random joint configurations.
-
-    The wrist point W is fixed in the end-effector frame and independent of the
-    last joint (or the last two, when they intersect as on Fetch), so a target
-    pose fixes where W must be. A target whose W is farther than a margin from
-    every sampled W is out of reach; IK on it would fail slowly.
-    """
-
-    frame: str
-    p_EW: np.ndarray  # wrist point in the end-effector frame
-    tree: cKDTree
-
-    def wrist(self, X_WT: np.ndarray) -> np.ndarray:
-        return X_WT[:3, :3] @ self.p_EW + X_WT[:3, 3]
-
-    def plausible(self, X_WT: np.ndarray, margin: float) -> bool:
-        distance, _ = self.tree.query(self.wrist(X_WT))
-        return bool(distance <= margin)
-
-
-def reach_key(world, frame: str) -> tuple:
-    """What a reach map depends on: the model, its base weld, the planned coordinates
-    (names, limits, wrapping), the held positions and the frame."""
-    robot, space = world.scene.robot, world.space
-    base = robot.base.pose() if robot.base is not None else None
-    return (robot.model, robot.base_link, base, space.names, tuple(space.lower), tuple(space.upper), tuple(space.wrap),
-            tuple(world.q_full), frame)
-
-
-def reach_map(world, frame: str) -> ReachMap:
-    """The reach map of ``frame`` in ``world``, cached by :func:`reach_key` (at most REACH_CACHE_SIZE kept)."""
-    key = reach_key(world, frame)
-    if key in _REACH_MAPS:
-        _REACH_MAPS.move_to_end(key)
-        return _REACH_MAPS[key]
-    _REACH_MAPS[key] = m = _build_reach_map(world, frame)
-    while len(_REACH_MAPS) > REACH_CACHE_SIZE:
-        _REACH_MAPS.popitem(last=False)
-    return m
-
-
-def _build_reach_map(world, frame: str) -> ReachMap:
-    kin = world.kinematics
-    E = kin.frame(frame)
-    X_WE = kin.X_WF(E, world.q_full)
-    joints = _joints_to_root(kin.plant, E.body())
-    # W: the child-side origin of the last movable joint; one joint further up while
-    # that joint's origin lies on the axis of the joint below it (a spherical-ish wrist).
-    W = joints[0].frame_on_child() if joints else E
-    for below, above in zip(joints, joints[1:]):
-        if not isinstance(below, RevoluteJoint):
-            break
-        X_Wb = kin.X_WF(below.frame_on_child(), world.q_full)
-        axis = X_Wb.rotation() @ below.revolute_axis()
-        o = kin.X_WF(above.frame_on_child(), world.q_full).translation()
-        r = o - X_Wb.translation()
-        if np.linalg.norm(r - axis * (r @ axis)) > 1e-6:
-            break
-        W = above.frame_on_child()
-    p_EW = X_WE.inverse() @ kin.X_WF(W, world.q_full).translation()
-    rng = np.random.default_rng(REACH_SEED)
-    qs = np.tile(world.q_full, (REACH_SAMPLES, 1))
-    space = world.space  # as REACH_SAMPLES calls of space.sample(rng): the same draws, in one call
-    qs[:, world.planned] = space.lower + rng.random((REACH_SAMPLES, space.dim)) * (space.upper - space.lower)
-    try:  # all samples in one batch (~50x faster than asking the plant one by one)
-        chain = chain_to_frame(kin.plant, W)
-        points = chain.forward(qs[:, chain.index])[:, :3, 3]
-    except ValueError:  # a joint the chain cannot express (e.g. a planar base): ask the plant
-        points = np.array([kin.X_WF(W, q).translation() for q in qs])
-    return ReachMap(frame, np.asarray(p_EW), cKDTree(points))
-
-
-def _joints_to_root(plant, body) -> list:
-    """Movable joints from ``body`` up to the world, nearest first."""
-    return [j for j in joints_to_world(plant, body) if j.num_positions() > 0]

@@ -190,6 +190,21 @@ def test_time_split_shows_checks_per_run_and_time_per_check():
     assert cells[-2:] == ["2000", "100 |"]  # mean checks; (0.3 + 0.1) s / 4000 checks = 100 µs
 
 
+def test_time_split_shows_goal_sampling_per_sample_and_per_attempt():
+    from lazyground.bench.tables import time_split_table
+
+    def row(sampling_s, samples, attempts):
+        return {"scene": "a", "planner": "lazyground", "strategy": "consecutive", "bias": "0.5", "status": "solved",
+                "time_s": 1.0, "grounding_s": 0.0, "goal_sampling_s": sampling_s, "collision_s": 0.0, "other_s": 0.0,
+                "time_limit": 10.0, "goal_samples": samples, "goal_attempts": attempts}
+
+    rows = [row(0.02, 10, 40), row(0.09, 10, 60), row(0.5, 0, 50)]  # 2 and 9 ms a sample; the last run found none
+    cells = [l for l in time_split_table(rows).splitlines() if l.startswith("| a")][0].split(" | ")
+    assert cells[11:13] == ["5.5", "0.133"]  # median of 2 and 9 ms; 20 valid of 150 attempts
+    old = [{k: v for k, v in r.items() if k != "goal_attempts"} for r in rows]  # an older CSV: no attempt counts
+    assert [l for l in time_split_table(old).splitlines() if l.startswith("| a")][0].split(" | ")[12] == "-"
+
+
 def test_strategy_table_compares_with_consecutive_by_mann_whitney():
     from lazyground.bench.compare import strategy_table
 

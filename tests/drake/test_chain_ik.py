@@ -35,14 +35,14 @@ def test_chain_pose_and_jacobian_match_drake(fetch):
 
 def test_reach_map_points_are_the_plants_wrist_positions(fetch):
     """The batched reach map holds exactly what asking the plant sample by sample gives."""
-    from lazyground.drake import ik
+    from lazyground.drake import reach
 
     world, frame, _ = fetch
-    reach = ik._build_reach_map(world, "gripper_link")
-    rng = np.random.default_rng(ik.REACH_SEED)
+    built = reach._build_reach_map(world, "gripper_link")
+    rng = np.random.default_rng(reach.REACH_SEED)
     wrist = world.plant.GetFrameByName("wrist_flex_link")  # the Fetch's wrist point (roll-flex-roll)
     for k in range(5):
         q = world.q_full.copy()
         q[world.planned] = world.space.sample(rng)
         p = world.kinematics.X_WF(wrist, q).translation()
-        np.testing.assert_allclose(reach.tree.data[k], p, atol=1e-12)
+        np.testing.assert_allclose(built.tree.data[k], p, atol=1e-12)

@@ -47,7 +47,10 @@ def test_solved_grasps_point_the_tool_z_axis_along_the_approach(scene_name, requ
             assert np.hypot(*(p - p_WC)[:2]) < POSITION and p[2] > p_WC[2]  # above the axis
         else:
             assert label.startswith("side") and abs(z[2]) < np.sin(ANGLE)  # horizontal approach
-            towards = (p_WC - p)[:2] / np.linalg.norm((p_WC - p)[:2])
-            assert towards @ z[:2] / np.linalg.norm(z[:2]) > np.cos(ANGLE + POSITION / 0.02)  # pointing at the cup's axis
+            # pointing at the cup's axis: the axis lies within POSITION (plus the angle's share) of the
+            # tool's horizontal approach line; an angle bound alone fails when a grasp's depth puts the
+            # TCP ~1 cm from the axis, where a few mm sideways is a large angle
+            d, zh = (p_WC - p)[:2], z[:2] / np.linalg.norm(z[:2])
+            assert d @ zh > 0 and abs(zh[0] * d[1] - zh[1] * d[0]) < POSITION + ANGLE * np.linalg.norm(d)
             assert abs(X_WT.rotation()[2, 1]) < np.sin(ANGLE)  # the fingers close horizontally
     assert solved >= 2

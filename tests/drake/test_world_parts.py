@@ -8,11 +8,12 @@ import pytest
 
 pytest.importorskip("pydrake")
 
-from lazyground.drake import ik  # noqa: E402
+from lazyground.drake import reach  # noqa: E402
 from lazyground.drake.checker import DrakeChecker  # noqa: E402
 from lazyground.drake.coordinates import coordinates_from_plant  # noqa: E402
 from lazyground.drake.diagram import build_diagram, environment_items  # noqa: E402
-from lazyground.drake.ik import IKGoalSource, reach_key, reach_map  # noqa: E402
+from lazyground.drake.ik import IKGoalSource  # noqa: E402
+from lazyground.drake.reach import reach_key, reach_map  # noqa: E402
 from lazyground.drake.world import MAX_EXTRA_CHECKERS, DrakeWorld  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 from lazyground.scene.schema import Geometry  # noqa: E402
@@ -135,17 +136,17 @@ def test_one_forward_kinematics_for_world_and_ik(cans1):
 
 def test_reach_maps_are_cached_by_what_they_depend_on_and_bounded(cans1, monkeypatch):
     scene, world = cans1
-    monkeypatch.setattr(ik, "_REACH_MAPS", type(ik._REACH_MAPS)())
+    monkeypatch.setattr(reach, "_REACH_MAPS", type(reach._REACH_MAPS)())
     built = []
-    monkeypatch.setattr(ik, "_build_reach_map", lambda w, frame: built.append(frame) or object())
+    monkeypatch.setattr(reach, "_build_reach_map", lambda w, frame: built.append(frame) or object())
     m = reach_map(world, "gripper_link")
     assert reach_map(world, "gripper_link") is m and built == ["gripper_link"]
     twin = DrakeWorld(scene, visual=False)  # the same robot in a second world shares the map
     assert reach_key(twin, "gripper_link") == reach_key(world, "gripper_link") and reach_map(twin, "gripper_link") is m
     moved = replace(scene, robot=replace(scene.robot, base=replace(scene.robot.base, xyz=(0.5, 0.0, 0.0))))
     assert reach_key(DrakeWorld(moved, visual=False), "gripper_link") != reach_key(world, "gripper_link")
-    monkeypatch.setattr(ik, "REACH_CACHE_SIZE", 2)
+    monkeypatch.setattr(reach, "REACH_CACHE_SIZE", 2)
     reach_map(world, "wrist_roll_link")
     reach_map(world, "wrist_flex_link")
-    assert len(ik._REACH_MAPS) == 2 and built == ["gripper_link", "wrist_roll_link", "wrist_flex_link"]
+    assert len(reach._REACH_MAPS) == 2 and built == ["gripper_link", "wrist_roll_link", "wrist_flex_link"]
     assert reach_map(world, "gripper_link") is not m  # evicted, built again

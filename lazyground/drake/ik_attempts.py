@@ -1,0 +1,174 @@
+"""Goal-sampling attempts of an :class:`~lazyground.drake.ik.IKGoalSource` solved many at a time (#19).
+
+With the ``batch`` solver the source plans its attempts in round-robin order ahead
+of the draw; :class:`BatchAttempts` draws their targets, filters them by reach and
+solves every restart of every attempt in one damped-least-squares batch
+(:mod:`lazyground.drake.batch_ik`), then the pre-poses of each attempt's first
+answer in a second, warm-started batch. The collision checks stay with the source,
+attempt by attempt, only as far as a draw needs; prepared attempts a draw did not
+use wait in a queue for the next draw with the same generator.
+"""
+
+from __future__ import annotations
+
+import time
+from collections import deque
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from lazyground.drake.batch_ik import BatchIKProblem, pose_errors, solve_batch
+from lazyground.drake.chain import REVOLUTE, chain_to_frame
+from lazyground.drake.reach import reach_map
+from lazyground.tolerance import accepted_error
+
+APPROACH_SCALES = (1.0, 0.5, 0.25)  # fractions of a region's approach distance tried in turn
+PRE_POSE_ITERATIONS = 8  # batch solves of a pre-pose from its goal: 94-98 % converge within 5 (fetch_cans_1), none after 10
+
+
+@dataclass
+class Prepared:
+    """One attempt of a batch: its drawn target and IK answers, waiting for its collision checks."""
+
+    j: int  # region
+    after: int  # round-robin counter after it (-1: made outside a draw)
+    v: np.ndarray
+    frame: str
+    X_WT: np.ndarray  # target pose of the robot frame (4x4)
+    reason: str = ""  # set when the attempt failed before any solve ("out of reach")
+    answers: np.ndarray | None = None  # (restarts, plant positions)
+    ok: np.ndarray | None = None  # (restarts,) the answer meets the pose
+    pre: dict = field(default_factory=dict)  # restart -> (pre-pose answers (scales, positions), ok (scales,))
+    seconds: float = 0.0  # its share of the batch's time
+
+
+class BatchAttempts:
+    """Prepared attempts for one IK goal source: solved in batches, queued until a draw takes them.
+
+    It reads and updates its source's state (settings, regions and their target
+    frames, the counters, the last valid answer per region): one job split over two
+    modules so that each stays readable.
+
+    Args:
+        source: the IKGoalSource.
+        problems: the batch IK problem of every robot frame the source's regions constrain.
+    """
+
+    def __init__(self, source, problems: dict[str, BatchIKProblem]):
+        self.source = source
+        self.problems = problems
+        self.queue: deque[Prepared] = deque()
+        self.rng: np.random.Generator | None = None
+
+    def take(self, j: int, after: int, before: int, rng: np.random.Generator, look_ahead: int) -> Prepared:
+        """The prepared attempt on region ``j`` at round-robin counter ``before`` (``after`` once made).
+
+        From the queue when it holds that attempt for this generator; otherwise the queue is
+        dropped and the next ``look_ahead`` attempts from ``before`` are prepared.
+        """
+        if rng is not self.rng:  # answers drawn from another generator are not this draw's
+            self.queue.clear()
+            self.rng = rng
+        if self.queue and (self.queue[0].j, self.queue[0].after) != (j, after):
+            self.queue.clear()  # the round robin moved on differently (a region given up): solve afresh
+        if not self.queue:
+            self.queue.extend(self.prepare(self.source.plan(before, look_ahead), rng))
+        return self.queue.popleft()
+
+    def prepare(self, plan: list[tuple[int, int]], rng: np.random.Generator) -> list[Prepared]:
+        """Draw the planned attempts' targets and solve all their restarts in one batch per frame.
+
+        Every attempt is charged an equal share of the drawing and reach filtering, and
+        every attempt that reached the solver an equal share of the solve (each has
+        ``restarts`` rows that run side by side); pre-poses of the first answer of each
+        are solved here too, for the approach checks after.
+        """
+        s = self.source.settings
+        t0 = time.perf_counter()
+        items = []
+        for j, after in plan:
+            region = self.source.regions[j]
+            v = region.sample(rng)
+            items.append(Prepared(j, after, v, self.source._frames[region.id], self.source._target_matrix(region, v)))
+        for frame in dict.fromkeys(it.frame for it in items):
+            group = [it for it in items if it.frame == frame]
+            if s.reach_check:
+                near = reach_map(self.source.world, frame).plausible_all(np.array([it.X_WT for it in group]), s.reach_margin)
+                for it in (it for it, ok in zip(group, near) if not ok):
+                    it.reason = "out of reach"
+        t1 = time.perf_counter()
+        for it in items:
+            it.seconds = (t1 - t0) / len(items)
+        for frame in dict.fromkeys(it.frame for it in items):
+            group = [it for it in items if it.frame == frame and not it.reason]
+            if group:
+                self._solve_group(frame, group, rng)
+        return items
+
+    def _solve_group(self, frame: str, group: list[Prepared], rng: np.random.Generator) -> None:
+        s, problem = self.source.settings, self.problems[frame]
+        t0 = time.perf_counter()
+        starts = []
+        for it in group:
+            last = self.source._last[it.j] if s.warm_start else None
+            starts += [last if k == 0 and last is not None else self.source._random_full(rng) for k in range(s.restarts)]
+        answers, ok = self._solve_rows(problem, np.array(starts), np.repeat([it.X_WT for it in group], s.restarts, axis=0))
+        t1 = time.perf_counter()
+        share = (t1 - t0) / len(group)
+        for g, it in enumerate(group):
+            rows = slice(g * s.restarts, (g + 1) * s.restarts)
+            it.answers, it.ok = answers[rows], ok[rows]
+            it.seconds += share
+            for c in (self.source.counters, self.source.region_counters[it.j]):
+                c.add(s.restarts, int(it.ok.sum()), share)
+        # the pre-poses of every attempt's first answer, warm from it (where the approach check starts)
+        first = [(it, int(np.argmax(it.ok))) for it in group if it.ok.any() and any(self.source.regions[it.j].approach)]
+        if first:
+            self.solve_pre_poses(first)
+            share = (time.perf_counter() - t1) / len(first)
+            for it, _ in first:
+                it.seconds += share
+
+    def solve_pre_poses(self, todo: list[tuple[Prepared, int]]) -> None:
+        """Pre-poses at every APPROACH_SCALES for restart k of each attempt, from its answer, in one batch."""
+        n = len(APPROACH_SCALES)
+        starts, targets = [], []
+        for it, k in todo:
+            region = self.source.regions[it.j]
+            starts += [it.answers[k]] * n
+            targets += [it.X_WT @ self.source._approach_shift(region, sc) for sc in APPROACH_SCALES]
+        answers, ok = self._solve_rows(self.problems[todo[0][0].frame], np.array(starts), np.array(targets), PRE_POSE_ITERATIONS)
+        self.source.counters.add(len(ok), int(ok.sum()), 0.0)
+        for i, (it, k) in enumerate(todo):
+            it.pre[k] = (answers[i * n:(i + 1) * n], ok[i * n:(i + 1) * n])
+
+    def _solve_rows(self, problem: BatchIKProblem, starts_full: np.ndarray, targets: np.ndarray,
+                    iterations: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Batched IK from full starting positions; answers as full positions, ok judged as SNOPT's are."""
+        s, index = self.source.settings, problem.chain.index
+        q, _ = solve_batch(problem, starts_full[:, index], targets, s.position_tolerance, s.orientation_tolerance,
+                           s.batch_iterations if iterations is None else iterations)
+        answers = starts_full.copy()
+        answers[:, index] = q
+        X = problem.chain.forward(q)
+        max_dp, max_angle = accepted_error(s.position_tolerance, s.orientation_tolerance)
+        _, dp, angle = pose_errors(X, targets)
+        return answers, (np.linalg.norm(dp, axis=1) <= max_dp) & (angle <= max_angle)
+
+
+def problem_for_frame(world, frame: str) -> BatchIKProblem | None:
+    """The chain to ``frame`` with its planned joints free, or None when the chain cannot express it."""
+    try:
+        chain = chain_to_frame(world.plant, world.plant.GetFrameByName(frame))
+    except ValueError:  # e.g. a planar base: SNOPT on the plant instead
+        return None
+    column = {int(i): c for c, i in enumerate(world.planned)}
+    free = np.array([int(i) in column for i in chain.index])
+    space = world.space
+    lower = np.array([space.lower[column[i]] if i in column else world.q_full[i] for i in chain.index], float)
+    upper = np.array([space.upper[column[i]] if i in column else world.q_full[i] for i in chain.index], float)
+    # a revolute joint whose limits span a full turn reaches every angle: IK may wrap it
+    # (the answer stays within the limits), where clipping would leave it stuck at +-pi
+    wrap = np.array([i in column and (bool(space.wrap[column[i]]) or (kind == REVOLUTE and hi - lo >= 2 * np.pi - 1e-9))
+                     for i, kind, lo, hi in zip(chain.index, chain.kinds, lower, upper)])
+    return BatchIKProblem(chain, free, lower, upper, wrap)
