@@ -33,6 +33,7 @@ FIELDS = (
     "collision_s", "other_s", "iterations", "tree_size", "goal_samples", "resamplings", "interpretation",
     "region", "path_length", "time_limit", "message",
     "raw_path_length", "shortcut_s", "timing_s", "duration_s",  # after the solve (lazyground.motion; #16)
+    "direct_path_length",  # start to goal in a straight line: the shortened length's lower bound (#16)
     "collision_checks",  # the planner's own checks (#19)
     "goal_attempts",  # goal-sampling attempts over all regions, failed ones included (#19)
 )
@@ -180,7 +181,8 @@ def motion_fields(motion) -> dict:
     """The CSV fields of a plan's shortcut and trajectory (empty when there is none)."""
     if motion is None:
         return {}
-    return dict(raw_path_length=motion.raw_length, shortcut_s=motion.shortcut_s, timing_s=motion.timing_s,
+    return dict(raw_path_length=motion.raw_length, direct_path_length=motion.direct_length,
+                shortcut_s=motion.shortcut_s, timing_s=motion.timing_s,
                 duration_s=motion.trajectory.duration if motion.trajectory is not None else "")
 
 

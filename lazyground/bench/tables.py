@@ -185,22 +185,25 @@ def _checks_cells(rows: list[dict]) -> str:
 
 def motion_table(rows: list[dict]) -> str:
     """Shortening and timing after the solve (solved runs with a motion): medians of the raw and final
-    path lengths and their ratio, of shortening and timing seconds and their share of the planning
-    time, and of the trajectory's duration."""
+    path lengths and their ratio, of the straight start-to-goal distance over the raw length (the
+    ratio's lower bound), of shortening and timing seconds and their share of the planning time,
+    and of the trajectory's duration."""
     rows = [r for r in rows if r["status"] == "solved" and r.get("raw_path_length") not in ("", None)]
     if not rows:
         return ""
-    head = ["Scene", "Strategy", "Bias %", "solved", "raw length", "final length", "final / raw", "shortcut s",
-            "timing s", "(shortcut + timing) / planning", "duration s"]
+    head = ["Scene", "Strategy", "Bias %", "solved", "raw length", "final length", "final / raw", "direct / raw",
+            "shortcut s", "timing s", "(shortcut + timing) / planning", "duration s"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for label, b, scene, rs in _rows_by_config_and_scene(rows):
         col = {k: np.array([float(r[k]) if r[k] not in ("", None) else np.nan for r in rs])
                for k in ("raw_path_length", "path_length", "shortcut_s", "timing_s", "time_s", "duration_s")}
+        direct = np.array([float(r.get("direct_path_length") or np.nan) for r in rs])  # (absent from older CSVs)
+        bound = f"{np.median(direct / col['raw_path_length']) * 100:.0f}%" if np.isfinite(direct).all() else "-"
         med = {k: float(np.nanmedian(v)) for k, v in col.items()}
         ratio = float(np.median(col["path_length"] / col["raw_path_length"]))
         share = float(np.median((col["shortcut_s"] + col["timing_s"]) / col["time_s"]))
         lines.append(f"| {scene} | {label} | {b} | {len(rs)} | {med['raw_path_length']:.2f} | {med['path_length']:.2f} | "
-                     f"{ratio * 100:.0f}% | {med['shortcut_s']:.3f} | {med['timing_s']:.3f} | {share * 100:.0f}% | "
+                     f"{ratio * 100:.0f}% | {bound} | {med['shortcut_s']:.3f} | {med['timing_s']:.3f} | {share * 100:.0f}% | "
                      f"{med['duration_s']:.2f} |")
     return "\n".join(lines) + "\n"
 

@@ -8,10 +8,15 @@ each four consecutive control points). Less blending hugs the corners closer; th
 tries decreasing blends until one curve is free. Wrapping coordinates are unwrapped first
 so the curve turns the short way. The curve is checked where it is timed
 (:mod:`lazyground.motion.trajectory`), on the samples a controller receives.
+
+Away from the corners the curve runs on the path's segments: the knot span of segment m
+(control points 3m .. 3m + 3, all on that segment) is a piece of it (:func:`on_segment_spans`),
+so a path already checked at the fine resolution needs only the rounded corners checked.
 """
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -70,8 +75,13 @@ class Curve:
         return np.append(inner, 1.0)
 
     def spline(self, derivative: int = 0) -> BSpline:
+        return self._splines[derivative]
+
+    @functools.cached_property
+    def _splines(self) -> tuple[BSpline, BSpline, BSpline]:
+        """q(u) and its first two derivatives (built once: timing evaluates them many times)."""
         s = BSpline(self.knots, self.control, DEGREE)
-        return s.derivative(derivative) if derivative else s
+        return s, s.derivative(1), s.derivative(2)
 
     def __call__(self, u) -> np.ndarray:
         return self.spline()(np.asarray(u, float))
@@ -85,3 +95,13 @@ def blended_curve(path: np.ndarray, blend: float) -> Curve:
         d = b - a
         control.extend([a + blend * d, b - blend * d, b])
     return Curve(np.array(control), blend)
+
+
+def on_segment_spans(kept: np.ndarray) -> tuple[int, ...]:
+    """The knot spans of ``blended_curve(path[kept], blend)`` that lie on a segment of ``path``.
+
+    Span 3m is controlled by the four points 3m .. 3m + 3, which lie on segment m of the
+    polyline ``path[kept]``: the span is a piece of that segment, and so of ``path``'s when no
+    waypoint of ``path`` was dropped between its ends (``kept[m + 1] == kept[m] + 1``).
+    """
+    return tuple(3 * int(m) for m in np.flatnonzero(np.diff(np.asarray(kept)) == 1))

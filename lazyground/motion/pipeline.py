@@ -43,6 +43,10 @@ class Motion:
         return self.shortcut.raw_length
 
     @property
+    def direct_length(self) -> float:
+        return self.shortcut.direct_length
+
+    @property
     def time_s(self) -> float:
         return self.shortcut_s + self.timing_s
 
@@ -83,7 +87,11 @@ def make_motion(
     for attempt in (short, _reverted(short)):
         rests = tuple(stops or ()) + ((len(attempt.path) - 2,) if approach else ())
         try:
-            traj = time_path(space, checker, attempt.path, limits, fine, timing_settings(planner), stops=rests)
+            # The whole sampled curve is checked, not only the corners off the (fine-checked) path: the re-check
+            # at the same resolution tests other points of those segments, and a path grazing an obstacle
+            # between the two sets failed it (panda_tabletop, "pick up cup_shelf", seed 3).
+            timing = timing_settings(planner) if stops is not None else timing_settings(planner).for_shortened()
+            traj = time_path(space, checker, attempt.path, limits, fine, timing, stops=rests)
         except MotionError as exc:
             if attempt.path is attempt.raw_path:
                 return Motion(short, None, short.time_s, time.perf_counter() - t0, f"no trajectory: {exc}")

@@ -1,19 +1,22 @@
 """Shortcutting a planned path over the planner's protocols (no Drake).
 
-Shortcuts between two random waypoints (OMPL's ``reduceVertices``), between two random
-points anywhere on the path (OMPL's ``shortcutPath``) and partial shortcuts that
-straighten one coordinate only between two points (Geraerts and Overmars, "Creating
-High-quality Paths for Motion Planning", IJRR 2007), which help where a full shortcut is
-blocked but one joint still wanders. The start, the goal and, when the goal sample has
-an approach, the final straight approach segment are kept.
+First a greedy pass (string pulling): from the start, a straight segment to the farthest
+point of the path visible from it, points inside segments included (binary search over
+arc length), then again from there. Then random shortcuts between two random waypoints
+(OMPL's ``reduceVertices``), between two random points anywhere on the path (OMPL's
+``shortcutPath``) and partial shortcuts that straighten one coordinate only between two
+points (Geraerts and Overmars, "Creating High-quality Paths for Motion Planning", IJRR
+2007), until ``patience`` attempts in a row gain nothing. The start, the goal and, when the
+goal sample has an approach, the final straight approach segment are kept.
 
-Every new segment is checked at the planner's resolution when it is tried. The fine
-check (``resolution / validation_factor``, as every returned path) is deferred to the
-segments of the final path that are new, because most accepted shortcuts are later cut
-again (checking each one finely when accepted cost 3-5x more on the Fetch scenes).
-Segments that are pieces of the input path were checked finely by the planner. When a
-new segment fails the fine check, the newest earlier version of the path whose new
-segments all pass is returned (the input path, at worst).
+Every new segment is checked at the planner's resolution when it is tried. The greedy
+pass's segments are checked at the fine resolution (``resolution / validation_factor``, as
+every returned path) when chosen: each lies where the path just passes an obstacle, so
+the fine check fails for a few, which are pulled back. The random shortcuts' fine check is
+deferred to the segments of the final path that are new, because most accepted shortcuts
+are later cut again. Segments that are pieces of the input path were checked finely by the
+planner. When a new segment fails the fine check, the newest earlier version of the path
+whose new segments all pass is returned (the greedy pass's, at worst).
 """
 
 from __future__ import annotations
@@ -43,18 +46,24 @@ class ShortcutStatus(str, enum.Enum):
 
 @dataclass(frozen=True)
 class ShortcutSettings:
-    """How hard to shorten. Both budgets apply: whichever runs out first stops it."""
+    """How hard to shorten. The random shortcuts stop at whichever comes first: ``max_iterations``
+    attempts, ``time_budget`` seconds (from the start of the shortening) or ``patience`` attempts in
+    a row without gain; the greedy pass before them makes a few dozen edge checks and is not cut short."""
 
     enabled: bool = True
-    max_iterations: int = 100  # shortcut attempts
+    max_iterations: int = 100  # random shortcut attempts after the greedy pass
     time_budget: float = 1.0  # seconds
     vertex_fraction: float = 0.5  # share of attempts between two waypoints (they drop waypoints)
     partial_fraction: float = 0.2  # share of attempts that straighten one coordinate only
+    greedy: bool = True  # first go straight to the farthest visible point of the path, again and again
+    patience: int = 10  # stop after this many attempts in a row gain less than ``min_gain`` of the length
+    min_gain: float = 1e-3
 
     def __post_init__(self):
         shares = (self.vertex_fraction, self.partial_fraction)
-        if self.max_iterations < 0 or not self.time_budget >= 0 or min(shares) < 0 or sum(shares) > 1:
-            raise ValueError("shortcut settings: max_iterations >= 0, time_budget >= 0, shares >= 0 summing to <= 1")
+        if self.max_iterations < 0 or not self.time_budget >= 0 or min(shares) < 0 or sum(shares) > 1 or self.patience < 1:
+            raise ValueError("shortcut settings: max_iterations >= 0, time_budget >= 0, shares >= 0 summing to <= 1, "
+                             "patience >= 1")
 
 
 @dataclass(frozen=True)
@@ -69,6 +78,7 @@ class ShortcutResult:
     iterations: int
     accepted: int
     time_s: float
+    direct_length: float = float("nan")  # start to goal in a straight line: a lower bound of ``length``
 
 
 @dataclass(frozen=True)
@@ -124,18 +134,41 @@ def shortcut_path(
     raw_length = space.path_length(raw)
 
     def done(status, out, iterations=0, accepted=0):
-        return ShortcutResult(status, out, raw, raw_length, space.path_length(out), iterations, accepted, time.perf_counter() - t0)
+        return ShortcutResult(status, out, raw, raw_length, space.path_length(out), iterations, accepted,
+                              time.perf_counter() - t0, space.distance(raw[0], raw[-1]))
 
     if not settings.enabled:
         return done(ShortcutStatus.DISABLED, raw)
     body, tail = (raw[:-1], raw[-1:]) if keep_last_segment and len(raw) > 2 else (raw, raw[:0])
-    work = _drop_redundant(space, _Path(space, list(body), [0] * (len(body) - 1)))
-    versions = [work]
+    versions = [_drop_redundant(space, _Path(space, list(body), [0] * (len(body) - 1)))]
     deadline = t0 + settings.time_budget
-    iterations = 0
+    fine = _FineCheck(space, checker, resolution / validation_factor)
     edge = lambda a, b: checker.edge_free(a, b, resolution)  # noqa: E731
-    while iterations < settings.max_iterations and time.perf_counter() < deadline and len(work.q) > 2:
+    if settings.greedy and len(versions[0].q) > 2:
+        versions[0] = _drop_redundant(space, _greedy(space, edge, fine.segment_free, versions[0]))
+    iterations = _random_shortcuts(space, edge, versions, settings, rng, deadline)
+    backtracked = False
+    while (bad := fine.first_failure(versions[-1])) is not None:
+        del versions[bad:]  # back to the newest version made before the failing segment
+        backtracked = True
+    out = np.array(versions[-1].q)
+    out = np.vstack([out, tail]) if len(tail) else out
+    length = space.path_length(out)
+    if length >= raw_length:
+        return done(ShortcutStatus.UNCHANGED, raw, iterations, 0)
+    return done(ShortcutStatus.BACKTRACKED if backtracked else ShortcutStatus.SHORTENED, out, iterations, len(versions) - 1)
+
+
+def _random_shortcuts(space: ConfigSpace, edge, versions: list, settings: ShortcutSettings, rng: np.random.Generator,
+                      deadline: float) -> int:
+    """Random shortcuts until ``settings.max_iterations`` attempts, the deadline or ``patience`` attempts
+    in a row without gain; every shorter path is appended to ``versions``. Returns the attempts."""
+    work = versions[-1]
+    iterations = idle = 0
+    while (iterations < settings.max_iterations and idle < settings.patience and time.perf_counter() < deadline
+           and len(work.q) > 2):
         iterations += 1
+        idle += 1
         draw = rng.random()
         born = len(versions)
         if draw < settings.vertex_fraction:
@@ -145,18 +178,11 @@ def shortcut_path(
         else:
             new = _try_full(space, edge, work, rng, born)
         if new is not None:
+            if work.cum[-1] - new.cum[-1] >= settings.min_gain * work.cum[-1]:
+                idle = 0
             work = _drop_redundant(space, new)
             versions.append(work)
-    fine = _FineCheck(space, checker, resolution / validation_factor)
-    k = len(versions) - 1
-    while (bad := fine.first_failure(versions[k])) is not None:
-        k = bad - 1  # the newest version made before the failing segment
-    out = np.array(versions[k].q)
-    out = np.vstack([out, tail]) if len(tail) else out
-    if len(versions) == 1 or space.path_length(out) >= raw_length:
-        return done(ShortcutStatus.UNCHANGED, raw, iterations, 0)
-    status = ShortcutStatus.SHORTENED if k == len(versions) - 1 else ShortcutStatus.BACKTRACKED
-    return done(status, out, iterations, k)
+    return iterations
 
 
 class _FineCheck:
@@ -166,16 +192,76 @@ class _FineCheck:
         self.space, self.checker, self.resolution, self.known = space, checker, resolution, {}
 
     def first_failure(self, p: _Path) -> int | None:
-        """The version that made the first new segment failing the check, or None if all pass."""
-        for a, b, born in zip(p.q[:-1], p.q[1:], p.new):
-            if not born:
-                continue
-            key = (a.tobytes(), b.tobytes())
-            if key not in self.known:
-                self.known[key] = bool(np.all(self.checker.configs_free(self.space.discretize(a, b, self.resolution))))
-            if not self.known[key]:
-                return born
-        return None
+        """The version that made the first new segment failing the check, or None if all pass.
+
+        The segments not checked yet go to the checker in one batch (one call into Drake).
+        """
+        segments = [((a.tobytes(), b.tobytes()), a, b, born) for a, b, born in zip(p.q[:-1], p.q[1:], p.new) if born]
+        todo = {key: (a, b) for key, a, b, _ in segments if key not in self.known}
+        if todo:
+            chunks = [self.space.discretize(a, b, self.resolution) for a, b in todo.values()]
+            free = np.asarray(self.checker.configs_free(np.vstack(chunks)), bool)
+            ends = np.cumsum([len(c) for c in chunks])
+            for key, end, n in zip(todo, ends, (len(c) for c in chunks)):
+                self.known[key] = bool(free[end - n : end].all())
+        return next((born for key, _, _, born in segments if not self.known[key]), None)
+
+    def segment_free(self, a: np.ndarray, b: np.ndarray) -> bool:
+        """Whether a -> b passes the check (remembered)."""
+        key = (a.tobytes(), b.tobytes())
+        if key not in self.known:
+            self.known[key] = bool(np.all(self.checker.configs_free(self.space.discretize(a, b, self.resolution))))
+        return self.known[key]
+
+    @property
+    def failed(self) -> set:
+        """The segments (keys) that failed."""
+        return {key for key, ok in self.known.items() if not ok}
+
+
+GREEDY_SPLITS = 6  # halvings of the search for the farthest visible point (1/64 of the rest of the path)
+GREEDY_BACKOFFS = 3  # pull-backs of a farthest point whose segment fails the fine check
+
+
+def _greedy(space: ConfigSpace, edge, fine_free, path: _Path) -> _Path:
+    """String pulling: from the start, a straight segment to the farthest point of the path visible
+    from it, then again from there.
+
+    The farthest point is found by binary search over arc length (points inside segments
+    included) with ``edge``, the planner's check. It lies where the segment just passes an
+    obstacle, so it is then checked at the fine resolution (``fine_free``) and, failing that,
+    pulled back towards the current point. Every segment of the result is therefore checked
+    at the fine resolution: its flags are all 0 (later shortcuts build on it; none backtracks past it).
+    """
+    q, cum = path.q, path.cum
+    out = [q[0]]
+    cur, k = q[0], 0  # the current point lies on segment k (q[k] -> q[k + 1])
+    while k < len(q) - 2:
+        if edge(cur, q[-1]) and fine_free(cur, q[-1]):
+            out.append(q[-1])
+            return _Path(space, out, [0] * (len(out) - 1))
+        lo, hi = cum[k + 1], cum[-1]  # q[k + 1] is visible (along the segment), the goal is not
+        for _ in range(GREEDY_SPLITS):
+            mid = 0.5 * (lo + hi)
+            if edge(cur, _point_at(space, q, cum, mid)[1]):
+                lo = mid
+            else:
+                hi = mid
+        for _ in range(GREEDY_BACKOFFS):
+            if lo <= cum[k + 1] or fine_free(cur, _point_at(space, q, cum, lo)[1]):
+                break
+            lo = cum[k + 1] + 0.5 * (lo - cum[k + 1])
+            if not edge(cur, _point_at(space, q, cum, lo)[1]):
+                lo = cum[k + 1]
+        else:
+            lo = cum[k + 1]
+        if lo <= cum[k + 1]:  # only the next waypoint: follow the segment to it
+            cur, k = q[k + 1], k + 1
+        else:
+            k, cur = _point_at(space, q, cum, lo)
+        out.append(cur)
+    out.append(q[-1])  # the rest of the last segment
+    return _Path(space, out, [0] * (len(out) - 1))
 
 
 def _try_vertices(edge, path: _Path, rng, born: int) -> _Path | None:

@@ -51,26 +51,46 @@ def trajectory_problems(
 
 
 def first_colliding_join(space: ConfigSpace, checker: ValidityChecker, q: np.ndarray, resolution: float,
-                         from_first_free: bool = False) -> int | None:
+                         from_first_free: bool = False, known_free: np.ndarray | None = None) -> int | None:
     """The sample k where the motion through ``q`` first collides, checked every ``resolution``; None if free.
 
     The one check of sampled motions: :func:`trajectory_problems` and the timing itself
     (:func:`lazyground.motion.trajectory.time_path` checks its output with it, so what it
     returns passes this re-check by construction).
+
+    Args:
+        known_free: per join (q[k] -> q[k + 1]), True where it is known free at ``resolution``
+            already (it lies on a segment of a path checked at it): not checked again.
     """
     q = np.asarray(q, float)
     if len(q) < 2:
         return None
-    # Samples closer together than the resolution (a robot speeding up or slowing down) need not
-    # all be checked: keep one per ``resolution`` of arc length, and discretize what lies between.
-    e = space.embed(q)
-    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(e, axis=0), axis=1))])
-    keep = np.unique(np.concatenate([np.searchsorted(s, np.arange(0.0, s[-1], resolution), side="right") - 1, [0, len(q) - 1]]))
-    parts = [space.discretize(q[a], q[b], resolution, skip_first=k > 0) for k, (a, b) in enumerate(zip(keep[:-1], keep[1:]))]
-    owner = np.concatenate([np.full(len(p), a) for p, a in zip(parts, keep[:-1])])
-    dense = np.vstack(parts)
+    check = np.ones(len(q) - 1, bool) if known_free is None else ~np.asarray(known_free, bool)
+    # runs of consecutive joins to check: (first sample, last sample)
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], check.astype(np.int8), [0]])))
+    parts = [_dense(space, q[a : b + 1], resolution) for a, b in zip(edges[::2], edges[1::2])]
+    if not parts:
+        return None
+    dense = np.vstack([p for p, _ in parts])
+    owner = np.concatenate([o + a for (_, o), a in zip(parts, edges[::2])])
     free = checker.configs_free(space.interpolate(dense, dense, 0.0) if space.wrap.any() else dense)
     if from_first_free:
         free[: int(np.argmax(free))] = True
     bad = np.flatnonzero(~free)
     return None if not len(bad) else int(owner[bad[0]])
+
+
+def _dense(space: ConfigSpace, q: np.ndarray, resolution: float) -> tuple[np.ndarray, np.ndarray]:
+    """Configurations along the joins of q at most ``resolution`` apart, and the sample each follows
+    (as ``space.discretize`` join by join, vectorised: a trajectory has thousands of joins)."""
+    # Samples closer together than the resolution (a robot speeding up or slowing down) need not
+    # all be checked: keep one per ``resolution`` of arc length, and discretize what lies between.
+    e = space.embed(q)
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(e, axis=0), axis=1))])
+    keep = np.unique(np.concatenate([np.searchsorted(s, np.arange(0.0, s[-1], resolution), side="right") - 1, [0, len(q) - 1]]))
+    a, b = q[keep[:-1]], q[keep[1:]]
+    n = np.maximum(1, np.ceil(np.linalg.norm(e[keep[1:]] - e[keep[:-1]], axis=1) / resolution).astype(int))
+    pair = np.repeat(np.arange(len(n)), n)
+    t = (np.arange(len(pair)) - np.repeat(np.cumsum(n) - n, n) + 1) / n[pair]  # 1/n .. 1 along each join
+    points = a[pair] + t[:, None] * space.difference(a, b)[pair]
+    return np.vstack([q[:1], points]), np.concatenate([[0], keep[:-1][pair]])

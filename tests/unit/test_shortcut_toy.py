@@ -50,7 +50,7 @@ def test_shortcut_shortens_the_toy_paths_substantially():
 def test_shortcut_is_deterministic_in_the_seed():
     world, path = planned(0)
     a, b = shorten(world, path, 5), shorten(world, path, 5)
-    assert np.array_equal(a.path, b.path) and a.iterations == b.iterations == BUDGET.max_iterations
+    assert np.array_equal(a.path, b.path) and a.iterations == b.iterations <= BUDGET.max_iterations
 
 
 def test_disabled_keeps_the_raw_path():
