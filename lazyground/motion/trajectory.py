@@ -239,7 +239,19 @@ class _Timed:
 # points). Its solve costs ~0.3 ms per grid point. A grid that leaves TOPP-RA no finite solution (a
 # single straight span with 2 points does) is refined.
 MIN_GRID = 9
+# At most this many grid points per curve: a car's curve through its dense samples has thousands of
+# spans, and TOPP-RA on 5-11k grid points took seconds and failed numerically ("failed to find the
+# maximum path acceleration"); the slow-down below covers what happens between the points.
+MAX_GRID = 400
 SANE = 4.0
+
+
+def _toppra_grid(curve: Curve, per_span: int) -> np.ndarray:
+    """``per_span`` points in every span (at least MIN_GRID in all), thinned evenly to MAX_GRID."""
+    grid = curve.grid(max(per_span, -(-MIN_GRID // (len(curve.breaks) - 1)) + 1))
+    if len(grid) <= MAX_GRID:
+        return grid
+    return grid[np.unique(np.linspace(0, len(grid) - 1, MAX_GRID).round().astype(int))]
 
 
 def _resting_time(points: np.ndarray, limits: Limits) -> float:
@@ -256,9 +268,8 @@ def _time_curve(curve: Curve, limits: Limits, dt: float, grid: int, on_path: tup
     from pydrake.multibody.optimization import Toppra
 
     path = _drake_bspline(curve)
-    spans = len(curve.breaks) - 1
     for k, per_span in enumerate((grid, 2 * grid)):
-        toppra = Toppra(path, _point_plant(len(limits.velocity)), curve.grid(max(per_span, -(-MIN_GRID // spans) + 1)))
+        toppra = Toppra(path, _point_plant(len(limits.velocity)), _toppra_grid(curve, per_span))
         toppra.AddJointVelocityLimit(-limits.velocity, limits.velocity)
         toppra.AddJointAccelerationLimit(-limits.acceleration, limits.acceleration)
         with _drake_log_muted(k == 0):  # a failure retried on a finer grid is no error
