@@ -8,10 +8,6 @@ each four consecutive control points). Less blending hugs the corners closer; th
 tries decreasing blends until one curve is free. Wrapping coordinates are unwrapped first
 so the curve turns the short way. The curve is checked where it is timed
 (:mod:`lazyground.motion.trajectory`), on the samples a controller receives.
-
-Away from the corners the curve runs on the path's segments: the knot span of segment m
-(control points 3m .. 3m + 3, all on that segment) is a piece of it (:func:`on_segment_spans`),
-so a path already checked at the fine resolution needs only the rounded corners checked.
 """
 
 from __future__ import annotations
@@ -96,12 +92,3 @@ def blended_curve(path: np.ndarray, blend: float) -> Curve:
         control.extend([a + blend * d, b - blend * d, b])
     return Curve(np.array(control), blend)
 
-
-def on_segment_spans(kept: np.ndarray) -> tuple[int, ...]:
-    """The knot spans of ``blended_curve(path[kept], blend)`` that lie on a segment of ``path``.
-
-    Span 3m is controlled by the four points 3m .. 3m + 3, which lie on segment m of the
-    polyline ``path[kept]``: the span is a piece of that segment, and so of ``path``'s when no
-    waypoint of ``path`` was dropped between its ends (``kept[m + 1] == kept[m] + 1``).
-    """
-    return tuple(3 * int(m) for m in np.flatnonzero(np.diff(np.asarray(kept)) == 1))

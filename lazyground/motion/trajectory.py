@@ -23,7 +23,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from lazyground.motion.curve import Curve, blended_curve, on_segment_spans, unwrap_path
+from lazyground.motion.curve import Curve, blended_curve, unwrap_path
 from lazyground.motion.validate import first_colliding_join
 from lazyground.planning.problem import ValidityChecker
 from lazyground.planning.space import ConfigSpace
@@ -108,7 +108,6 @@ def time_path(
     fine_resolution: float,
     settings: TimingSettings = TimingSettings(),
     stops: tuple[int, ...] = (),
-    verified: bool = False,
 ) -> Trajectory:
     """A timed trajectory through ``path`` (start to goal, resting at both).
 
@@ -121,11 +120,6 @@ def time_path(
         settings: speed, sample rate, blends.
         stops: waypoint indices where the robot stops (e.g. the start of a straight approach);
             the segment after a stop stays straight.
-        verified: the path's segments are known free at ``fine_resolution``: only the curve off
-            them (the blends around corners) is checked; else all of it. The output then need not
-            pass :func:`~lazyground.motion.validate.trajectory_problems` at the same resolution,
-            which tests other points of those segments (a path grazing an obstacle between the two
-            sets failed it), so the pipeline does not use it.
 
     Returns:
         The Trajectory, sampled every ``1 / settings.sample_rate`` s and at its end.
@@ -141,10 +135,10 @@ def time_path(
     timed = [_time_piece(space, p, options[0], fine_resolution, scaled, dt, settings.grid_per_span) for p in pieces]
     while True:
         parts = [part for piece in timed for part in piece[0]] or [_Rest(q[0])]
-        t, qs, qd, qdd, on = _sample(parts, dt)
-        # a join between two samples on one straight span lies on a segment of the path
-        known = (on[:-1] == on[1:]) & (on[:-1] >= 0) if verified else None
-        bad = first_colliding_join(space, checker, qs, fine_resolution, known_free=known)
+        # all of the curve is checked, its straight spans too: a check that skipped them (they lie on
+        # fine-checked segments) let a grazing path through a re-check that tests other points of them
+        t, qs, qd, qdd = _sample(parts, dt)
+        bad = first_colliding_join(space, checker, qs, fine_resolution)
         if bad is None:
             break
         # the piece playing at the colliding join gets less blending; the whole output is checked again
@@ -176,10 +170,10 @@ def _time_piece(space, piece: np.ndarray, blend: float | None, resolution: float
     or TOPP-RA failing on the curve) straight segments with a stop at every waypoint."""
     if len(piece) == 2 or blend is None:
         label = "straight" if len(piece) == 2 else "stops at waypoints"
-        return [_time_curve(_straight(a, b), limits, dt, grid, (0,)) for a, b in zip(piece[:-1], piece[1:]) if np.any(a != b)], label
+        return [_time_curve(_straight(a, b), limits, dt, grid) for a, b in zip(piece[:-1], piece[1:]) if np.any(a != b)], label
     keep = _merge_close(space, piece, resolution)
     try:
-        return [_time_curve(blended_curve(piece[keep], blend), limits, dt, grid, on_segment_spans(keep))], f"blend {blend:g}"
+        return [_time_curve(blended_curve(piece[keep], blend), limits, dt, grid)], f"blend {blend:g}"
     except RuntimeError:  # TOPP-RA failed on this curve (numerics): stops at waypoints
         return _time_piece(space, piece, None, resolution, limits, dt, grid)
 
@@ -202,15 +196,11 @@ def _merge_close(space: ConfigSpace, piece: np.ndarray, resolution: float) -> np
 
 @dataclass(frozen=True)
 class _Timed:
-    """One curve q(u) timed by u(t) on [0, duration]; ``stretch`` >= 1 slows u(t) uniformly.
-
-    ``on_path`` are the curve's knot spans that lie on a segment of the path it was made from.
-    """
+    """One curve q(u) timed by u(t) on [0, duration]; ``stretch`` >= 1 slows u(t) uniformly."""
 
     curve: Curve
     s_of_t: object  # pydrake PiecewisePolynomial u(t)
     stretch: float
-    on_path: tuple[int, ...] = ()
 
     @property
     def duration(self) -> float:
@@ -219,11 +209,6 @@ class _Timed:
     def _u(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         tau = np.clip(np.asarray(t, float) / self.stretch, 0.0, self.s_of_t.end_time())
         return tau, np.clip(self.s_of_t.vector_values(tau)[0], 0.0, 1.0)
-
-    def spans_on_path(self, t: np.ndarray) -> np.ndarray:
-        """Per time, the knot span played then if it lies on a segment of the path, else -1."""
-        span = np.clip(np.searchsorted(self.curve.breaks, self._u(t)[1], side="right") - 1, 0, len(self.curve.breaks) - 2)
-        return np.where(np.isin(span, self.on_path), span, -1)
 
     def evaluate(self, t: np.ndarray):
         """q, qd, qdd at times t in [0, duration]."""
@@ -263,16 +248,16 @@ def _resting_time(points: np.ndarray, limits: Limits) -> float:
     return float(per.max(axis=1).sum()) if len(per) else 0.0
 
 
-def _time_curve(curve: Curve, limits: Limits, dt: float, grid: int, on_path: tuple[int, ...] = ()) -> _Timed:
+def _time_curve(curve: Curve, limits: Limits, dt: float, grid: int) -> _Timed:
     """TOPP-RA on the curve, then the uniform slow-down that makes dense samples respect the limits."""
     from pydrake.multibody.optimization import Toppra
 
     path = _drake_bspline(curve)
-    for k, per_span in enumerate((grid, 2 * grid)):
+    for per_span in (grid, 2 * grid):
         toppra = Toppra(path, _point_plant(len(limits.velocity)), _toppra_grid(curve, per_span))
         toppra.AddJointVelocityLimit(-limits.velocity, limits.velocity)
         toppra.AddJointAccelerationLimit(-limits.acceleration, limits.acceleration)
-        with _drake_log_muted(k == 0):  # a failure retried on a finer grid is no error
+        with _drake_log_muted():  # a failure is retried on a finer grid, then timed by stops: no error to print
             s_of_t = toppra.SolvePathParameterization()
         # a grid too coarse for the curve can leave TOPP-RA a near-zero speed somewhere (durations of
         # 1e8 s): more than SANE x resting at every control point is no solution
@@ -287,16 +272,15 @@ def _time_curve(curve: Curve, limits: Limits, dt: float, grid: int, on_path: tup
     over_v = np.max(np.abs(qd) / limits.velocity)
     over_a = np.max(np.abs(qdd) / limits.acceleration)
     stretch = max(1.0, over_v, np.sqrt(over_a)) * (1.0 + 1e-6)
-    return _Timed(curve, s_of_t, stretch, on_path)
+    return _Timed(curve, s_of_t, stretch)
 
 
 @contextlib.contextmanager
-def _drake_log_muted(muted: bool):
-    """Drake's log records (pydrake sends them to the ``drake`` Python logger) dropped while ``muted``."""
+def _drake_log_muted():
+    """Drake's log records (pydrake sends them to the ``drake`` Python logger) dropped inside."""
     logger = logging.getLogger("drake")
     drop = logging.Filter("no record passes a filter named so")  # a Filter passes only records of its name
-    if muted:
-        logger.addFilter(drop)
+    logger.addFilter(drop)
     try:
         yield
     finally:
@@ -341,24 +325,19 @@ class _Rest:
     q: np.ndarray
     duration: float = 0.0
 
-    def spans_on_path(self, t: np.ndarray) -> np.ndarray:
-        return np.full(len(t), -1)
-
     def evaluate(self, t: np.ndarray):
         zero = np.zeros((len(t), len(self.q)))
         return self.q + zero, zero, zero.copy()
 
 
 def _sample(parts: list, dt: float):
-    """The pieces played one after another, sampled every dt and at the end: t, q, qd, qdd and, per
-    sample, an id of the knot span played if it lies on a segment of the path (else -1)."""
+    """The pieces played one after another, sampled every dt and at the end: t, q, qd, qdd."""
     total = sum(p.duration for p in parts)
     t = np.arange(0.0, total, dt)
     if not len(t) or total - t[-1] > 1e-9:
         t = np.append(t, total)
     dim = len(parts[0].evaluate(np.zeros(1))[0][0])
     q, qd, qdd = (np.empty((len(t), dim)) for _ in range(3))
-    on = np.full(len(t), -1)
     ends = np.cumsum([p.duration for p in parts])
     which = np.minimum(np.searchsorted(ends, t, side="left"), len(parts) - 1)
     starts = ends - [p.duration for p in parts]
@@ -366,9 +345,4 @@ def _sample(parts: list, dt: float):
         idx = np.flatnonzero(which == k)
         if len(idx):
             q[idx], qd[idx], qdd[idx] = part.evaluate(t[idx] - starts[k])
-            span = part.spans_on_path(t[idx] - starts[k])
-            on[idx] = np.where(span >= 0, span + k * _SPAN_IDS, -1)
-    return t, q, qd, qdd, on
-
-
-_SPAN_IDS = 1 << 20  # span ids of part k: k * _SPAN_IDS + span (no curve has that many spans)
+    return t, q, qd, qdd

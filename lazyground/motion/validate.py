@@ -51,28 +51,17 @@ def trajectory_problems(
 
 
 def first_colliding_join(space: ConfigSpace, checker: ValidityChecker, q: np.ndarray, resolution: float,
-                         from_first_free: bool = False, known_free: np.ndarray | None = None) -> int | None:
+                         from_first_free: bool = False) -> int | None:
     """The sample k where the motion through ``q`` first collides, checked every ``resolution``; None if free.
 
     The one check of sampled motions: :func:`trajectory_problems` and the timing itself
     (:func:`lazyground.motion.trajectory.time_path` checks its output with it, so what it
     returns passes this re-check by construction).
-
-    Args:
-        known_free: per join (q[k] -> q[k + 1]), True where it is known free at ``resolution``
-            already (it lies on a segment of a path checked at it): not checked again.
     """
     q = np.asarray(q, float)
     if len(q) < 2:
         return None
-    check = np.ones(len(q) - 1, bool) if known_free is None else ~np.asarray(known_free, bool)
-    # runs of consecutive joins to check: (first sample, last sample)
-    edges = np.flatnonzero(np.diff(np.concatenate([[0], check.astype(np.int8), [0]])))
-    parts = [_dense(space, q[a : b + 1], resolution) for a, b in zip(edges[::2], edges[1::2])]
-    if not parts:
-        return None
-    dense = np.vstack([p for p, _ in parts])
-    owner = np.concatenate([o + a for (_, o), a in zip(parts, edges[::2])])
+    dense, owner = _dense(space, q, resolution)
     free = checker.configs_free(space.interpolate(dense, dense, 0.0) if space.wrap.any() else dense)
     if from_first_free:
         free[: int(np.argmax(free))] = True

@@ -6,7 +6,6 @@ waypoints, not just the waypoints.
 """
 
 import json
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -97,36 +96,6 @@ def test_half_speed_takes_twice_as_long(fetch):
     half = time_path(world.space, world, path, limits, fine, TimingSettings(speed=0.5), stops=stops)
     assert half.duration == pytest.approx(2 * full.duration, rel=0.02)
     assert np.all(np.abs(half.qd) <= 1.01 * 0.5 * limits.velocity)
-
-
-class CountingChecker:
-    """The world's checks, counted (configurations sent to the checker)."""
-
-    def __init__(self, world):
-        self.world, self.configs = world, 0
-
-    def configs_free(self, qs):
-        self.configs += len(np.atleast_2d(qs))
-        return self.world.configs_free(qs)
-
-
-def test_a_verified_path_needs_only_its_corners_checked(fetch):
-    # time_path on a path known free at the fine resolution checks only the curve off it (the
-    # blends); the trajectory is the same and passes the full re-check of every join
-    world, report = fetch
-    fine = report.settings.resolution / report.settings.validation_factor
-    limits = world_limits(world)
-    path = report.result.path
-    counted = {}
-    for verified in (False, True):
-        checker = CountingChecker(world)
-        counted[verified] = (time_path(world.space, checker, path, limits, fine, stops=(len(path) - 2,), verified=verified),
-                             checker.configs)
-    (full, n_full), (corners, n_corners) = counted[False], counted[True]
-    assert len(path) > 3 and full.curve.startswith("blend")
-    assert np.array_equal(full.q, corners.q) and np.array_equal(full.t, corners.t)
-    assert 0 < n_corners < 0.7 * n_full
-    assert trajectory_problems(corners, world.space, world, world.start, report.result.goal.end, fine / 2) == []
 
 
 def test_ros_yaml_and_csv_read_back_the_same_samples(fetch, tmp_path):
