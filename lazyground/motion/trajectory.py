@@ -133,11 +133,19 @@ def time_path(
     options = [*settings.blends, None]  # None: stop at every waypoint
     level = [0] * len(pieces)
     timed = [_time_piece(space, p, options[0], fine_resolution, scaled, dt, settings.grid_per_span) for p in pieces]
+    slowdowns = 0
     while True:
         parts = [part for piece in timed for part in piece[0]] or [_Rest(q[0])]
         # all of the curve is checked, its straight spans too: a check that skipped them (they lie on
         # fine-checked segments) let a grazing path through a re-check that tests other points of them
         t, qs, qd, qdd = _sample(parts, dt)
+        slower = _over_limits(qd, qdd, scaled)
+        if slower > 1.0 and slowdowns < MAX_SLOWDOWNS:
+            # a peak between the probes of _time_curve shows in the output samples: every curve is slowed
+            # by it, and the new samples are checked again (they lie elsewhere on the same curves)
+            slowdowns += 1
+            timed = [([_slowed(part, slower) for part in curves], label) for curves, label in timed]
+            continue
         bad = first_colliding_join(space, checker, qs, fine_resolution)
         if bad is None:
             break
@@ -152,6 +160,21 @@ def time_path(
         timed[k] = _time_piece(space, pieces[k], options[level[k]], fine_resolution, scaled, dt, settings.grid_per_span)
     labels = " + ".join(piece[1] for piece in timed)
     return Trajectory(space.names, tuple(bool(w) for w in space.wrap), t, qs, qd, qdd, scaled, labels, time.perf_counter() - t0)
+
+
+MAX_SLOWDOWNS = 3  # uniform slow-downs of a timed path whose output samples still exceed a limit
+
+
+def _over_limits(qd: np.ndarray, qdd: np.ndarray, limits: Limits) -> float:
+    """The uniform slow-down factor (> 1) that brings sampled velocities and accelerations within the limits, else 1."""
+    need = max(float(np.max(np.abs(qd) / limits.velocity, initial=0.0)),
+               float(np.sqrt(np.max(np.abs(qdd) / limits.acceleration, initial=0.0))))
+    return need * (1.0 + 1e-6) if need > 1.0 else 1.0
+
+
+def _slowed(part, factor: float):
+    """A timed curve played ``factor`` times slower (a rest stays a rest)."""
+    return replace(part, stretch=part.stretch * factor) if isinstance(part, _Timed) else part
 
 
 class MotionError(RuntimeError):
