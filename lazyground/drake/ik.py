@@ -385,9 +385,6 @@ class IKGoalSource(RoundRobinGoalSource):
         q[self._planned] = self.world.space.sample(rng)
         return q
 
-    def ik_report(self) -> dict:
-        """IK counters overall and per region (JSON-ready)."""
-        return {"all": self.counters.to_json(), **{r.id: c.to_json() for r, c in zip(self.regions, self.region_counters)}}
 
 
 def region_coordinates(region: PoseRegion, X_WG: np.ndarray) -> np.ndarray:
@@ -396,5 +393,3 @@ def region_coordinates(region: PoseRegion, X_WG: np.ndarray) -> np.ndarray:
 
 
 register_goal_source((WorkspaceRegion.kind, PlacementRegion.kind), IKGoalSource)
-
-

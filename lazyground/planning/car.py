@@ -104,13 +104,6 @@ class CarSpace(ConfigSpace):
         th = float(q[2])
         return float(q[0]) + self.offset * math.cos(th), float(q[1]) + self.offset * math.sin(th), th
 
-    def from_reference(self, p: np.ndarray) -> np.ndarray:
-        """Configurations whose reference point is at ``p`` (inverse of :meth:`reference`)."""
-        p = np.array(p, float)
-        if self.offset:
-            p[..., :2] -= self.offset * np.stack([np.cos(p[..., 2]), np.sin(p[..., 2])], axis=-1)
-        return p
-
     def distance(self, a: np.ndarray, b: np.ndarray) -> float:
         return curves.word_length(self.word(a, b))
 
