@@ -386,7 +386,6 @@ class IKGoalSource(RoundRobinGoalSource):
         return q
 
 
-
 def region_coordinates(region: PoseRegion, X_WG: np.ndarray) -> np.ndarray:
     """The end-effector pose ``X_WG`` (4x4) as a 6-vector in the region's sampled frame (:meth:`PoseRegion.coordinates_of`)."""
     return region.coordinates_of(X_WG)
