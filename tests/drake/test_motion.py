@@ -29,24 +29,25 @@ ROOT = Path(__file__).resolve().parents[2]
 MOTION = {"shortcut_iterations": 60, "shortcut_time": 1e9}
 
 
-@pytest.fixture(scope="module")
-def fetch():
-    scene = load_scene(ROOT / "yaml_scenes/fetch_cans_1.yaml")
+def planned(scene_file: str, request: str, seed: int):
+    """(world, report) of one plan of a bundled scene, motion included."""
+    scene = load_scene(ROOT / "yaml_scenes" / scene_file)
     world = DrakeWorld(scene, visual=False)
-    # seed 2: with the batch IK's goal samples (#19) seed 1's path has a corner whose blend grazes a shelf
-    # in the half-speed samples only, so that timing falls back to less blending (x2.64, not x2)
-    report = api.plan(scene, "pick up a can", seed=2, world=world, **MOTION)
+    report = api.plan(scene, request, seed=seed, world=world, **MOTION)
     assert report.result.solved
     return world, report
+
+
+@pytest.fixture(scope="module")
+def fetch():
+    # seed 2: with the batch IK's goal samples (#19) seed 1's path has a corner whose blend grazes a shelf
+    # in the half-speed samples only, so that timing falls back to less blending (x2.64, not x2)
+    return planned("fetch_cans_1.yaml", "pick up a can", seed=2)
 
 
 @pytest.fixture(scope="module")
 def parking():
-    scene = load_scene(ROOT / "yaml_scenes/parking_1.yaml")
-    world = DrakeWorld(scene, visual=False)
-    report = api.plan(scene, "park", seed=3, world=world, **MOTION)
-    assert report.result.solved
-    return world, report
+    return planned("parking_1.yaml", "park", seed=3)
 
 
 def assert_valid_trajectory(world, report):
