@@ -1,4 +1,4 @@
-"""A serial kinematic chain read off a Drake plant, evaluated in batches with numpy.
+"""Serial kinematic chains and body trees read off a Drake plant, evaluated in batches with numpy.
 
 Drake's ``CalcRelativeTransform`` and ``CalcJacobianSpatialVelocity`` cost tens
 of microseconds per call from Python, one configuration at a time. Goal
@@ -112,6 +112,27 @@ def joints_to_world(plant, body) -> list:
     return out
 
 
+def _joint_parts(joint):
+    """(kind, axis, X_PF @ A, A.T @ X_MC) of a revolute or prismatic joint, A turning its axis onto z;
+    (None, None, X_PC, None) of a weld.
+
+    Raises:
+        ValueError: the joint is neither revolute, prismatic nor welded (e.g. a floating or planar base).
+    """
+    X_PF = joint.frame_on_parent().GetFixedPoseInBodyFrame().GetAsMatrix4()
+    X_MC = joint.frame_on_child().GetFixedPoseInBodyFrame().inverse().GetAsMatrix4()
+    if isinstance(joint, WeldJoint):
+        return None, None, X_PF @ joint.X_FM().GetAsMatrix4() @ X_MC, None
+    if isinstance(joint, RevoluteJoint):
+        kind, axis = REVOLUTE, np.asarray(joint.revolute_axis(), float)
+    elif isinstance(joint, PrismaticJoint):
+        kind, axis = PRISMATIC, np.asarray(joint.translation_axis(), float)
+    else:
+        raise ValueError(f"joint {joint.name()} ({joint.type_name()}) cannot be part of a kinematic chain")
+    A = _align_z(axis)  # the joint frame turned so its axis is z, and back after it
+    return kind, axis, X_PF @ A, A.T @ X_MC
+
+
 def chain_to_frame(plant, frame) -> Chain:
     """The chain from the world to ``frame`` (a plant Frame).
 
@@ -123,23 +144,85 @@ def chain_to_frame(plant, frame) -> Chain:
     X_before, axes, kinds, index = [], [], [], []
     pending = np.eye(4)  # fixed transforms since the last moving joint
     for joint in joints:
-        X_PF = joint.frame_on_parent().GetFixedPoseInBodyFrame().GetAsMatrix4()
-        X_MC = joint.frame_on_child().GetFixedPoseInBodyFrame().inverse().GetAsMatrix4()
-        if isinstance(joint, WeldJoint):
-            pending = pending @ X_PF @ joint.X_FM().GetAsMatrix4() @ X_MC
+        kind, axis, X_pre, X_post = _joint_parts(joint)
+        if kind is None:
+            pending = pending @ X_pre
             continue
-        if isinstance(joint, RevoluteJoint):
-            kinds.append(REVOLUTE)
-            axes.append(np.asarray(joint.revolute_axis(), float))
-        elif isinstance(joint, PrismaticJoint):
-            kinds.append(PRISMATIC)
-            axes.append(np.asarray(joint.translation_axis(), float))
-        else:
-            raise ValueError(f"joint {joint.name()} ({joint.type_name()}) cannot be part of an IK chain")
-        A = _align_z(axes[-1])  # the joint frame turned so its axis is z, and back after it
-        X_before.append(pending @ X_PF @ A)
+        kinds.append(kind)
+        axes.append(axis)
+        X_before.append(pending @ X_pre)
         index.append(joint.position_start())
-        pending = A.T @ X_MC
+        pending = X_post
     X_after = pending @ frame.GetFixedPoseInBodyFrame().GetAsMatrix4()
     return Chain(np.array(X_before).reshape(-1, 4, 4), X_after, np.array(axes).reshape(-1, 3),
                  np.array(kinds, int), np.array(index, int))
+
+
+WELD = -1
+
+
+@dataclass(frozen=True)
+class BodyTree:
+    """World poses of several bodies at once, each computed once from its parent's.
+
+    Node k is one body: its parent node ``parent[k]`` (-1: the world; parents come
+    first), then X_parent→body = ``X_pre[k]`` · (turn or shift about z by q[index[k]]) · ``X_post[k]``
+    (a weld: ``X_pre[k]`` alone).
+    """
+
+    bodies: tuple  # BodyIndex per node
+    parent: np.ndarray  # (n,)
+    X_pre: np.ndarray  # (n, 4, 4)
+    X_post: np.ndarray  # (n, 4, 4)
+    kinds: np.ndarray  # (n,) REVOLUTE, PRISMATIC or WELD
+    index: np.ndarray  # (n,) plant position index (0 for welds)
+
+    def forward(self, q_full: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Rotations R_WB (B, n, 3, 3) and positions p_WB (B, n, 3) of every node at B plant position vectors."""
+        q = np.atleast_2d(q_full)
+        B, n = q.shape[0], len(self.kinds)
+        R, p = np.empty((B, n, 3, 3)), np.empty((B, n, 3))
+        for k in range(n):
+            if self.parent[k] < 0:
+                Rk = np.broadcast_to(self.X_pre[k, :3, :3], (B, 3, 3)).copy()
+                pk = np.broadcast_to(self.X_pre[k, :3, 3], (B, 3)).copy()
+            else:
+                Rp, pp = R[:, self.parent[k]], p[:, self.parent[k]]
+                pk = pp + (Rp.reshape(-1, 3) @ self.X_pre[k, :3, 3]).reshape(B, 3)
+                Rk = (Rp.reshape(-1, 3) @ self.X_pre[k, :3, :3]).reshape(B, 3, 3)
+            if self.kinds[k] != WELD:
+                qk = q[:, self.index[k], None]
+                if self.kinds[k] == PRISMATIC:
+                    pk = pk + Rk[:, :, 2] * qk
+                else:  # Rk @ Rz(q): turn the first two columns
+                    c, s, x = np.cos(qk), np.sin(qk), Rk[:, :, 0].copy()
+                    Rk[:, :, 0] = x * c + Rk[:, :, 1] * s
+                    Rk[:, :, 1] = Rk[:, :, 1] * c - x * s
+                pk = pk + (Rk.reshape(-1, 3) @ self.X_post[k, :3, 3]).reshape(B, 3)
+                Rk = (Rk.reshape(-1, 3) @ self.X_post[k, :3, :3]).reshape(B, 3, 3)
+            R[:, k], p[:, k] = Rk, pk
+        return R, p
+
+
+def body_tree(plant, bodies) -> BodyTree:
+    """The tree of ``bodies`` (plant Bodies) and every body between them and the world.
+
+    Raises:
+        ValueError: a joint on the way is neither revolute, prismatic nor welded.
+    """
+    order: list = []  # BodyIndex, parents first
+    steps: dict = {}
+    for body in bodies:
+        for joint in joints_to_world(plant, body)[::-1]:
+            child = joint.child_body().index()
+            if child not in steps:
+                steps[child] = (joint.parent_body().index(), _joint_parts(joint), joint.position_start())
+                order.append(child)
+    node = {b: k for k, b in enumerate(order)}
+    world = plant.world_body().index()
+    parent = [-1 if steps[b][0] == world else node[steps[b][0]] for b in order]
+    kinds = [WELD if steps[b][1][0] is None else steps[b][1][0] for b in order]
+    X_post = [np.eye(4) if steps[b][1][3] is None else steps[b][1][3] for b in order]
+    return BodyTree(tuple(order), np.array(parent, int), np.array([steps[b][1][2] for b in order]).reshape(-1, 4, 4),
+                    np.array(X_post).reshape(-1, 4, 4), np.array(kinds, int),
+                    np.array([0 if k == WELD else steps[b][2] for b, k in zip(order, kinds)], int))
