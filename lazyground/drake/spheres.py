@@ -120,10 +120,15 @@ class SphereCertifier:
 
     def _near_obstacles(self, centre: np.ndarray):
         """(b, g, o, threshold) of the pairs whose bounding sphere is within reach of the obstacle's world box."""
-        gap2 = 0.0
+        shape = centre.shape[:2] + self._aabb_half.shape[:1]
+        gap2, d = np.zeros(shape), np.empty(shape)  # in place: temporaries of this size cost more than the arithmetic
         for k in range(3):  # distance from each moving centre to each obstacle's axis-aligned box, squared
-            d = np.abs(centre[:, :, k, None] - self._aabb_centre[:, k]) - self._aabb_half[:, k]
-            gap2 = gap2 + np.maximum(d, 0.0) ** 2
+            np.subtract(centre[:, :, k, None], self._aabb_centre[:, k], out=d)
+            np.abs(d, out=d)
+            d -= self._aabb_half[:, k]
+            np.maximum(d, 0.0, out=d)
+            d *= d
+            gap2 += d
         b, g, o = np.nonzero(gap2 <= self._env_reach2)
         return b, g, o, self._env_threshold[g, o]
 
