@@ -158,50 +158,54 @@ def chain_to_frame(plant, frame) -> Chain:
                  np.array(kinds, int), np.array(index, int))
 
 
-WELD = -1
-
-
 @dataclass(frozen=True)
 class BodyTree:
-    """World poses of several bodies at once, each computed once from its parent's.
+    """World poses of several bodies at once, each moving joint computed once.
 
-    Node k is one body: its parent node ``parent[k]`` (-1: the world; parents come
-    first), then X_parent→body = ``X_pre[k]`` · (turn or shift about z by q[index[k]]) · ``X_post[k]``
-    (a weld: ``X_pre[k]`` alone).
+    The tree is kept per moving joint ("slot" s >= 1; slot 0 is the world): the frame
+    of slot s is its joint's moving frame, ``K[s - 1]`` after slot ``parent[s - 1]``'s
+    frame, then turned about (or shifted along) z by q[index[s - 1]]. Welds fold
+    into constants: body k sits at ``F[k]`` in the frame of slot ``slot[k]``.
     """
 
     bodies: tuple  # BodyIndex per node
-    parent: np.ndarray  # (n,)
-    X_pre: np.ndarray  # (n, 4, 4)
-    X_post: np.ndarray  # (n, 4, 4)
-    kinds: np.ndarray  # (n,) REVOLUTE, PRISMATIC or WELD
-    index: np.ndarray  # (n,) plant position index (0 for welds)
+    parent: np.ndarray  # (m,) slot of the frame each moving joint hangs from
+    K: np.ndarray  # (m, 4, 4)
+    kinds: np.ndarray  # (m,) REVOLUTE or PRISMATIC
+    index: np.ndarray  # (m,) plant position index
+    slot: np.ndarray  # (n,) per body
+    F: np.ndarray  # (n, 4, 4) per body
 
     def forward(self, q_full: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Rotations R_WB (B, n, 3, 3) and positions p_WB (B, n, 3) of every node at B plant position vectors."""
+        """Rotations R_WB (B, n, 3, 3) and positions p_WB (B, n, 3) of every body at B plant position vectors."""
         q = np.atleast_2d(q_full)
-        B, n = q.shape[0], len(self.kinds)
-        R, p = np.empty((B, n, 3, 3)), np.empty((B, n, 3))
-        for k in range(n):
-            if self.parent[k] < 0:
-                Rk = np.broadcast_to(self.X_pre[k, :3, :3], (B, 3, 3)).copy()
-                pk = np.broadcast_to(self.X_pre[k, :3, 3], (B, 3)).copy()
-            else:
-                Rp, pp = R[:, self.parent[k]], p[:, self.parent[k]]
-                pk = pp + (Rp.reshape(-1, 3) @ self.X_pre[k, :3, 3]).reshape(B, 3)
-                Rk = (Rp.reshape(-1, 3) @ self.X_pre[k, :3, :3]).reshape(B, 3, 3)
-            if self.kinds[k] != WELD:
-                qk = q[:, self.index[k], None]
-                if self.kinds[k] == PRISMATIC:
-                    pk = pk + Rk[:, :, 2] * qk
-                else:  # Rk @ Rz(q): turn the first two columns
-                    c, s, x = np.cos(qk), np.sin(qk), Rk[:, :, 0].copy()
-                    Rk[:, :, 0] = x * c + Rk[:, :, 1] * s
-                    Rk[:, :, 1] = Rk[:, :, 1] * c - x * s
-                pk = pk + (Rk.reshape(-1, 3) @ self.X_post[k, :3, 3]).reshape(B, 3)
-                Rk = (Rk.reshape(-1, 3) @ self.X_post[k, :3, :3]).reshape(B, 3, 3)
-            R[:, k], p[:, k] = Rk, pk
-        return R, p
+        B, m = q.shape[0], len(self.kinds)
+        R, p = [np.broadcast_to(np.eye(3), (B, 3, 3))], [np.zeros((B, 3))]  # per slot, contiguous
+        qs = q[:, self.index]
+        c, s = np.cos(qs), np.sin(qs)
+        for j in range(m):
+            Rp = R[self.parent[j]].reshape(-1, 3)  # R @ A for a constant A as one (3B, 3) product
+            pj = p[self.parent[j]] + (Rp @ self.K[j, :3, 3]).reshape(B, 3)
+            Rj = (Rp @ self.K[j, :3, :3]).reshape(B, 3, 3)
+            if self.kinds[j] == PRISMATIC:
+                pj += Rj[:, :, 2] * qs[:, j, None]
+            else:  # Rj @ Rz(q): turn the first two columns
+                cj, sj, x = c[:, j, None], s[:, j, None], Rj[:, :, 0].copy()
+                Rj[:, :, 0] = x * cj + Rj[:, :, 1] * sj
+                Rj[:, :, 1] = Rj[:, :, 1] * cj - x * sj
+            R.append(Rj)
+            p.append(pj)
+        R_out, p_out = np.empty((B, len(self.slot), 3, 3)), np.empty((B, len(self.slot), 3))
+        for k, j in enumerate(self.slot):
+            Rj = R[j].reshape(-1, 3)
+            R_out[:, k] = (Rj @ self.F[k, :3, :3]).reshape(B, 3, 3)
+            p_out[:, k] = p[j] + (Rj @ self.F[k, :3, 3]).reshape(B, 3)
+        return R_out, p_out
+
+    @property
+    def fixed(self) -> np.ndarray:
+        """Per body: whether only welds lie between it and the world (its pose never changes)."""
+        return self.slot == 0
 
 
 def body_tree(plant, bodies) -> BodyTree:
@@ -210,19 +214,25 @@ def body_tree(plant, bodies) -> BodyTree:
     Raises:
         ValueError: a joint on the way is neither revolute, prismatic nor welded.
     """
-    order: list = []  # BodyIndex, parents first
-    steps: dict = {}
+    world = plant.world_body().index()
+    where = {world: (0, np.eye(4))}  # BodyIndex -> (slot, F)
+    order, parent, K, kinds, index = [], [], [], [], []
     for body in bodies:
         for joint in joints_to_world(plant, body)[::-1]:
             child = joint.child_body().index()
-            if child not in steps:
-                steps[child] = (joint.parent_body().index(), _joint_parts(joint), joint.position_start())
-                order.append(child)
-    node = {b: k for k, b in enumerate(order)}
-    world = plant.world_body().index()
-    parent = [-1 if steps[b][0] == world else node[steps[b][0]] for b in order]
-    kinds = [WELD if steps[b][1][0] is None else steps[b][1][0] for b in order]
-    X_post = [np.eye(4) if steps[b][1][3] is None else steps[b][1][3] for b in order]
-    return BodyTree(tuple(order), np.array(parent, int), np.array([steps[b][1][2] for b in order]).reshape(-1, 4, 4),
-                    np.array(X_post).reshape(-1, 4, 4), np.array(kinds, int),
-                    np.array([0 if k == WELD else steps[b][2] for b, k in zip(order, kinds)], int))
+            if child in where:
+                continue
+            slot, F = where[joint.parent_body().index()]
+            kind, _, X_pre, X_post = _joint_parts(joint)
+            if kind is None:
+                where[child] = (slot, F @ X_pre)
+            else:
+                parent.append(slot)
+                K.append(F @ X_pre)
+                kinds.append(kind)
+                index.append(joint.position_start())
+                where[child] = (len(kinds), X_post)
+            order.append(child)
+    return BodyTree(tuple(order), np.array(parent, int), np.array(K).reshape(-1, 4, 4), np.array(kinds, int),
+                    np.array(index, int), np.array([where[b][0] for b in order], int),
+                    np.array([where[b][1] for b in order]).reshape(-1, 4, 4))

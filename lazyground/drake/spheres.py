@@ -37,7 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lazyground.drake.chain import WELD, BodyTree, body_tree
+from lazyground.drake.chain import BodyTree, body_tree
 from lazyground.drake.solids import cover, solid, solid_distance, solid_radius
 
 MARGIN = 1e-4  # metres beyond the padding a lower bound must clear
@@ -200,7 +200,7 @@ def sphere_certifier(checker, margin: float = MARGIN, slack: float = SLACK) -> S
     except ValueError:
         return None
     node = {b: k for k, b in enumerate(tree.bodies)}
-    fixed = _welded_to_world(tree)
+    fixed = tree.fixed
     moving = [g for g in geometries if body[g].index() != world and not fixed[node[body[g].index()]]]
     if any(not checker.IsPartOfRobot(body[g]) for g in moving):
         return None  # an environment body that moves
@@ -266,14 +266,6 @@ def _fixed_poses(tree: BodyTree, node: dict, num_positions: int) -> dict:
         out[b] = np.eye(4)
         out[b][:3, :3], out[b][:3, 3] = R[0, k], p[0, k]
     return out
-
-
-def _welded_to_world(tree: BodyTree) -> np.ndarray:
-    """Per tree node: whether only welds lie between it and the world (its pose never changes)."""
-    fixed = np.zeros(len(tree.kinds), bool)
-    for k in range(len(fixed)):
-        fixed[k] = tree.kinds[k] == WELD and (tree.parent[k] < 0 or fixed[tree.parent[k]])
-    return fixed
 
 
 def _welded_pair_collides(checker, pairs) -> bool:
