@@ -37,11 +37,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lazyground.drake.chain import BodyTree, body_tree
+from lazyground.drake.chain import PRISMATIC, BodyTree, body_tree
 from lazyground.drake.solids import cover, solid, solid_distance, solid_radius
 
 MARGIN = 1e-4  # metres beyond the padding a lower bound must clear
 SLACK = 0.015  # metres a cover's spheres may reach beyond their shape (finer: more spheres)
+ANCHOR_EVERY = 3  # rows of a batch per anchor (see SphereCertifier.certified_free)
 
 
 @dataclass(frozen=True)
@@ -85,10 +86,13 @@ class SphereCertifier:
         obstacles: the never-moving geometry, in the world frame.
         env_threshold: (moving geometries, obstacles) the distance to clear; -inf: a pair Drake does not check.
         self_pairs: moving geometry (its spheres) against another moving geometry's solid.
+        motion_weights: (moving geometries, plant positions): no point of geometry g moves
+            farther than |q' - q| @ motion_weights[g] between q and q'.
     """
 
     def __init__(self, tree: BodyTree, node: np.ndarray, solids: _Solids, centers: np.ndarray, radii: np.ndarray,
-                 start: np.ndarray, obstacles: _Solids, env_threshold: np.ndarray, self_pairs: _Pairs):
+                 start: np.ndarray, obstacles: _Solids, env_threshold: np.ndarray, self_pairs: _Pairs,
+                 motion_weights: np.ndarray):
         self.tree, self._node, self._solids, self._obstacles = tree, node, solids, obstacles
         self._centers, self._radii, self._start = centers, radii, start
         self._count = np.diff(start)
@@ -98,6 +102,8 @@ class SphereCertifier:
         # squared reach of each (moving geometry, obstacle) pair; -1 where Drake does not check the pair
         reach = env_threshold + solids.radius[:, None]
         self._env_reach2 = np.where(np.isfinite(reach), np.maximum(reach, 0.0) ** 2, -1.0)
+        self._env_clear_offset = np.where(np.isfinite(reach), reach, -np.inf)
+        self.motion_weights = motion_weights
 
     @property
     def spheres(self) -> int:
@@ -108,18 +114,47 @@ class SphereCertifier:
         return int(np.isfinite(self._env_threshold).sum()) + len(self._self.mover)
 
     def certified_free(self, q_full: np.ndarray) -> np.ndarray:
-        """Per plant position vector (rows of ``q_full``): True only if Drake's checker calls it free."""
+        """Per plant position vector (rows of ``q_full``): True only if Drake's checker calls it free.
+
+        Rows are taken in runs of ``ANCHOR_EVERY``: the first of each run (an anchor) is bounded
+        pair by pair; a row of the run, or of the run before, whose every moving geometry cannot
+        have moved as far as that geometry's clearance at the anchor (:attr:`motion_weights`) is
+        free with it; the rest are bounded themselves. Consecutive rows of a densely checked path
+        are mostly such neighbours.
+        """
+        q = np.atleast_2d(np.asarray(q_full, float))
+        if len(q) < 2 * ANCHOR_EVERY or not np.all(np.isfinite(self.motion_weights)):
+            return self.clearance(q).min(axis=1) > 0.0
+        anchors = np.arange(0, len(q), ANCHOR_EVERY)
+        clear = self.clearance(q[anchors])
+        run = np.arange(len(q)) // ANCHOR_EVERY  # each row's anchor, and the next one
+        nxt = np.minimum(run + 1, len(anchors) - 1)
+        moved = lambda a: np.abs(q - q[anchors[a]]) @ self.motion_weights.T  # noqa: E731  (rows, geometries)
+        free = np.all(moved(run) < clear[run], axis=1) | np.all(moved(nxt) < clear[nxt], axis=1)
+        free[anchors] = clear.min(axis=1) > 0.0
+        rest = np.flatnonzero(~free)
+        rest = rest[rest % ANCHOR_EVERY != 0]
+        if len(rest):
+            free[rest] = self.clearance(q[rest]).min(axis=1) > 0.0
+        return free
+
+    def clearance(self, q_full: np.ndarray) -> np.ndarray:
+        """Per plant position vector and moving geometry (B, geometries): a lower bound of how far the
+        geometry can move before a checked pair of it comes within its threshold (all > 0: Drake
+        calls the configuration free); a self pair gives each side half, both moving."""
         q = np.atleast_2d(np.asarray(q_full, float))
         R, p = self.tree.forward(q)
         # every moving geometry's solid centre in the world, (B, geometries, 3)
         centre = np.einsum("bgij,gj->bgi", R[:, self._node], self._solids.o) + p[:, self._node]
-        ok = self._finer(R, p, centre, *self._near_obstacles(centre), moving=False)
+        clear, near = self._near_obstacles(centre)
+        self._finer(R, p, centre, clear, *near, moving=False)
         if len(self._self.mover):
-            ok &= self._finer(R, p, centre, *self._near_each_other(centre), moving=True)
-        return ok
+            self._finer(R, p, centre, clear, *self._near_each_other(centre, clear), moving=True)
+        return clear
 
     def _near_obstacles(self, centre: np.ndarray):
-        """(b, g, o, threshold) of the pairs whose bounding sphere is within reach of the obstacle's world box."""
+        """(per configuration and geometry: the clearance of the pairs far from the obstacles' world boxes,
+        (b, g, o, threshold) of the other pairs)."""
         shape = centre.shape[:2] + self._aabb_half.shape[:1]
         gap2, d = np.zeros(shape), np.empty(shape)  # in place: temporaries of this size cost more than the arithmetic
         for k in range(3):  # distance from each moving centre to each obstacle's axis-aligned box, squared
@@ -129,32 +164,50 @@ class SphereCertifier:
             np.maximum(d, 0.0, out=d)
             d *= d
             gap2 += d
-        b, g, o = np.nonzero(gap2 <= self._env_reach2)
-        return b, g, o, self._env_threshold[g, o]
+        near = gap2 <= self._env_reach2
+        b, g, o = np.nonzero(near)
+        np.sqrt(gap2, out=gap2)
+        gap2 -= self._env_clear_offset  # radius + threshold; -inf for pairs Drake does not check
+        gap2[near] = np.inf
+        return gap2.min(axis=2), (b, g, o, self._env_threshold[g, o])
 
-    def _near_each_other(self, centre: np.ndarray):
-        """(b, g, o, threshold) of the moving pairs whose bounding spheres are within reach."""
+    def _near_each_other(self, centre: np.ndarray, clear: np.ndarray):
+        """(b, g, o, threshold) of the moving pairs whose bounding spheres are within reach; the others
+        lower ``clear`` of both their sides by half their gap."""
         g, o, threshold = self._self.mover, self._self.other, self._self.threshold
         v = centre[:, g] - centre[:, o]
-        gap = np.sqrt(np.einsum("bki,bki->bk", v, v)) - self._solids.radius[g] - self._solids.radius[o]
-        b, k = np.nonzero(gap <= threshold)
+        gap = np.sqrt(np.einsum("bki,bki->bk", v, v)) - self._solids.radius[g] - self._solids.radius[o] - threshold
+        near = gap <= 0.0
+        b, k = np.nonzero(near)
+        gap[near] = np.inf
+        for side in (g, o):
+            np.minimum.at(clear.T, side, gap.T / 2)
         return b, g[k], o[k], threshold[k]
 
-    def _finer(self, R, p, centre, b, g, o, threshold, moving: bool) -> np.ndarray:
-        """Per configuration: whether the pairs (b, g, o) clear ``threshold``, tried with the moving geometry's
-        bounding sphere against the other solid, then sphere by sphere."""
-        ok = np.ones(len(R), bool)
+    def _finer(self, R, p, centre, clear, b, g, o, threshold, moving: bool) -> None:
+        """Lowers ``clear`` by the pairs (b, g, o): the moving geometry's bounding sphere against the other
+        solid, then, where that comes within ``threshold``, sphere by sphere."""
         if not len(b):
-            return ok
+            return
         R_WG, o_W, solids = self._other_pose(R, p, b, o, moving)
-        near = self._distance(centre[b, g], R_WG, o_W, solids, o) - self._solids.radius[g] <= threshold
+        gap = self._distance(centre[b, g], R_WG, o_W, solids, o) - self._solids.radius[g] - threshold
+        near = gap <= 0.0
+        self._lower(clear, b[~near], g[~near], o[~near], gap[~near], moving)
         b, g, o, threshold, R_WG, o_W = b[near], g[near], o[near], threshold[near], R_WG[near], o_W[near]
         row, sphere = _ranges(self._start[g], self._count[g])
         bs, ns = b[row], self._sphere_node[sphere]
         c = np.einsum("nij,nj->ni", R[bs, ns], self._centers[sphere]) + p[bs, ns]
-        d = self._distance(c, R_WG[row], o_W[row], solids, o[row]) - self._radii[sphere]
-        ok[bs[d <= threshold[row]]] = False
-        return ok
+        gap = self._distance(c, R_WG[row], o_W[row], solids, o[row]) - self._radii[sphere] - threshold[row]
+        self._lower(clear, bs, g[row], o[row], gap, moving)
+
+    @staticmethod
+    def _lower(clear, b, g, o, gap, moving: bool) -> None:
+        """clear[b, g] = min(clear[b, g], gap); for a self pair half the gap, on both sides."""
+        if moving:
+            np.minimum.at(clear, (b, g), gap / 2)
+            np.minimum.at(clear, (b, o), gap / 2)
+        else:
+            np.minimum.at(clear, (b, g), gap)
 
     def _other_pose(self, R, p, b, o, moving: bool):
         """World pose (R_WG, centre) of the other side of pairs at configurations b, and its solids."""
@@ -219,8 +272,33 @@ def sphere_certifier(checker, margin: float = MARGIN, slack: float = SLACK) -> S
     start = np.concatenate([[0], np.cumsum([len(r) for _, r in covers])]).astype(int)
     centers = np.vstack([c @ X_BG[g][:3, :3].T + X_BG[g][:3, 3] for g, (c, _) in zip(moving, covers)]).reshape(-1, 3)
     radii = np.concatenate([r for _, r in covers] + [np.zeros(0)])
-    return SphereCertifier(tree, np.array([node[body[g].index()] for g in moving], int), solids, centers, radii, start,
-                           obstacles, env, self_pairs)
+    nodes = np.array([node[body[g].index()] for g in moving], int)
+    return SphereCertifier(tree, nodes, solids, centers, radii, start, obstacles, env, self_pairs,
+                           _motion_weights(tree, nodes, solids, plant))
+
+
+def _motion_weights(tree: BodyTree, nodes: np.ndarray, solids: _Solids, plant) -> np.ndarray:
+    """(moving geometries, plant positions): how far (m) a point of each geometry can move per unit of each position.
+
+    A prismatic joint moves points by its own travel; a revolute joint by the angle times
+    their distance from its axis, at most their distance from its frame's origin, bounded by
+    the triangle inequality up the tree (fixed offsets, plus the travel of prismatic joints
+    on the way): a bound for every configuration, so no point of geometry g moves farther than
+    |q' - q| @ weights[g] along the straight line from q to q' (inf: a prismatic joint without limits).
+    """
+    lo, hi = plant.GetPositionLowerLimits(), plant.GetPositionUpperLimits()
+    travel = np.where(tree.kinds == PRISMATIC, np.maximum(np.abs(lo[tree.index]), np.abs(hi[tree.index])), 0.0)
+    weights = np.zeros((len(nodes), plant.num_positions()))
+    for g, k in enumerate(nodes):
+        F = tree.F[k]
+        reach = np.linalg.norm(F[:3, :3] @ solids.o[g] + F[:3, 3]) + solids.radius[g]  # from its slot's origin
+        slot = tree.slot[k]
+        while slot > 0:
+            j = slot - 1
+            weights[g, tree.index[j]] = 1.0 if tree.kinds[j] == PRISMATIC else reach
+            reach += np.linalg.norm(tree.K[j, :3, 3]) + travel[j]
+            slot = tree.parent[j]
+    return weights
 
 
 def _checked_pairs(checker, inspector, body, moving, still, spheres, margin):
