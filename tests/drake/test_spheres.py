@@ -42,6 +42,14 @@ def _near_contact(world, rng, n_pairs: int, steps: int = 16) -> np.ndarray:
     return np.vstack(out + [a, b])
 
 
+def _dense_paths(world, rng, n: int, steps: int = 120) -> np.ndarray:
+    """Rows along straight segments between random configurations, in order (as a path's fine re-check asks)."""
+    a = np.array([world.space.sample(rng) for _ in range(n)])
+    b = np.array([world.space.sample(rng) for _ in range(n)])
+    t = np.linspace(0.0, 1.0, steps)[None, :, None]
+    return world.full((a[:, None] + t * (b - a)[:, None]).reshape(-1, a.shape[1]))
+
+
 def _assert_sound(world, q_full: np.ndarray) -> np.ndarray:
     """The certifier proves only Drake-free configurations; the checker answers as Drake. Returns the certified mask."""
     certified = world.checker.certifier.certified_free(q_full)
@@ -60,6 +68,8 @@ def test_never_certifies_a_colliding_configuration(scene):
     random = world.full(np.array([world.space.sample(rng) for _ in range(3000)]))
     near = _near_contact(world, rng, 150)
     certified = _assert_sound(world, np.vstack([random, near]))
+    dense = _dense_paths(world, rng, 20)
+    assert 0 < _assert_sound(world, dense).sum() < len(dense)  # rows certified through their anchors' clearance too
     drake = _drake_free(world, random)
     assert certified[: len(random)].sum() > 0.3 * drake.sum()  # it proves a good share, so soundness means something
     # near contact: within 0.5 mm of the boundary the certifier must leave the call to Drake
@@ -92,6 +102,24 @@ def test_a_car_is_left_to_drake(scene):
     rng = np.random.default_rng(0)
     qs = np.array([world.space.sample(rng) for _ in range(64)])
     assert np.array_equal(world.configs_free(qs), _drake_free(world, world.full(qs)))
+
+
+def test_no_point_moves_farther_than_the_motion_bound():
+    world = DrakeWorld(load_scene("yaml_scenes/fetch_cans_1.yaml"), visual=False)
+    cert = world.checker.certifier
+    rng = np.random.default_rng(2)
+    q = world.full(np.array([world.space.sample(rng) for _ in range(400)]))
+    q2 = q + rng.normal(0.0, 0.2, q.shape) * (cert.motion_weights.max(axis=0) > 0)
+    bound = np.abs(q2 - q) @ cert.motion_weights.T  # (rows, geometries)
+
+    def spheres(qs):  # every cover sphere's centre in the world: points within the geometry's bounding sphere
+        R, p = cert.tree.forward(qs)
+        n = cert._sphere_node
+        return np.einsum("bsij,sj->bsi", R[:, n], cert._centers) + p[:, n]
+
+    moved = np.linalg.norm(spheres(q2) - spheres(q), axis=-1)
+    owner = np.repeat(np.arange(len(cert._count)), cert._count)
+    assert np.all(moved <= bound[:, owner] + 1e-12)
 
 
 def test_the_body_tree_matches_the_plant():
