@@ -21,8 +21,11 @@ from lazyground.drake.spheres import sphere_certifier
 # Drake needs a positive step at construction; a checker built without a resolution
 # replaces this once, before its first edge check, and never again.
 _UNSET_STEP = 0.05
-# Batches from which the certifier is tried first: its numpy overhead (~0.4 ms a call) needs a few dozen configurations.
-CERTIFY_MIN_BATCH = 16
+# Batches from which the certifier is tried first. Its numpy calls cost ~0.5-1 ms per batch whatever
+# its size, so it pays from about a hundred configurations: replaying the batches of 4 plans on
+# fetch_cans_1 / fetch_boxes_3, batches of 8-64 took 1.5-4.7x Drake's time, 128-255 0.96 / 0.35x,
+# 256 and more 0.69 / 0.26x (CPU time, interleaved; /tmp/notes/spheres4.md).
+CERTIFY_MIN_BATCH = 128
 
 
 class DrakeChecker:
