@@ -104,6 +104,11 @@ class SphereCertifier:
         self._env_reach2 = np.where(np.isfinite(reach), np.maximum(reach, 0.0) ** 2, -1.0)
         self._env_clear_offset = np.where(np.isfinite(reach), reach, -np.inf)
         self.motion_weights = motion_weights
+        self._self_sides = []  # per side of the self pairs: (pair order by geometry, first of each run, its geometry)
+        for side in (self_pairs.mover, self_pairs.other):
+            order = np.argsort(side, kind="stable")
+            owner, first = np.unique(side[order], return_index=True)
+            self._self_sides.append((order, first, owner))
 
     @property
     def spheres(self) -> int:
@@ -180,8 +185,9 @@ class SphereCertifier:
         near = gap <= 0.0
         b, k = np.nonzero(near)
         gap[near] = np.inf
-        for side in (g, o):
-            np.minimum.at(clear.T, side, gap.T / 2)
+        gap /= 2
+        for order, first, owner in self._self_sides:  # each side's pairs in a run: one reduction per geometry
+            clear[:, owner] = np.minimum(clear[:, owner], np.minimum.reduceat(gap[:, order], first, axis=1))
         return b, g[k], o[k], threshold[k]
 
     def _finer(self, R, p, centre, clear, b, g, o, threshold, moving: bool) -> None:
@@ -203,11 +209,12 @@ class SphereCertifier:
     @staticmethod
     def _lower(clear, b, g, o, gap, moving: bool) -> None:
         """clear[b, g] = min(clear[b, g], gap); for a self pair half the gap, on both sides."""
+        flat, n = clear.reshape(-1), clear.shape[1]  # a view: numpy's ufunc.at is fast on one flat index
         if moving:
-            np.minimum.at(clear, (b, g), gap / 2)
-            np.minimum.at(clear, (b, o), gap / 2)
+            np.minimum.at(flat, b * n + g, gap / 2)
+            np.minimum.at(flat, b * n + o, gap / 2)
         else:
-            np.minimum.at(clear, (b, g), gap)
+            np.minimum.at(flat, b * n + g, gap)
 
     def _other_pose(self, R, p, b, o, moving: bool):
         """World pose (R_WG, centre) of the other side of pairs at configurations b, and its solids."""
