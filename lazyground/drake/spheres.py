@@ -121,11 +121,10 @@ class SphereCertifier:
     def certified_free(self, q_full: np.ndarray) -> np.ndarray:
         """Per plant position vector (rows of ``q_full``): True only if Drake's checker calls it free.
 
-        Rows are taken in runs of ``ANCHOR_EVERY``: the first of each run (an anchor) is bounded
-        pair by pair; a row of the run, or of the run before, whose every moving geometry cannot
-        have moved as far as that geometry's clearance at the anchor (:attr:`motion_weights`) is
-        free with it; the rest are bounded themselves. Consecutive rows of a densely checked path
-        are mostly such neighbours.
+        Every ``ANCHOR_EVERY``-th row (an anchor) is bounded pair by pair. A row between two
+        anchors is free when, from one of them, none of its moving geometries can have moved
+        (:attr:`motion_weights`) as far as that geometry's clearance there; the other rows are
+        bounded themselves. Consecutive rows of a densely checked path are mostly such neighbours.
         """
         q = np.atleast_2d(np.asarray(q_full, float))
         if len(q) < 2 * ANCHOR_EVERY or not np.all(np.isfinite(self.motion_weights)):
