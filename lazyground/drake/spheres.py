@@ -102,7 +102,8 @@ class SphereCertifier:
         # squared reach of each (moving geometry, obstacle) pair; -1 where Drake does not check the pair
         reach = env_threshold + solids.radius[:, None]
         self._env_reach2 = np.where(np.isfinite(reach), np.maximum(reach, 0.0) ** 2, -1.0)
-        self._env_clear_offset = np.where(np.isfinite(reach), reach, -np.inf)
+        self._env_unchecked = np.where(np.isfinite(reach), 0.0, np.inf)
+        self._env_clear_offset = np.where(np.isfinite(reach), reach, -np.inf).max(axis=1, initial=0.0)
         self.motion_weights = motion_weights
         self._self_sides = []  # per side of the self pairs: (pair order by geometry, first of each run, its geometry)
         for side in (self_pairs.mover, self_pairs.other):
@@ -170,10 +171,10 @@ class SphereCertifier:
             gap2 += d
         near = gap2 <= self._env_reach2
         b, g, o = np.nonzero(near)
-        np.sqrt(gap2, out=gap2)
-        gap2 -= self._env_clear_offset  # radius + threshold; -inf for pairs Drake does not check
         gap2[near] = np.inf
-        return gap2.min(axis=2), (b, g, o, self._env_threshold[g, o])
+        gap2 += self._env_unchecked  # inf for pairs Drake does not check
+        # the nearest far obstacle, less the largest radius + threshold of the geometry's pairs: a lower bound
+        return np.sqrt(gap2.min(axis=2)) - self._env_clear_offset, (b, g, o, self._env_threshold[g, o])
 
     def _near_each_other(self, centre: np.ndarray, clear: np.ndarray):
         """(b, g, o, threshold) of the moving pairs whose bounding spheres are within reach; the others
