@@ -62,8 +62,10 @@ def time_car_path(
     pieces = split_at_stops(q, stops)
 
     def time_piece(k: int, level: int):
-        window = WINDOWS[level]
-        return [time_drive(d, scaled) for d in drives(car, pieces[k], window)], f"drive {window:g} m"
+        curves = drives(car, pieces[k], WINDOWS[level])
+        exact = sum(d.window == 0.0 for d in curves)
+        label = f"drive {WINDOWS[level]:g} m" + (f" ({exact} of {len(curves)} stretches exact)" if exact else "")
+        return [time_drive(d, scaled) for d in curves], label
 
     return assemble(space, checker, q[0], len(pieces), len(WINDOWS), time_piece, scaled, fine_resolution,
                     settings.sample_rate, t0)
