@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections import Counter
 from dataclasses import dataclass
 
 import numpy as np
@@ -63,8 +64,8 @@ def time_car_path(
 
     def time_piece(k: int, level: int):
         curves = drives(car, pieces[k], WINDOWS[level])
-        exact = sum(d.window == 0.0 for d in curves)
-        label = f"drive {WINDOWS[level]:g} m" + (f" ({exact} of {len(curves)} stretches exact)" if exact else "")
+        used = Counter(d.window for d in curves) or Counter([0.0])
+        label = "drive " + ", ".join(f"{w:g} m" + (f" x{n}" if n > 1 else "") for w, n in sorted(used.items(), reverse=True))
         return [time_drive(d, scaled) for d in curves], label
 
     return assemble(space, checker, q[0], len(pieces), len(WINDOWS), time_piece, scaled, fine_resolution,

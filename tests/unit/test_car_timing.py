@@ -84,7 +84,9 @@ def test_timed_drives_respect_the_limits_rest_at_their_ends_and_never_slide(path
     for a, b in zip([0, *CAR.cusp_indices(path)], [*CAR.cusp_indices(path), len(path) - 1]):
         parts += [time_drive(d, LIMITS) for d in drives(CAR, unwrap_path(CAR, path[a : b + 1]), WINDOWS[level])]
     t, q, qd, qdd = _sample(parts, 0.0025)
-    assert np.max(np.abs(qd) / LIMITS.velocity) <= 1.01 and np.max(np.abs(qdd) / LIMITS.acceleration) <= 1.01
+    # the limits hold at the timing's nodes; between them (sampled 10x finer here) within a few percent,
+    # which the uniform slow-down of the sampled output (test below) takes back
+    assert np.max(np.abs(qd) / LIMITS.velocity) <= 1.01 and np.max(np.abs(qdd) / LIMITS.acceleration) <= 1.03
     assert np.max(np.abs(qd) / LIMITS.velocity) >= 0.95  # and some limit is reached: not slowed for nothing
     assert np.allclose(qd[[0, -1]], 0.0, atol=1e-9)
     assert np.max(_rear_axle_slip(q, qd)) < 1e-6
@@ -93,9 +95,8 @@ def test_timed_drives_respect_the_limits_rest_at_their_ends_and_never_slide(path
 
 
 def _all_exact(label):
-    """Whether a car trajectory's label says every stretch keeps its planned curve."""
-    return all(part == "drive 0 m" or re.search(r"\((\d+) of \1 stretches exact\)", part)
-               for part in label.split(" + "))
+    """Whether a car trajectory's label says every stretch keeps its planned curve (e.g. "drive 0 m x3")."""
+    return all(re.fullmatch(r"drive 0 m( x\d+)?", part) for part in label.split(" + "))
 
 
 class NearThePlan(BoxWorld):
@@ -111,16 +112,17 @@ class NearThePlan(BoxWorld):
 
 @pytest.mark.parametrize("path", [LANE, TURN], ids=["lane", "turn"])
 def test_the_output_is_valid_and_a_colliding_average_gives_way_to_the_exact_curves(path):
-    """(The turn's gear segments are arcs of the smallest radius, steering from full left to full right:
-    no correction of their averaged curvature stays within the radius, so they keep the exact curves.)"""
+    """(Two of the turn's gear segments are arcs of the smallest radius, steering from full left to full
+    right: no correction of their averaged curvature stays within the radius, so they keep the exact curves.)"""
     stops = CAR.cusp_indices(path)
     free = BoxWorld([])
     traj = time_car_path(BASE, CAR, free, path, LIMITS, 0.01, stops=stops)
     assert trajectory_problems(traj, BASE, free, path[0], path[-1], 0.01) == []
-    assert traj.curve.startswith("drive 2 m") and _all_exact(traj.curve) == (path is TURN)
+    assert max(traj.peak_ratios) <= 1.001  # the samples within the limits (slowed uniformly if need be)
+    assert np.max(_rear_axle_slip(traj.q, traj.qd)) < 1e-6
+    assert not _all_exact(traj.curve)
     tight = NearThePlan(path)
     exact = time_car_path(BASE, CAR, tight, path, LIMITS, 0.01, stops=stops)
     assert trajectory_problems(exact, BASE, tight, path[0], path[-1], 0.01) == []
     assert _all_exact(exact.curve)
-    if path is LANE:
-        assert traj.duration < exact.duration  # stopping at every curvature jump costs time
+    assert traj.duration < exact.duration  # stopping at every curvature jump costs time
