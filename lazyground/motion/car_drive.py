@@ -4,14 +4,17 @@ A planned car path is dense along Reeds-Shepp (or Dubins) curves: arcs of the mi
 radius and straight lines, the curvature jumping where they meet. A car cannot drive such a
 jump without stopping (its heading rate would jump, an infinite heading acceleration), so
 within each gear segment the curvature (heading change per metre of the rear axle) is
-averaged over a window of ``window`` metres. The averaged curvature is continuous, piecewise
-linear and never above the curves' (|kappa| <= 1 / radius), and the car drives it exactly
-(its rear axle moves along its heading, it does not slide). Averaging moves the segment's end
-by a few centimetres; a small correction of the curvature, made only where it is below the
-maximum (so it stays within the turning radius) and solved by Newton's method, brings it back
-onto the planned end pose. The result deviates from the planned curves by centimetres, so the
-caller checks it for collisions; ``window`` 0 keeps the exact curves, split where the
-curvature jumps (the car stops there).
+averaged over a window of ``window`` metres (mirrored at the segment's ends, so it turns by
+as much in all). The averaged curvature is continuous, piecewise linear and never above the
+curves' (|kappa| <= 1 / radius), and the car drives it exactly (its rear axle moves along
+its heading, it does not slide). Averaging cuts corners (up to ~15 cm per metre of window on
+a lane change) and moves the segment's end by centimetres; a small correction of the
+curvature, made only where it is below the maximum (so it stays within the turning radius)
+and solved by Newton's method, brings it back onto the planned end pose. Where that fails
+(segments at full lock from left to right leave it no room) a smaller window is tried, then
+the segment is split at a curvature jump (the car stops there) and each part tried alike;
+parts without room keep their exact curves. The result leaves the planned curves, so the
+caller checks it for collisions; ``window`` 0 keeps the exact curves throughout.
 
 The curve is represented on a grid of about GRID metres: curvature linear between the nodes,
 heading its exact integral, positions by the chord of each step.

@@ -1,75 +1,45 @@
 """Timing a car's path as driven: the fastest speed along each gear segment's curve.
 
-Each gear segment (the car rests at every gear change) becomes a curve of continuous
-curvature (:mod:`lazyground.motion.car_drive`), timed along the rear axle's arc length s by
-the classic time-optimal profile: with x = (ds/dt)^2 and u = d2s/dt2, every coordinate's
-velocity q' ds/dt and acceleration q'' x + q' u must stay within its limits; a backward pass
-from rest at the end gives the fastest speed from which the car can still brake, a forward
-pass from rest at the start accelerates as hard as allowed under it (u constant between
-grid nodes, both ends of each step within the limits). Sampled output that still exceeds a
-limit between the nodes slows the motion uniformly (:func:`lazyground.motion.trajectory.assemble`),
-as does the sampled motion's dense collision check pick a smaller averaging window (then the
-exact curves, stopping where their curvature jumps) for a colliding segment.
+Each gear segment (the car rests at every gear change) becomes curves of continuous
+curvature (:mod:`lazyground.motion.car_drive`), each timed along the rear axle's arc length
+s by the classic time-optimal profile: with x = (ds/dt)^2 and u = d2s/dt2, every
+coordinate's velocity q' ds/dt and acceleration q'' x + q' u must stay within its limits; a
+backward pass from rest at the end gives the fastest speed from which the car can still
+brake, a forward pass from rest at the start accelerates as hard as allowed under it (u
+constant between grid nodes, both ends of each step within the limits). Sampled output that
+still exceeds a limit between the nodes slows the motion uniformly, and a gear segment whose
+sampled motion collides is redone with a smaller averaging window, at last on its exact
+curves (:func:`lazyground.motion.trajectory.assemble`).
 """
 
 from __future__ import annotations
 
 import math
-import time
 from collections import Counter
 from dataclasses import dataclass
 
 import numpy as np
 
 from lazyground.motion.car_drive import Drive, drives
-from lazyground.motion.curve import unwrap_path
-from lazyground.motion.trajectory import Limits, TimingSettings, Trajectory, assemble, split_at_stops
+from lazyground.motion.trajectory import Limits
 from lazyground.planning.car import CarSpace
-from lazyground.planning.problem import ValidityChecker
-from lazyground.planning.space import ConfigSpace
 
 WINDOWS = (2.0, 1.0, 0.5, 0.0)  # m of curvature averaging, tried in order per gear segment (0: exact curves)
 _EPS = 1e-12
 
 
-def time_car_path(
-    space: ConfigSpace,
-    car: CarSpace,
-    checker: ValidityChecker,
-    path: np.ndarray,
-    limits: Limits,
-    fine_resolution: float,
-    settings: TimingSettings = TimingSettings(),
-    stops: tuple[int, ...] = (),
-) -> Trajectory:
-    """A timed trajectory a car can drive along its dense path, resting at the ``stops`` (gear changes).
-
-    Args:
-        space: the world's configuration space (straight joins: the sampled motion is checked in it).
-        car: the car space the path was planned in (turning radius, rear axle).
-        checker: the validity checker; the sampled motion is checked at ``fine_resolution``.
-        path: (n, 3) dense samples along the planned curves.
-        limits: per-coordinate velocity and acceleration limits (before ``settings.speed``).
-        fine_resolution: the spacing of the dense check.
-        settings: speed and sample rate.
-        stops: the waypoints where the direction of travel changes.
-
-    Raises:
-        MotionError: the exact curves collide too (between the checks of the planner).
-    """
-    t0 = time.perf_counter()
-    q = unwrap_path(space, path)
-    scaled = Limits(limits.velocity * settings.speed, limits.acceleration * settings.speed**2)
-    pieces = split_at_stops(q, stops)
+def car_piece_timer(car: CarSpace, pieces: list[np.ndarray], limits: Limits):
+    """(time_piece, levels) for :func:`lazyground.motion.trajectory.assemble`: gear segment k driven with
+    averaging window ``WINDOWS[level]`` and timed under the (scaled) limits."""
 
     def time_piece(k: int, level: int):
         curves = drives(car, pieces[k], WINDOWS[level])
         used = Counter(d.window for d in curves) or Counter([0.0])
-        label = "drive " + ", ".join(f"{w:g} m" + (f" x{n}" if n > 1 else "") for w, n in sorted(used.items(), reverse=True))
-        return [time_drive(d, scaled) for d in curves], label
+        label = "drive " + ", ".join(f"{w:g} m" + (f" x{n}" if n > 1 else "")
+                                     for w, n in sorted(used.items(), reverse=True))
+        return [time_drive(d, limits) for d in curves], label
 
-    return assemble(space, checker, q[0], len(pieces), len(WINDOWS), time_piece, scaled, fine_resolution,
-                    settings.sample_rate, t0)
+    return time_piece, len(WINDOWS)
 
 
 @dataclass(frozen=True)
@@ -156,7 +126,8 @@ def _speed_cap(d1: np.ndarray, d2: np.ndarray, limits: Limits) -> np.ndarray:
     with np.errstate(divide="ignore", invalid="ignore"):
         cap = np.min(np.where(np.abs(d1) > _EPS, (v / np.abs(d1)) ** 2, np.inf), axis=1)
         # a coordinate with q' = 0 bounds x by a / |q''|
-        cap = np.minimum(cap, np.min(np.where((np.abs(d1) <= _EPS) & (np.abs(d2) > _EPS), a / np.abs(d2), np.inf), axis=1))
+        still = (np.abs(d1) <= _EPS) & (np.abs(d2) > _EPS)
+        cap = np.minimum(cap, np.min(np.where(still, a / np.abs(d2), np.inf), axis=1))
         # coordinates i, j: u must lie in [-A_i - rho_i x, A_i - rho_i x] for both, A = a / |q'|, rho = q'' / q'
         big = np.abs(d1) > _EPS
         A = np.where(big, a / np.abs(d1), np.inf)

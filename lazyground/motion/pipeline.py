@@ -7,7 +7,6 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from lazyground.motion.car_timing import time_car_path
 from lazyground.motion.shortcut import ShortcutResult, ShortcutSettings, ShortcutStatus, shortcut_path
 from lazyground.motion.trajectory import Limits, MotionError, TimingSettings, Trajectory, time_path
 from lazyground.planning.car import CarSpace
@@ -95,11 +94,8 @@ def make_motion(
             # The whole sampled curve is checked, not only the corners off the (fine-checked) path: the re-check
             # at the same resolution tests other points of those segments, and a path grazing an obstacle
             # between the two sets failed it (panda_tabletop, "pick up cup_shelf", seed 3).
-            if car is not None:
-                traj = time_car_path(space, car, checker, attempt.path, limits, fine, timing_settings(planner), rests)
-            else:
-                timing = timing_settings(planner) if stops is not None else timing_settings(planner).for_shortened()
-                traj = time_path(space, checker, attempt.path, limits, fine, timing, stops=rests)
+            timing = timing_settings(planner) if stops is not None else timing_settings(planner).for_shortened()
+            traj = time_path(space, checker, attempt.path, limits, fine, timing, stops=rests, car=car)
         except MotionError as exc:
             if attempt.path is attempt.raw_path:
                 return Motion(short, None, short.time_s, time.perf_counter() - t0, f"no trajectory: {exc}")

@@ -108,6 +108,7 @@ def time_path(
     fine_resolution: float,
     settings: TimingSettings = TimingSettings(),
     stops: tuple[int, ...] = (),
+    car=None,
 ) -> Trajectory:
     """A timed trajectory through ``path`` (start to goal, resting at both).
 
@@ -120,21 +121,32 @@ def time_path(
         settings: speed, sample rate, blends.
         stops: waypoint indices where the robot stops (e.g. the start of a straight approach);
             the segment after a stop stays straight.
+        car: the CarSpace of a car's dense path (``stops`` its gear changes): each gear segment
+            is driven along its curves (:mod:`lazyground.motion.car_timing`), not blended.
 
     Returns:
         The Trajectory, sampled every ``1 / settings.sample_rate`` s and at its end.
+
+    Raises:
+        MotionError: every way of timing a piece collides (the path grazes an obstacle).
     """
     t0 = time.perf_counter()
     q = unwrap_path(space, path)
     scaled = Limits(limits.velocity * settings.speed, limits.acceleration * settings.speed**2)
     pieces = split_at_stops(q, stops)
-    options = [*settings.blends, None]  # None: stop at every waypoint
+    if car is not None:
+        from lazyground.motion.car_timing import car_piece_timer  # (it builds on this module)
 
-    def time_piece(k: int, level: int):
-        return _time_piece(space, pieces[k], options[level], fine_resolution, scaled, 1.0 / settings.sample_rate,
-                           settings.grid_per_span)
+        time_piece, levels = car_piece_timer(car, pieces, scaled)
+    else:
+        options = [*settings.blends, None]  # None: stop at every waypoint
+        levels = len(options)
 
-    return assemble(space, checker, q[0], len(pieces), len(options), time_piece, scaled, fine_resolution,
+        def time_piece(k: int, level: int):
+            return _time_piece(space, pieces[k], options[level], fine_resolution, scaled, 1.0 / settings.sample_rate,
+                               settings.grid_per_span)
+
+    return assemble(space, checker, q[0], len(pieces), levels, time_piece, scaled, fine_resolution,
                     settings.sample_rate, t0)
 
 

@@ -51,12 +51,11 @@ def parking():
     return planned("parking_1.yaml", "park", seed=3)
 
 
-def planning_space(path):
+def car_space(world):
     """The bundled car's Reeds-Shepp space (turning radius and rear axle of models/car/robot.yaml)."""
-    from lazyground.robots.car import planning_space as space_of
+    from lazyground.robots.car import planning_space
 
-    scene = load_scene(ROOT / "yaml_scenes/parking_1.yaml")
-    return space_of(scene, DrakeWorld(scene, visual=False).space, "reeds-shepp")
+    return planning_space(world.scene, world.space, "reeds-shepp")
 
 
 def assert_valid_trajectory(world, report):
@@ -100,7 +99,7 @@ def test_the_parked_car_drives_along_its_heading_near_its_fastest(parking):
     """The rear axle never slides sideways, and the motion takes at most 1.5x a lower bound: per gear
     segment, rest to rest along the driven length at sqrt(2) x the x / y limits (a diagonal heading)."""
     world, report = parking
-    tr, space = report.motion.trajectory, planning_space(report.result.path)
+    tr, space = report.motion.trajectory, car_space(world)
     c, s = np.cos(tr.q[:, 2]), np.sin(tr.q[:, 2])
     vx, vy = tr.qd[:, 0] - space.offset * s * tr.qd[:, 2], tr.qd[:, 1] + space.offset * c * tr.qd[:, 2]  # rear axle
     speed = np.hypot(vx, vy)

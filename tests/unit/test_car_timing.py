@@ -7,9 +7,9 @@ import pytest
 from scipy.spatial import cKDTree
 
 from lazyground.motion.car_drive import GRID, drives
-from lazyground.motion.car_timing import WINDOWS, time_car_path, time_drive
+from lazyground.motion.car_timing import WINDOWS, time_drive
 from lazyground.motion.curve import unwrap_path
-from lazyground.motion.trajectory import Limits, _sample
+from lazyground.motion.trajectory import Limits, _sample, time_path
 from lazyground.motion.validate import trajectory_problems
 from lazyground.planning.car import make_space
 from tests.unit.test_car import BASE, OFFSET, R
@@ -116,13 +116,13 @@ def test_the_output_is_valid_and_a_colliding_average_gives_way_to_the_exact_curv
     right: no correction of their averaged curvature stays within the radius, so they keep the exact curves.)"""
     stops = CAR.cusp_indices(path)
     free = BoxWorld([])
-    traj = time_car_path(BASE, CAR, free, path, LIMITS, 0.01, stops=stops)
+    traj = time_path(BASE, free, path, LIMITS, 0.01, stops=stops, car=CAR)
     assert trajectory_problems(traj, BASE, free, path[0], path[-1], 0.01) == []
     assert max(traj.peak_ratios) <= 1.001  # the samples within the limits (slowed uniformly if need be)
     assert np.max(_rear_axle_slip(traj.q, traj.qd)) < 1e-6
     assert not _all_exact(traj.curve)
     tight = NearThePlan(path)
-    exact = time_car_path(BASE, CAR, tight, path, LIMITS, 0.01, stops=stops)
+    exact = time_path(BASE, tight, path, LIMITS, 0.01, stops=stops, car=CAR)
     assert trajectory_problems(exact, BASE, tight, path[0], path[-1], 0.01) == []
     assert _all_exact(exact.curve)
     assert traj.duration < exact.duration  # stopping at every curvature jump costs time
