@@ -9,7 +9,7 @@ from scipy.spatial import cKDTree
 from lazyground.motion.car_drive import GRID, drives
 from lazyground.motion.car_timing import WINDOWS, time_drive
 from lazyground.motion.curve import unwrap_path
-from lazyground.motion.trajectory import Limits, _sample, time_path
+from lazyground.motion.trajectory import Limits, TimingSettings, _sample, time_path
 from lazyground.motion.validate import trajectory_problems
 from lazyground.planning.car import make_space
 from tests.unit.test_car import BASE, OFFSET, R
@@ -126,3 +126,10 @@ def test_the_output_is_valid_and_a_colliding_average_gives_way_to_the_exact_curv
     assert trajectory_problems(exact, BASE, tight, path[0], path[-1], 0.01) == []
     assert _all_exact(exact.curve)
     assert traj.duration < exact.duration  # stopping at every curvature jump costs time
+
+
+def test_half_speed_takes_twice_as_long():
+    free = BoxWorld([])
+    full = time_path(BASE, free, LANE, LIMITS, 0.01, car=CAR)
+    half = time_path(BASE, free, LANE, LIMITS, 0.01, TimingSettings(speed=0.5), car=CAR)
+    assert half.duration == pytest.approx(2.0 * full.duration, rel=0.01) and half.curve == full.curve
