@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from lazyground.motion.car_drive import Drive, drives
-from lazyground.motion.trajectory import Limits
+from lazyground.motion.limits import Limits
 from lazyground.planning.car import CarSpace
 
 WINDOWS = (2.0, 1.0, 0.5, 0.0)  # m of curvature averaging, tried in order per gear segment (0: exact curves)

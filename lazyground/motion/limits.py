@@ -9,11 +9,28 @@ URDF); accelerations come from ``robot.yaml`` only (``acceleration_limits``, the
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
-from lazyground.motion.trajectory import Limits
 from lazyground.robots.defaults import RobotDefaults, defaults_for_model
 from lazyground.scene.typed_yaml import SceneError
+
+
+@dataclass(frozen=True)
+class Limits:
+    """Per-coordinate velocity and acceleration limits (positive, finite)."""
+
+    velocity: np.ndarray
+    acceleration: np.ndarray
+
+    def __post_init__(self):
+        for name in ("velocity", "acceleration"):
+            v = np.asarray(getattr(self, name), float)
+            if not (np.all(np.isfinite(v)) and np.all(v > 0)):
+                raise ValueError(f"{name} limits must be positive and finite, got {v}")
+            object.__setattr__(self, name, v)
+
 
 
 def position_joints(plant, instance) -> dict[int, str]:

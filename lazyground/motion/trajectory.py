@@ -23,25 +23,12 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from lazyground.motion.car_timing import car_piece_timer
 from lazyground.motion.curve import Curve, blended_curve, unwrap_path
+from lazyground.motion.limits import Limits  # noqa: F401  (re-exported: callers time paths under Limits)
 from lazyground.motion.validate import first_colliding_join
 from lazyground.planning.problem import ValidityChecker
 from lazyground.planning.space import ConfigSpace
-
-
-@dataclass(frozen=True)
-class Limits:
-    """Per-coordinate velocity and acceleration limits (positive, finite)."""
-
-    velocity: np.ndarray
-    acceleration: np.ndarray
-
-    def __post_init__(self):
-        for name in ("velocity", "acceleration"):
-            v = np.asarray(getattr(self, name), float)
-            if not (np.all(np.isfinite(v)) and np.all(v > 0)):
-                raise ValueError(f"{name} limits must be positive and finite, got {v}")
-            object.__setattr__(self, name, v)
 
 
 @dataclass(frozen=True)
@@ -135,8 +122,6 @@ def time_path(
     scaled = Limits(limits.velocity * settings.speed, limits.acceleration * settings.speed**2)
     pieces = split_at_stops(q, stops)
     if car is not None:
-        from lazyground.motion.car_timing import car_piece_timer  # (it builds on this module)
-
         time_piece, levels = car_piece_timer(car, pieces, scaled)
     else:
         options = [*settings.blends, None]  # None: stop at every waypoint
