@@ -32,6 +32,7 @@ from pydrake.multibody.inverse_kinematics import InverseKinematics
 from pydrake.solvers import IpoptSolver, SnoptSolver, SolverOptions
 
 from lazyground.drake.batch_ik import ITERATIONS as BATCH_ITERATIONS
+from lazyground.drake.hand_probe import hand_probe
 from lazyground.drake.ik_attempts import APPROACH_SCALES, BatchAttempts, Prepared, problem_for_frame
 from lazyground.drake.reach import reach_map
 from lazyground.geometry import Pose, rpy_to_matrix
@@ -71,6 +72,7 @@ class IKSettings:
     batch_iterations: int = BATCH_ITERATIONS  # damped least-squares iterations per solve
     reach_check: bool = True  # reject targets whose wrist point is far outside the sampled reach
     reach_margin: float = 0.08  # m, distance to the nearest sampled wrist point that still counts
+    hand_check: bool = True  # reject targets where the hand alone collides, whatever the arm (drake/hand_probe.py)
     warm_start: bool = False  # first restart from the region's last valid solution (one IK branch)
 
 
@@ -162,6 +164,8 @@ class IKGoalSource(RoundRobinGoalSource):
         self._lower[self._planned] = world.space.lower
         self._upper[self._planned] = world.space.upper
         self._last: list[np.ndarray | None] = [None] * len(self.regions)
+        accepted = accepted_error(settings.position_tolerance, settings.orientation_tolerance)
+        self._probes = {f: hand_probe(world, f, *accepted) for f in dict.fromkeys(frames)} if settings.hand_check else {}
         problems = {f: problem_for_frame(world, f) for f in dict.fromkeys(frames)} if settings.solver == "batch" else {}
         # batches when the chain expresses every frame (else SNOPT on the plant, e.g. for a planar base)
         self._batch = BatchAttempts(self, problems) if problems and None not in problems.values() else None
@@ -231,6 +235,19 @@ class IKGoalSource(RoundRobinGoalSource):
                 return None
         return pre
 
+    def screen(self, frame: str, X_WT: np.ndarray) -> list[str]:
+        """Why each target pose (B, 4, 4) of ``frame`` fails before any solve ("" for none): its wrist point is
+        out of reach, or the hand alone collides there (every answer would)."""
+        s = self.settings
+        reasons = [""] * len(X_WT)
+        if s.reach_check:
+            near = reach_map(self.world, frame).plausible_all(X_WT, s.reach_margin)
+            reasons = ["" if ok else "out of reach" for ok in near]
+        if frame in self._probes:
+            blocked = self._probes[frame].blocked(X_WT)
+            reasons = [r or ("hand in collision" if b else "") for r, b in zip(reasons, blocked)]
+        return reasons
+
     # --- one attempt -------------------------------------------------------------------------
     def attempt(self, j: int, rng: np.random.Generator, deadline: float) -> tuple[GoalSample | None, str]:
         if self._batch is not None:
@@ -240,8 +257,9 @@ class IKGoalSource(RoundRobinGoalSource):
         region = self.regions[j]
         v = region.sample(rng)
         frame, X_WT = self.target_pose_for(region, v)
-        if self.settings.reach_check and not reach_map(self.world, frame).plausible(X_WT.matrix(), self.settings.reach_margin):
-            return None, "out of reach"
+        reason = self.screen(frame, X_WT.matrix()[None])[0]
+        if reason:
+            return None, reason
         seeds = [self._last[j]] if self._last[j] is not None and self.settings.warm_start else []
         item = Prepared(j, -1, v, frame, X_WT.matrix())
         return self._first_valid(item, deadline, lambda k: self.solve(frame, X_WT, seeds[k] if k < len(seeds) else self._random_full(rng),

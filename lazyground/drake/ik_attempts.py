@@ -19,7 +19,6 @@ import numpy as np
 
 from lazyground.drake.batch_ik import BatchIKProblem, pose_errors, solve_batch
 from lazyground.drake.chain import REVOLUTE, chain_to_frame
-from lazyground.drake.reach import reach_map
 from lazyground.tolerance import accepted_error
 
 APPROACH_SCALES = (1.0, 0.5, 0.25)  # fractions of a region's approach distance tried in turn
@@ -35,7 +34,7 @@ class Prepared:
     v: np.ndarray
     frame: str
     X_WT: np.ndarray  # target pose of the robot frame (4x4)
-    reason: str = ""  # set when the attempt failed before any solve ("out of reach")
+    reason: str = ""  # set when the attempt failed before any solve ("out of reach", "hand in collision")
     answers: np.ndarray | None = None  # (restarts, plant positions)
     ok: np.ndarray | None = None  # (restarts,) the answer meets the pose
     pre: dict = field(default_factory=dict)  # restart -> (pre-pose answers (scales, positions), ok (scales,))
@@ -92,10 +91,8 @@ class BatchAttempts:
             items.append(Prepared(j, after, v, self.source._frames[region.id], self.source._target_matrix(region, v)))
         for frame in dict.fromkeys(it.frame for it in items):
             group = [it for it in items if it.frame == frame]
-            if s.reach_check:
-                near = reach_map(self.source.world, frame).plausible_all(np.array([it.X_WT for it in group]), s.reach_margin)
-                for it in (it for it, ok in zip(group, near) if not ok):
-                    it.reason = "out of reach"
+            for it, reason in zip(group, self.source.screen(frame, np.array([it.X_WT for it in group]))):
+                it.reason = reason
         t1 = time.perf_counter()
         for it in items:
             it.seconds = (t1 - t0) / len(items)
