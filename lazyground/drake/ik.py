@@ -276,8 +276,14 @@ class IKGoalSource(RoundRobinGoalSource):
         ``answer(k)`` is restart k's IK answer (full positions) or None; ``approach(k, q_full, scale)``
         the pre-pose at ``scale`` of the approach for it, or None when blocked.
         """
-        j, region = item.j, self.regions[item.j]
-        stop = self._stop(deadline)
+        k, q_full, reason = self.grasp(item, answer, self._stop(deadline))
+        return (None, reason) if k is None else (self._sample(item, k, q_full, approach), "")
+
+    def grasp(self, item: Prepared, answer: Callable, stop: float) -> tuple[int | None, np.ndarray | None, str]:
+        """(restart, full positions, "") of the attempt's first answer within the limits and free, or (None, None, why not).
+
+        ``answer(k)`` is restart k's IK answer (full positions) or None; no restart starts after ``stop``.
+        """
         reason = "time"
         for k in range(self.settings.restarts):
             if time.perf_counter() >= stop:
@@ -293,16 +299,22 @@ class IKGoalSource(RoundRobinGoalSource):
             if not self.world.config_free(q):
                 reason = "in collision"  # another restart may find a collision-free branch
                 continue
-            self._last[j] = q_full
-            extra = {"X_WG": Pose.from_matrix(item.X_WT), "v": item.v, "frame": item.frame}
-            # Aim at a pre-pose when its straight approach is free: the full distance, then
-            # shorter ones; under a low shelf board only the goal itself may be left.
-            for scale in APPROACH_SCALES if any(region.approach) else ():
-                pre = approach(k, q_full, scale)
-                if pre is not None:
-                    return GoalSample(q=pre, region=j, final=q, extra=extra | {"approach_scale": scale}), ""
-            return GoalSample(q=q, region=j, extra=extra), ""
-        return None, reason
+            return k, q_full, ""
+        return None, None, reason
+
+    def _sample(self, item: Prepared, k: int, q_full: np.ndarray, approach: Callable) -> GoalSample:
+        """The goal sample of a free grasp ``q_full`` (restart k), aimed at the longest free approach."""
+        j, region = item.j, self.regions[item.j]
+        self._last[j] = q_full
+        q = q_full[self._planned]
+        extra = {"X_WG": Pose.from_matrix(item.X_WT), "v": item.v, "frame": item.frame}
+        # Aim at a pre-pose when its straight approach is free: the full distance, then
+        # shorter ones; under a low shelf board only the goal itself may be left.
+        for scale in APPROACH_SCALES if any(region.approach) else ():
+            pre = approach(k, q_full, scale)
+            if pre is not None:
+                return GoalSample(q=pre, region=j, final=q, extra=extra | {"approach_scale": scale})
+        return GoalSample(q=q, region=j, extra=extra)
 
     # --- many attempts at once (solver "batch") ----------------------------------------------
     def batch_size(self, wanted: int) -> int:
@@ -334,18 +346,16 @@ class IKGoalSource(RoundRobinGoalSource):
         return int(min(max(need, LOOK_AHEAD_MIN), max(self.settings.batch_attempts, 1)))
 
     def _finish(self, item: Prepared, deadline: float) -> tuple[GoalSample | None, str]:
-        """An attempt's collision checks (and approach), on its batch answers."""
+        """An attempt's sample from its prepared answer, grasp check and pre-poses: only the approach is checked here."""
         if item.reason:
             return None, item.reason
 
         def approach(k, q_full, scale):
-            if k not in item.pre:  # an answer after the first: its pre-poses were not solved ahead
-                self._batch.solve_pre_poses([(item, k)])
             answers, ok = item.pre[k]
             i = APPROACH_SCALES.index(scale)
             return self._approach_free(answers[i][self._planned], q_full[self._planned]) if ok[i] else None
 
-        return self._first_valid(item, deadline, lambda k: item.answers[k] if item.ok[k] else None, approach)
+        return self._sample(item, item.k, item.answers[item.k], approach), ""
 
     def solve(self, frame: str, X_WT: Pose, seed_full: np.ndarray, counters: IKCounters | None = None) -> np.ndarray | None:
         """Full plant positions putting ``frame`` at ``X_WT`` (within tolerance) by one Drake IK solve, or None.
