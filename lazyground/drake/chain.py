@@ -48,29 +48,29 @@ class Chain:
         """
         q = np.atleast_2d(q_chain)
         B = q.shape[0]
-        R = np.empty((B, 3, 3))
-        R[:] = np.eye(3)
-        p = np.zeros((B, 3))
+        # T: the top three rows of the pose so far, (B, 3, 4); T @ A for a constant 4x4 A is one
+        # (3B, 4) product (numpy's stacked matmul is ~5x slower here), rotation and position at once
+        T = np.empty((B, 3, 4))
+        T[:] = self.X_before[0, :3, :] if self.n else np.eye(4)[:3]
         origins = np.empty((B, self.n, 3))
         axes_W = np.empty((B, self.n, 3))
         c, s = np.cos(q), np.sin(q)
         for k in range(self.n):
-            # R @ A for a constant A as one (3B, 3) product: numpy's stacked matmul is ~5x slower here
-            p += (R.reshape(-1, 3) @ self.X_before[k, :3, 3]).reshape(B, 3)
-            R = (R.reshape(-1, 3) @ self.X_before[k, :3, :3]).reshape(B, 3, 3)
-            origins[:, k] = p
-            axes_W[:, k] = R[:, :, 2]
+            if k:
+                T = (T.reshape(-1, 4) @ self.X_before[k]).reshape(B, 3, 4)
+            origins[:, k] = T[:, :, 3]
+            axes_W[:, k] = T[:, :, 2]
             if self.kinds[k] == PRISMATIC:
-                p += R[:, :, 2] * q[:, k, None]
+                T[:, :, 3] += T[:, :, 2] * q[:, k, None]
             else:  # R @ Rz(q): turn the first two columns
-                x = R[:, :, 0].copy()
+                x = T[:, :, 0].copy()
                 ck, sk = c[:, k, None], s[:, k, None]
-                R[:, :, 0] = x * ck + R[:, :, 1] * sk
-                R[:, :, 1] = R[:, :, 1] * ck - x * sk
-        p += (R.reshape(-1, 3) @ self.X_after[:3, 3]).reshape(B, 3)
-        R = (R.reshape(-1, 3) @ self.X_after[:3, :3]).reshape(B, 3, 3)
+                T[:, :, 0] = x * ck + T[:, :, 1] * sk
+                T[:, :, 1] = T[:, :, 1] * ck - x * sk
+        T = (T.reshape(-1, 4) @ self.X_after).reshape(B, 3, 4)
         X = np.zeros((B, 4, 4))
-        X[:, :3, :3], X[:, :3, 3], X[:, 3, 3] = R, p, 1.0
+        X[:, :3, :], X[:, 3, 3] = T, 1.0
+        p = T[:, :, 3]
         if not jacobian:
             return X
         J = np.zeros((B, 6, self.n))

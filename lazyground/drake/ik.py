@@ -243,9 +243,10 @@ class IKGoalSource(RoundRobinGoalSource):
         if s.reach_check:
             near = reach_map(self.world, frame).plausible_all(X_WT, s.reach_margin)
             reasons = ["" if ok else "out of reach" for ok in near]
-        if frame in self._probes:
-            blocked = self._probes[frame].blocked(X_WT)
-            reasons = [r or ("hand in collision" if b else "") for r, b in zip(reasons, blocked)]
+        rest = [i for i, r in enumerate(reasons) if not r]  # the probe costs ~30 us a target: only where reach did not decide
+        if frame in self._probes and rest:
+            for i in np.asarray(rest)[self._probes[frame].blocked(X_WT[rest])]:
+                reasons[i] = "hand in collision"
         return reasons
 
     # --- one attempt -------------------------------------------------------------------------
