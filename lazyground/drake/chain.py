@@ -52,21 +52,16 @@ class Chain:
         # (3B, 4) product (numpy's stacked matmul is ~5x slower here), rotation and position at once
         T = np.empty((B, 3, 4))
         T[:] = self.X_before[0, :3, :] if self.n else np.eye(4)[:3]
-        origins = np.empty((B, self.n, 3))
-        axes_W = np.empty((B, self.n, 3))
-        c, s = np.cos(q), np.sin(q)
+        frames = np.empty((B, self.n, 3, 2))  # per joint: its axis and origin in world, the columns 2:4 of T
+        turn = np.exp(-1j * q)  # R @ Rz(q) turns (column 0 + i column 1) by e^(-iq)
         for k in range(self.n):
             if k:
                 T = (T.reshape(-1, 4) @ self.X_before[k]).reshape(B, 3, 4)
-            origins[:, k] = T[:, :, 3]
-            axes_W[:, k] = T[:, :, 2]
+            frames[:, k] = T[:, :, 2:]
             if self.kinds[k] == PRISMATIC:
                 T[:, :, 3] += T[:, :, 2] * q[:, k, None]
-            else:  # R @ Rz(q): turn the first two columns
-                x = T[:, :, 0].copy()
-                ck, sk = c[:, k, None], s[:, k, None]
-                T[:, :, 0] = x * ck + T[:, :, 1] * sk
-                T[:, :, 1] = T[:, :, 1] * ck - x * sk
+            else:  # columns 0 and 1 side by side in memory: one complex product turns both
+                T.view(np.complex128)[:, :, 0] *= turn[:, k, None]
         T = (T.reshape(-1, 4) @ self.X_after).reshape(B, 3, 4)
         X = np.zeros((B, 4, 4))
         X[:, :3, :], X[:, 3, 3] = T, 1.0
@@ -75,7 +70,7 @@ class Chain:
             return X
         J = np.zeros((B, 6, self.n))
         rev = self.kinds == REVOLUTE
-        a, r = axes_W, p[:, None, :] - origins  # axis and lever of every joint, in world
+        a, r = frames[..., 0], p[:, None, :] - frames[..., 1]  # axis and lever of every joint, in world
         J[:, 0:3, rev] = a[:, rev].transpose(0, 2, 1)
         cross = np.stack([a[..., 1] * r[..., 2] - a[..., 2] * r[..., 1],
                           a[..., 2] * r[..., 0] - a[..., 0] * r[..., 2],
