@@ -74,6 +74,7 @@ class IKSettings:
     reach_margin: float = 0.08  # m, distance to the nearest sampled wrist point that still counts
     hand_check: bool = True  # reject targets where the hand alone collides, whatever the arm (drake/hand_probe.py)
     warm_start: bool = False  # first restart from the region's last valid solution (one IK branch)
+    reach_starts: int = 16  # batch solver: starts drawn among this many reach-map arms nearest the target (0: uniform)
 
 
 DEFAULT_IK_SETTINGS = IKSettings()
@@ -222,15 +223,18 @@ class IKGoalSource(RoundRobinGoalSource):
     def _approach_free(self, pre: np.ndarray, q: np.ndarray) -> np.ndarray | None:
         """``pre`` if it is within the limits and the segment pre -> q (q known free) is free, else None.
 
-        Checked every APPROACH_RESOLUTION, every fourth configuration first: a blocked
-        approach is usually blocked over several of them, so it is found in a few checks.
+        Checked every APPROACH_RESOLUTION: ``pre`` alone first (on fetch_boxes_3, 86-98 % of
+        the blocked approaches are blocked there already; a batch check has no early exit),
+        then every fourth configuration (a blocked approach is usually blocked over several),
+        then the rest.
         """
         if not self.world.space.within_bounds(pre):
             return None
         path = self.world.space.discretize(pre, q, APPROACH_RESOLUTION)[:-1]
         coarse = np.zeros(len(path), bool)
         coarse[::4] = True
-        for part in (path[coarse], path[~coarse]):
+        coarse[0] = False
+        for part in (path[:1], path[coarse], path[~coarse][1:]):
             if len(part) and not np.all(self.world.configs_free(part)):
                 return None
         return pre

@@ -21,6 +21,7 @@ import numpy as np
 
 from lazyground.drake.batch_ik import BatchIKProblem, pose_errors, solve_batch
 from lazyground.drake.chain import REVOLUTE, chain_to_frame
+from lazyground.drake.reach import reach_map
 from lazyground.tolerance import accepted_error
 
 APPROACH_SCALES = (1.0, 0.5, 0.25)  # fractions of a region's approach distance tried in turn
@@ -59,6 +60,10 @@ class BatchAttempts:
     def __init__(self, source, problems: dict[str, BatchIKProblem]):
         self.source = source
         self.problems = problems
+        # A pre-pose solved from its goal must not pass a joint's seam: the approach from it is
+        # a straight segment in the planner's space, which does not wrap there (a pre-pose across
+        # the seam of a [-pi, pi] roll made a full-turn "approach": ~600 checks, then blocked).
+        self.pre_problems = {f: problem_for_frame(source.world, f, full_turns=False) for f in problems}
         self.queue: deque[Prepared] = deque()
         self.rng: np.random.Generator | None = None
 
@@ -109,10 +114,11 @@ class BatchAttempts:
     def _solve_group(self, frame: str, group: list[Prepared], rng: np.random.Generator) -> None:
         s, problem = self.source.settings, self.problems[frame]
         t0 = time.perf_counter()
-        starts = []
-        for it in group:
-            last = self.source._last[it.j] if s.warm_start else None
-            starts += [last if k == 0 and last is not None else self.source._random_full(rng) for k in range(s.restarts)]
+        starts = self._starts(frame, group, rng)
+        if s.warm_start:
+            for g, it in enumerate(group):
+                if self.source._last[it.j] is not None:
+                    starts[g * s.restarts] = self.source._last[it.j]
         answers, ok = self._solve_rows(problem, np.array(starts), np.repeat([it.X_WT for it in group], s.restarts, axis=0))
         t1 = time.perf_counter()
         share = (t1 - t0) / len(group)
@@ -137,6 +143,23 @@ class BatchAttempts:
             for it, _ in free:
                 it.seconds += share
 
+    def _starts(self, frame: str, group: list[Prepared], rng: np.random.Generator) -> np.ndarray:
+        """``restarts`` starting configurations (full positions) per attempt, attempt by attempt.
+
+        With ``reach_starts`` = K, distinct random picks among the K reach-map configurations whose
+        wrist points lie nearest the target's: arms of every branch, already near the pose, so the
+        solve converges in fewer iterations (random starts: 98 % within 15 on fetch_boxes_3's grasp
+        targets; these with K = 16: 99.6 %, and a batch ends sooner); K = 0: uniform random ones.
+        """
+        s, world = self.source.settings, self.source.world
+        n = s.restarts
+        if not s.reach_starts:
+            return np.array([self.source._random_full(rng) for _ in range(len(group) * n)])
+        configs = reach_map(world, frame).near_configs(np.array([it.X_WT for it in group]), n, s.reach_starts, rng)
+        starts = np.tile(world.q_full, (len(group) * n, 1))
+        starts[:, world.planned] = configs.reshape(-1, configs.shape[-1])
+        return starts
+
     def solve_pre_poses(self, todo: list[tuple[Prepared, int]]) -> None:
         """Pre-poses at every APPROACH_SCALES for restart k of each attempt, from its answer, in one batch."""
         n = len(APPROACH_SCALES)
@@ -145,7 +168,7 @@ class BatchAttempts:
             region = self.source.regions[it.j]
             starts += [it.answers[k]] * n
             targets += [it.X_WT @ self.source._approach_shift(region, sc) for sc in APPROACH_SCALES]
-        answers, ok = self._solve_rows(self.problems[todo[0][0].frame], np.array(starts), np.array(targets), PRE_POSE_ITERATIONS)
+        answers, ok = self._solve_rows(self.pre_problems[todo[0][0].frame], np.array(starts), np.array(targets), PRE_POSE_ITERATIONS)
         self.source.counters.add(len(ok), int(ok.sum()), 0.0)
         for i, (it, k) in enumerate(todo):
             it.pre[k] = (answers[i * n:(i + 1) * n], ok[i * n:(i + 1) * n])
@@ -164,8 +187,12 @@ class BatchAttempts:
         return answers, (np.linalg.norm(dp, axis=1) <= max_dp) & (angle <= max_angle)
 
 
-def problem_for_frame(world, frame: str) -> BatchIKProblem | None:
-    """The chain to ``frame`` with its planned joints free, or None when the chain cannot express it."""
+def problem_for_frame(world, frame: str, full_turns: bool = True) -> BatchIKProblem | None:
+    """The chain to ``frame`` with its planned joints free, or None when the chain cannot express it.
+
+    With ``full_turns`` a joint whose limits span a full turn wraps (IK may pass its seam);
+    without, only the joints the planner's space wraps do.
+    """
     try:
         chain = chain_to_frame(world.plant, world.plant.GetFrameByName(frame))
     except ValueError:  # e.g. a planar base: SNOPT on the plant instead
@@ -177,6 +204,6 @@ def problem_for_frame(world, frame: str) -> BatchIKProblem | None:
     upper = np.array([space.upper[column[i]] if i in column else world.q_full[i] for i in chain.index], float)
     # a revolute joint whose limits span a full turn reaches every angle: IK may wrap it
     # (the answer stays within the limits), where clipping would leave it stuck at +-pi
-    wrap = np.array([i in column and (bool(space.wrap[column[i]]) or (kind == REVOLUTE and hi - lo >= 2 * np.pi - 1e-9))
+    wrap = np.array([i in column and (bool(space.wrap[column[i]]) or (full_turns and kind == REVOLUTE and hi - lo >= 2 * np.pi - 1e-9))
                      for i, kind, lo, hi in zip(chain.index, chain.kinds, lower, upper)])
     return BatchIKProblem(chain, free, lower, upper, wrap)
