@@ -53,7 +53,12 @@ class IKSettings:
 
     ``restarts`` solves per attempt share the drawn target pose, each from a
     uniform random configuration drawn from the rng, as MoveIt's IK constraint
-    sampler seeds them. With ``warm_start`` the first starts from the region's
+    sampler seeds them; the batch solver draws them, with ``reach_starts``, among
+    the reach map's random arms whose wrist points lie nearest the target's (on
+    fetch_boxes_3: 96 % of solves converged within 10 iterations against 85 %,
+    valid samples per attempt 0.084 against 0.070 over 20 seeds; samples spread
+    a little less: median distance to the region's nearest other sample 1.6 rad
+    against 2.3, seeds 0-9, 40 samples). With ``warm_start`` the first starts from the region's
     last valid solution instead: ~1.5x cheaper per sample, but every sample of
     a region then lands on one IK branch (near-copies: median distance to the
     nearest other sample 0.02 rad on fetch_boxes_3 against 1.26 rad), so
@@ -74,7 +79,7 @@ class IKSettings:
     reach_margin: float = 0.08  # m, distance to the nearest sampled wrist point that still counts
     hand_check: bool = True  # reject targets where the hand alone collides, whatever the arm (drake/hand_probe.py)
     warm_start: bool = False  # first restart from the region's last valid solution (one IK branch)
-    reach_starts: int = 16  # batch solver: starts drawn among this many reach-map arms nearest the target (0: uniform)
+    reach_starts: int = 256  # batch solver: starts drawn among this many reach-map arms nearest the target (0: uniform)
 
 
 DEFAULT_IK_SETTINGS = IKSettings()

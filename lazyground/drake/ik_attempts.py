@@ -147,9 +147,11 @@ class BatchAttempts:
         """``restarts`` starting configurations (full positions) per attempt, attempt by attempt.
 
         With ``reach_starts`` = K, distinct random picks among the K reach-map configurations whose
-        wrist points lie nearest the target's: arms of every branch, already near the pose, so the
-        solve converges in fewer iterations (random starts: 98 % within 15 on fetch_boxes_3's grasp
-        targets; these with K = 16: 99.6 %, and a batch ends sooner); K = 0: uniform random ones.
+        wrist points lie nearest the target's: random arms, already near the pose, so a batch
+        converges in fewer iterations (fetch_boxes_3's screened grasp targets, K = 256: 96 % within
+        10 iterations, 99.3 % within 15; uniform random starts 85 % and 98 %); K = 0: uniform ones.
+        A small K costs spread: K = 16 put a region's samples on few branches (median distance to
+        the nearest other sample 0.67 rad; 256: 1.6; uniform: 2.3).
         """
         s, world = self.source.settings, self.source.world
         n = s.restarts
