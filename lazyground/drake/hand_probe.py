@@ -15,8 +15,8 @@ signed_distance(p, S). An accepted answer puts the frame within
 frame's origin by at most dp + r * angle; a target is rejected only when a point,
 so moved, would still be closer than the pair's padding (less PROBE_SLACK). Only
 geometry pairs the checker checks count (SceneGraph's collision candidates the
-checker does not filter), and only obstacles on anchored bodies with shapes whose
-signed distance is written below; others are never a reason to reject.
+checker does not filter), and only obstacles on anchored bodies whose solid
+(:mod:`lazyground.drake.solids`) is exact; others are never a reason to reject.
 """
 
 from __future__ import annotations
@@ -26,24 +26,26 @@ from dataclasses import dataclass
 
 import numpy as np
 from pydrake.geometry import Box, Capsule, Cylinder, HalfSpace, Role, Sphere
-
 from pydrake.multibody.tree import JointIndex
 
 from lazyground.drake.chain import joints_to_world
+from lazyground.drake.solids import solid, solid_distance
 
 PROBE_SLACK = 1e-4  # m: Drake's distances are exact to far less; kept off the padding boundary
 _GRID = (-1.0, 0.0, 1.0)
+EXACT = (Box, Cylinder, Capsule, Sphere, HalfSpace)  # obstacle shapes whose solid's signed distance is exact
 _PROBES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()  # world -> {(frame, dp, angle): probe}
 
 
 @dataclass(frozen=True)
 class Obstacles:
-    """Obstacles of one shape kind: world poses, sizes and, per probe point, the distance below which it collides."""
+    """The obstacles as solids (:mod:`lazyground.drake.solids`) and, per probe point, the distance below which it collides."""
 
-    kind: type
     R_WS: np.ndarray  # (K, 3, 3)
-    p_WS: np.ndarray  # (K, 3)
-    size: np.ndarray  # (K, 3): box half sizes; (radius, half length, 0) for cylinders and capsules; (radius, 0, 0) spheres
+    p_WS: np.ndarray  # (K, 3): the solids' centres
+    half: np.ndarray  # (K, 3)
+    rounding: np.ndarray  # (K,)
+    cylinder: np.ndarray  # (K,) bool
     limit: np.ndarray  # (K, P): reject when a point's signed distance is below this (-inf: the pair is not checked)
     near: np.ndarray  # (K,): the hand's origin farther than this from the obstacle, no probe point can reject
 
@@ -53,54 +55,24 @@ class HandProbe:
     """Points inside the hand (in the end-effector frame) and the obstacles they are tested against."""
 
     points: np.ndarray  # (P, 3)
-    obstacles: tuple[Obstacles, ...]
+    obstacles: Obstacles | None
 
     def blocked(self, X_WT: np.ndarray) -> np.ndarray:
         """Whether every IK answer for each target pose (B, 4, 4) of the frame collides, by the hand alone."""
         X_WT = np.asarray(X_WT, float).reshape(-1, 4, 4)
         out = np.zeros(len(X_WT), bool)
-        if not len(self.points):
+        obs = self.obstacles
+        if obs is None or not len(self.points):
             return out
         R_WT, p_WT = X_WT[:, :3, :3], X_WT[:, :3, 3]
-        for obs in self.obstacles:  # only (target, obstacle) pairs close enough to matter
-            origin = np.einsum("bkj,kji->bki", p_WT[:, None, :] - obs.p_WS, obs.R_WS)  # the hand's origin in each S
-            b, k = np.nonzero(signed_distance(obs.kind, origin, obs.size) < obs.near)
-            if len(b):
-                R_ST = obs.R_WS[k].transpose(0, 2, 1) @ R_WT[b]
-                local = (R_ST @ self.points.T + origin[b, k][:, :, None]).transpose(0, 2, 1)  # (M, P, 3) in S
-                hit = (signed_distance(obs.kind, local, obs.size[k][:, None, :]) < obs.limit[k]).any(axis=1)
-                out[b[hit]] = True
+        origin = np.einsum("bkj,kji->bki", p_WT[:, None, :] - obs.p_WS, obs.R_WS)  # the hand's origin in each solid's frame
+        b, k = np.nonzero(solid_distance(origin, obs.half, obs.rounding, obs.cylinder) < obs.near)  # pairs close enough to matter
+        if len(b):
+            R_ST = obs.R_WS[k].transpose(0, 2, 1) @ R_WT[b]
+            local = (R_ST @ self.points.T + origin[b, k][:, :, None]).transpose(0, 2, 1)  # (M, P, 3)
+            d = solid_distance(local, obs.half[k][:, None, :], obs.rounding[k][:, None], obs.cylinder[k][:, None])
+            out[b[(d < obs.limit[k]).any(axis=1)]] = True
         return out
-
-
-def signed_distance(kind: type, p: np.ndarray, size: np.ndarray) -> np.ndarray:
-    """Signed distance (negative inside) of points ``p`` (..., 3), each in its shape's frame, to shapes of ``kind``
-    of ``size`` (..., 3) (as :attr:`Obstacles.size`, broadcast against ``p``).
-
-    Written per component: numpy's reductions over a last axis of 2 or 3 cost several times the arithmetic.
-    """
-    x, y, z = p[..., 0], p[..., 1], p[..., 2]
-    if kind is Box:
-        return _outside_inside(np.abs(x) - size[..., 0], np.abs(y) - size[..., 1], np.abs(z) - size[..., 2])
-    if kind is Cylinder:
-        return _outside_inside(np.sqrt(x * x + y * y) - size[..., 0], np.abs(z) - size[..., 1])
-    if kind is Capsule:
-        dz = z - np.clip(z, -size[..., 1], size[..., 1])
-        return np.sqrt(x * x + y * y + dz * dz) - size[..., 0]
-    if kind is Sphere:
-        return np.sqrt(x * x + y * y + z * z) - size[..., 0]
-    if kind is HalfSpace:  # the space below the frame's x-y plane
-        return z
-    raise ValueError(f"no signed distance for {kind.__name__}")
-
-
-def _outside_inside(*q: np.ndarray) -> np.ndarray:
-    """The signed distance from per-axis excesses ``q`` over a box's (or cylinder's) extent."""
-    out = sum(np.maximum(a, 0.0) ** 2 for a in q)
-    worst = q[0]
-    for a in q[1:]:
-        worst = np.maximum(worst, a)
-    return np.sqrt(out) + np.minimum(worst, 0.0)
 
 
 def hand_probe(world, frame: str, max_dp: float, max_angle: float) -> HandProbe:
@@ -138,27 +110,24 @@ def _build(world, frame: str, max_dp: float, max_angle: float) -> HandProbe:
             if (hand is not None and env is not None and int(hand.index()) in rigid and not checker.IsPartOfRobot(env)
                     and plant.IsAnchored(env) and not checker.IsCollisionFilteredBetween(hand, env)):
                 pairs.setdefault(g_env, set()).add(g_hand)
-    groups: dict[type, list] = {}
+    rows = []
     context = plant.CreateDefaultContext()  # obstacles are anchored: any context has their pose
     for g_env, hands in pairs.items():
         shape = inspector.GetShape(g_env)
-        if type(shape) not in (Box, Cylinder, Capsule, Sphere, HalfSpace):
-            continue  # a mesh or convex hull: no exact signed distance here, so never a reason to reject
+        if not isinstance(shape, EXACT):
+            continue  # a mesh or ellipsoid: its solid is the box around it, whose distance is no upper bound
         env = body_of[g_env]
         X_WS = (plant.EvalBodyPoseInWorld(context, env) @ inspector.GetPoseInFrame(g_env)).GetAsMatrix4()
+        centre, half, rounding, cylinder = solid(shape)
         padding = {g: checker.GetPaddingBetween(body_of[g], env) for g in hands}
         limit = np.array([padding.get(g, -np.inf) for g in owners]) - moved + radii
-        groups.setdefault(type(shape), []).append((X_WS, _size(shape), limit))
+        rows.append((X_WS[:3, :3], X_WS[:3, :3] @ centre + X_WS[:3, 3], half, rounding, cylinder, limit))
+    if not rows:
+        return HandProbe(points, None)
+    R, p, half, rounding, cylinder, limit = (np.array(column) for column in zip(*rows))
+    reach = np.max(np.where(np.isfinite(limit), limit, 0.0), axis=1, initial=0.0)  # a point this far out may still reject
     hand = float(np.max(np.linalg.norm(points, axis=1), initial=0.0))
-    obstacles = []
-    for kind, rows in groups.items():
-        size, limit = np.array([s for _, s, _ in rows]), np.array([lim for _, _, lim in rows])
-        reach = np.max(np.where(np.isfinite(limit), limit, 0.0), axis=1, initial=0.0)  # a point this far out of S may still reject
-        near = hand + np.maximum(reach, 0.0)
-        obstacles.append(Obstacles(kind, np.array([X[:3, :3] for X, _, _ in rows]), np.array([X[:3, 3] for X, _, _ in rows]),
-                                   size, limit, near))
-    return HandProbe(points, tuple(obstacles))
-    return HandProbe(points, obstacles)
+    return HandProbe(points, Obstacles(R, p, half, rounding, cylinder.astype(bool), limit, hand + np.maximum(reach, 0.0)))
 
 
 def _rigid_bodies(world, body) -> set[int]:
@@ -196,13 +165,3 @@ def _probe_balls(shape) -> list[tuple[np.ndarray, float]]:
     if isinstance(shape, Capsule):
         return [(np.array([0.0, 0.0, c * shape.length() / 2]), shape.radius()) for c in _GRID]
     return []
-
-
-def _size(shape) -> np.ndarray:
-    if isinstance(shape, Box):
-        return np.asarray(shape.size()) / 2
-    if isinstance(shape, (Cylinder, Capsule)):
-        return np.array([shape.radius(), shape.length() / 2, 0.0])
-    if isinstance(shape, Sphere):
-        return np.array([shape.radius(), 0.0, 0.0])
-    return np.zeros(3)

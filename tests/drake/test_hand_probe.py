@@ -8,7 +8,6 @@ import pytest
 pytest.importorskip("pydrake")
 
 import grounding  # noqa: E402
-from lazyground.drake.hand_probe import signed_distance  # noqa: E402
 from lazyground.drake.ik import IKGoalSource, IKSettings  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
@@ -35,14 +34,3 @@ def test_no_rejected_target_has_a_free_ik_answer(name):
     assert len(q) >= 2 * len(rejected)  # IK meets most rejected targets: the test tests something
     assert not np.any(world.configs_free(q))
 
-
-def test_signed_distances_of_the_shapes():
-    from pydrake.geometry import Box, Capsule, Cylinder, HalfSpace, Sphere
-
-    p = np.array([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 0.0, 3.0], [2.0, 0.0, 3.0]])
-    size = np.array([[1.0, 1.0, 2.0]])  # box half sizes; cylinder/capsule (radius 1, half length 1); sphere radius 1
-    np.testing.assert_allclose(signed_distance(Box, p, size), [-1.0, 1.0, 1.0, np.sqrt(2.0)])
-    np.testing.assert_allclose(signed_distance(Cylinder, p, size), [-1.0, 1.0, 2.0, np.sqrt(5.0)])
-    np.testing.assert_allclose(signed_distance(Capsule, p, size), [-1.0, 1.0, 1.0, np.sqrt(8.0) - 1.0])
-    np.testing.assert_allclose(signed_distance(Sphere, p, size), [-1.0, 1.0, 2.0, np.sqrt(13.0) - 1.0])
-    np.testing.assert_allclose(signed_distance(HalfSpace, p, size), [0.0, 0.0, 3.0, 3.0])
