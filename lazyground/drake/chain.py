@@ -68,14 +68,15 @@ class Chain:
         p = T[:, :, 3]
         if not jacobian:
             return X
-        J = np.zeros((B, 6, self.n))
-        rev = self.kinds == REVOLUTE
         a, r = frames[..., 0], p[:, None, :] - frames[..., 1]  # axis and lever of every joint, in world
-        J[:, 0:3, rev] = a[:, rev].transpose(0, 2, 1)
-        cross = np.stack([a[..., 1] * r[..., 2] - a[..., 2] * r[..., 1],
-                          a[..., 2] * r[..., 0] - a[..., 0] * r[..., 2],
-                          a[..., 0] * r[..., 1] - a[..., 1] * r[..., 0]], axis=1)
-        J[:, 3:6] = np.where(rev, cross, a.transpose(0, 2, 1))
+        (ax, ay, az), (rx, ry, rz) = a.transpose(2, 0, 1), r.transpose(2, 0, 1)
+        J = np.empty((B, 6, self.n))
+        J[:, 0], J[:, 1], J[:, 2] = ax, ay, az  # row by row: a stacked cross product costs more here
+        J[:, 3], J[:, 4], J[:, 5] = ay * rz - az * ry, az * rx - ax * rz, ax * ry - ay * rx
+        prismatic = self.kinds == PRISMATIC
+        if prismatic.any():  # no rotation; the translation along the axis
+            J[:, 0:3, prismatic] = 0.0
+            J[:, 3:6, prismatic] = a[:, prismatic].transpose(0, 2, 1)
         return X, J
 
 
