@@ -337,23 +337,25 @@ class IKGoalSource(RoundRobinGoalSource):
             yield from super().attempts(plan, rng, deadline)
             return
         for i, (j, after) in enumerate(plan):
-            item = self._batch.take(j, after, plan[i - 1][1] if i else self._next, rng, self._look_ahead())
+            item = self._batch.take(j, after, plan[i - 1][1] if i else self._next, rng, self._look_ahead(len(plan) - i))
             a0 = time.perf_counter()
             sample, reason = self._finish(item, deadline)
             self._wanted -= sample is not None
             yield sample, reason, item.seconds + time.perf_counter() - a0
 
-    def _look_ahead(self) -> int:
+    def _look_ahead(self, left: int) -> int:
         """How many attempts to solve at once: enough for the samples the draw still wants at the
-        success rate so far (prior 1 in 4), half as many again, within [LOOK_AHEAD_MIN, batch_attempts].
+        success rate so far (prior 1 in 4), half as many again, within [LOOK_AHEAD_MIN, batch_attempts],
+        and never more than the ``left`` attempts the draw's budget still allows.
 
         Bigger batches cost less per solve (one iteration's numpy overhead is shared), but what a
-        plan never draws is wasted: a fixed 64 left ~1/3 of the solves unused on fetch_cans_1.
+        plan never draws is wasted: a fixed 64 left ~1/3 of the solves unused on fetch_cans_1, and
+        a look-ahead past the draw's budget was solved and grasp-checked for a draw that may never come.
         """
         valid, attempts = sum(st.valid for st in self.stats), sum(st.attempts for st in self.stats)
         rate = (valid + 1) / (attempts + 4)
         need = math.ceil(1.5 * max(self._wanted, 1) / rate)
-        return int(min(max(need, LOOK_AHEAD_MIN), max(self.settings.batch_attempts, 1)))
+        return int(min(max(need, LOOK_AHEAD_MIN), max(self.settings.batch_attempts, 1), max(left, LOOK_AHEAD_MIN)))
 
     def _finish(self, item: Prepared, deadline: float) -> tuple[GoalSample | None, str]:
         """An attempt's sample from its prepared answer, grasp check and pre-poses: only the approach is checked here."""
