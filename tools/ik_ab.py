@@ -5,7 +5,8 @@
 Per scene and seed, each solver draws goal samples as the default two-tree planner does
 (``initial_goal_samples`` first, then ``--resamples`` draws of ``resample_count``) from a
 fresh source over one shared world; the solvers alternate seed by seed so that machine load
-hits both alike. Prints per scene and solver: median CPU ms per valid goal sample (failed
+hits both alike. A solver may carry IKSettings overrides, e.g. ``--solvers batch,batch:hand_check=0``
+(an A/B of one setting). Prints per scene and solver: median CPU ms per valid goal sample (failed
 attempts included), valid samples per attempt, IK solves and their success rate, collision
 checks per valid sample.
 """
@@ -45,6 +46,17 @@ def one_run(world, regions, settings, ik_settings, seed: int, resamples: int) ->
             "solves": source.counters.solves, "ik_ok": source.counters.successes, "checks": world.checks - checks0}
 
 
+def ik_settings(spec: str, batch_attempts: int):
+    """IKSettings for a solver spec "name[:field=value+...]" (values as the field's type; 0/1 for booleans)."""
+    name, _, overrides = spec.partition(":")
+    out = replace(DEFAULT_IK_SETTINGS, solver=name, attempt_budget=None, batch_attempts=batch_attempts)
+    for item in filter(None, overrides.split("+")):
+        key, value = item.split("=")
+        kind = type(getattr(out, key))
+        out = replace(out, **{key: bool(int(value)) if kind is bool else kind(value)})
+    return out
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--scenes", default="fetch_cans_1,fetch_cans_2,fetch_boxes_3")
@@ -64,11 +76,10 @@ def main(argv=None) -> int:
         solvers = args.solvers.split(",")
         runs = {s: [] for s in solvers}
         for s in solvers:  # build the reach map and warm the caches outside the timed runs
-            one_run(world, regions, settings, replace(DEFAULT_IK_SETTINGS, solver=s, attempt_budget=None, batch_attempts=args.batch_attempts), 10**6, 0)
+            one_run(world, regions, settings, ik_settings(s, args.batch_attempts), 10**6, 0)
         for seed in range(args.seeds):
             for s in solvers:
-                runs[s].append(one_run(world, regions, settings, replace(DEFAULT_IK_SETTINGS, solver=s, attempt_budget=None, batch_attempts=args.batch_attempts),
-                                       seed, args.resamples))
+                runs[s].append(one_run(world, regions, settings, ik_settings(s, args.batch_attempts), seed, args.resamples))
         for s in solvers:
             rs = runs[s]
             total = {k: sum(r[k] for r in rs) for k in rs[0]}

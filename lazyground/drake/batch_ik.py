@@ -25,6 +25,8 @@ DAMPING = 0.05  # initial damping (m or rad), per problem
 MIN_DAMPING, MAX_DAMPING = 1e-6, 1e3
 SETTLE = 0.05  # a problem is done this fraction of its tolerance outside it (judged later with SOLVER_SLACK 0.1)
 ROTATION_WEIGHT = 0.3  # m per rad: how a rotation error weighs against a position error in the step
+WEIGHT = np.array([ROTATION_WEIGHT] * 3 + [1.0] * 3)  # per error row (rotation; position)
+_EYE6 = np.eye(6)
 
 
 @dataclass(frozen=True)
@@ -59,13 +61,15 @@ def pose_errors(X: np.ndarray, T: np.ndarray) -> tuple[np.ndarray, np.ndarray, n
         T - X, rotation angles (B,) in rad).
     """
     R = T[:, :3, :3] @ X[:, :3, :3].transpose(0, 2, 1)  # R_T R_X^T, in world
-    cos = np.clip((np.trace(R, axis1=1, axis2=2) - 1.0) / 2.0, -1.0, 1.0)
+    cos = np.clip((R[:, 0, 0] + R[:, 1, 1] + R[:, 2, 2] - 1.0) / 2.0, -1.0, 1.0)  # (np.trace: a slow reduction)
     angle = np.arccos(cos)
     s = 0.5 * np.stack([R[:, 2, 1] - R[:, 1, 2], R[:, 0, 2] - R[:, 2, 0], R[:, 1, 0] - R[:, 0, 1]], axis=1)  # sin(angle) axis
     sin = np.sin(angle)
     ratio = np.where(sin > 1e-9, angle / np.maximum(sin, 1e-9), 1.0)
     w = s * ratio[:, None]
-    near_pi = (cos < -0.999) & (np.linalg.norm(s, axis=1) < 1e-3)
+    near_pi = cos < -0.999
+    if near_pi.any():
+        near_pi &= np.linalg.norm(s, axis=1) < 1e-3
     if near_pi.any():  # sin(angle) ~ 0 hides the axis: R + I has the axis (times 1 + cos) in every column
         M = R[near_pi] + np.eye(3)
         col = np.argmax(np.linalg.norm(M, axis=1), axis=1)
@@ -103,51 +107,50 @@ def solve_batch(problem: BatchIKProblem, q0: np.ndarray, targets: np.ndarray, po
     chain = problem.chain
     q = problem.limit(np.array(q0, float))
     B = len(q)
-    weight = np.array([ROTATION_WEIGHT] * 3 + [1.0] * 3)
+    scale = WEIGHT[:, None] * problem.free  # (6, n): Jacobians kept weighted, held joints' columns zero
     X, J = chain.forward(q, jacobian=True)
-    J = J * problem.free  # held joints do not move
-    e, done = _excess(X, targets, position_tolerance, orientation_tolerance, weight)
+    J *= scale
+    e, done = _excess(X, targets, position_tolerance, orientation_tolerance)
     cost = np.einsum("ij,ij->i", e, e)
     damping = np.full(B, DAMPING)
+    bounded = ~problem.wrap
     for _ in range(iterations):
         live = np.flatnonzero(~done)
         if not len(live):
             break
-        Jw = J[live] * weight[None, :, None]
-        step = _step(Jw, e[live], damping[live])
+        Jl, el, dl, ql = J[live], e[live], damping[live], q[live]
+        step = _step(Jl, el, dl)
         # A joint at a limit that the step pushes further out is held: the step is solved again
         # without it, so the other joints make up for it (clipping alone would stall there).
-        blocked = ((q[live] <= problem.lower) & (step < 0)) | ((q[live] >= problem.upper) & (step > 0))
-        blocked &= ~problem.wrap
+        blocked = (((ql <= problem.lower) & (step < 0)) | ((ql >= problem.upper) & (step > 0))) & bounded
         again = np.flatnonzero(blocked.any(axis=1))
         if len(again):
-            step[again] = _step(Jw[again] * ~blocked[again][:, None, :], e[live][again], damping[live][again])
-        q_try = problem.limit(q[live] + step)
+            step[again] = _step(Jl[again] * ~blocked[again][:, None, :], el[again], dl[again])
+        q_try = problem.limit(ql + step)
         X_t, J_t = chain.forward(q_try, jacobian=True)
-        e_t, done_t = _excess(X_t, targets[live], position_tolerance, orientation_tolerance, weight)
+        e_t, done_t = _excess(X_t, targets[live], position_tolerance, orientation_tolerance)
         cost_t = np.einsum("ij,ij->i", e_t, e_t)
         better = cost_t < cost[live]
         take = live[better]
-        q[take], J[take], e[take], cost[take] = q_try[better], J_t[better] * problem.free, e_t[better], cost_t[better]
+        q[take], J[take], e[take], cost[take] = q_try[better], J_t[better] * scale, e_t[better], cost_t[better]
         done[take] = done_t[better]
-        damping[take] = np.maximum(damping[take] * 0.5, MIN_DAMPING)
-        worse = live[~better]
-        damping[worse] = np.minimum(damping[worse] * 4.0, MAX_DAMPING)
+        damping[live] = np.where(better, np.maximum(dl * 0.5, MIN_DAMPING), np.minimum(dl * 4.0, MAX_DAMPING))
     return q, done
 
 
-def _excess(X: np.ndarray, T: np.ndarray, position_tolerance: float, orientation_tolerance: float,
-            weight: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _excess(X: np.ndarray, T: np.ndarray, position_tolerance: float, orientation_tolerance: float) -> tuple[np.ndarray, np.ndarray]:
     """Weighted (rotation; position) errors of ``X`` outside the tolerance around ``T``, and which are within SETTLE of it."""
     w, dp, angle = pose_errors(X, T)
     dp_out = dp - np.clip(dp, -position_tolerance, position_tolerance)
     w_out = w * np.maximum(0.0, 1.0 - orientation_tolerance / np.maximum(angle, 1e-12))[:, None]
-    done = ((np.abs(dp_out).max(axis=1) <= SETTLE * position_tolerance)
-            & (np.linalg.norm(w_out, axis=1) <= SETTLE * orientation_tolerance))
-    return np.concatenate([w_out, dp_out], axis=1) * weight, done
+    x, y, z = np.abs(dp_out).T
+    a, b, c = w_out.T
+    done = ((np.maximum(np.maximum(x, y), z) <= SETTLE * position_tolerance)  # per component: reductions over 3 are slow
+            & (a * a + b * b + c * c <= (SETTLE * orientation_tolerance) ** 2))
+    return np.concatenate([w_out, dp_out], axis=1) * WEIGHT, done
 
 
 def _step(Jw: np.ndarray, e: np.ndarray, damping: np.ndarray) -> np.ndarray:
     """Damped least-squares steps J^T (J J^T + d^2 I)^-1 e, row by row."""
-    A = Jw @ Jw.transpose(0, 2, 1) + (damping ** 2)[:, None, None] * np.eye(6)
+    A = Jw @ Jw.transpose(0, 2, 1) + (damping ** 2)[:, None, None] * _EYE6
     return (Jw.transpose(0, 2, 1) @ np.linalg.solve(A, e[:, :, None]))[:, :, 0]

@@ -36,6 +36,7 @@ class ReachMap:
     frame: str
     p_EW: np.ndarray  # wrist point in the end-effector frame
     tree: cKDTree
+    configs: np.ndarray  # (REACH_SAMPLES, planned) the sampled configurations, in the tree's order
 
     def wrist(self, X_WT: np.ndarray) -> np.ndarray:
         return X_WT[:3, :3] @ self.p_EW + X_WT[:3, 3]
@@ -46,9 +47,22 @@ class ReachMap:
 
     def plausible_all(self, X_WT: np.ndarray, margin: float) -> np.ndarray:
         """:meth:`plausible` for poses (B, 4, 4) at once, one tree query."""
-        wrists = X_WT[:, :3, :3] @ self.p_EW + X_WT[:, :3, 3]
-        distance, _ = self.tree.query(wrists)
+        distance, _ = self.tree.query(self.wrist_all(X_WT))
         return np.asarray(distance <= margin, bool).reshape(len(X_WT))
+
+
+    def near_configs(self, X_WT: np.ndarray, count: int, nearest: int, rng: np.random.Generator) -> np.ndarray:
+        """For each pose (B, 4, 4): ``count`` distinct random picks among the ``nearest`` sampled configurations
+        whose wrist points lie closest to the pose's, as (B, count, planned) (IK starts near the pose)."""
+        nearest = max(nearest, count)
+        _, index = self.tree.query(self.wrist_all(X_WT), k=nearest)
+        index = np.asarray(index).reshape(len(X_WT), nearest)
+        pick = np.argsort(rng.random(index.shape), axis=1)[:, :count]
+        return self.configs[np.take_along_axis(index, pick, axis=1)]
+
+    def wrist_all(self, X_WT: np.ndarray) -> np.ndarray:
+        """The wrist points (B, 3) of poses (B, 4, 4)."""
+        return X_WT[:, :3, :3] @ self.p_EW + X_WT[:, :3, 3]
 
 
 def reach_key(world, frame: str) -> tuple:
@@ -100,7 +114,7 @@ def _build_reach_map(world, frame: str) -> ReachMap:
         points = chain.forward(qs[:, chain.index])[:, :3, 3]
     except ValueError:  # a joint the chain cannot express (e.g. a planar base): ask the plant
         points = np.array([kin.X_WF(W, q).translation() for q in qs])
-    return ReachMap(frame, np.asarray(p_EW), cKDTree(points))
+    return ReachMap(frame, np.asarray(p_EW), cKDTree(points), qs[:, world.planned])
 
 
 def _joints_to_root(plant, body) -> list:

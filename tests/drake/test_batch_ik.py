@@ -146,3 +146,21 @@ def test_a_plan_ends_where_its_batch_answers_say(cans1):
         if s.final is not None:  # the approach, checked here at half the sampler's spacing
             segment = world.space.discretize(s.q, s.final, 0.005)
             assert np.all(world.configs_free(segment))
+
+
+def test_starts_near_the_target_are_distinct_reach_arms_whose_wrists_lie_near_it(cans1):
+    from lazyground.drake.reach import reach_map
+
+    _, world, regions = cans1
+    source = IKGoalSource(regions, world, IKSettings(attempt_budget=None))
+    rng = np.random.default_rng(8)
+    X = np.array([source._target_matrix(r, r.sample(rng)) for r in regions])
+    m = reach_map(world, "gripper_link")
+    configs = m.near_configs(X, 3, 64, rng)
+    assert configs.shape == (len(X), 3, world.space.dim)
+    chain = chain_to_frame(world.plant, world.plant.GetFrameByName("gripper_link"))
+    for X_WT, arms in zip(X, configs):
+        assert len({tuple(a) for a in arms}) == 3  # distinct restarts
+        wrist = m.wrist_all(chain.forward(arms))  # the arms' own wrist points: near the target's
+        farthest_of_64 = np.sort(m.tree.query(m.wrist_all(X_WT[None]), k=64)[0][0])[-1]
+        assert np.all(np.linalg.norm(wrist - m.wrist_all(X_WT[None]), axis=1) <= farthest_of_64 + 1e-9)
