@@ -1,5 +1,7 @@
 """Vertex relaxation (lazyground.motion.relax) alone and inside the shortcutting, on the 2-D toy world (no Drake)."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -10,7 +12,7 @@ from tests.unit.toy import SPACE, WALLS, BoxWorld
 
 SETTINGS = PlannerSettings(step_size=0.5, time_limit=30.0, goal_bias=0.1)
 FINE = SETTINGS.resolution / SETTINGS.validation_factor
-RELAX_ONLY = ShortcutSettings(greedy=False, max_iterations=0, time_budget=1e9, relax_sweeps=10)  # no clock, no shortcut
+RELAX_ONLY = ShortcutSettings(greedy=False, max_iterations=0, time_budget=1e9, relax_pieces=16, relax_sweeps=10)  # no clock, no shortcut
 # through the wall's gap at y in [8, 9], with detours on both sides
 BENT = np.array([[1.0, 1.0], [1.5, 6.0], [3.0, 9.5], [4.5, 8.5], [6.0, 9.5], [6.0, 5.0], [8.0, 4.5], [8.0, 5.5]])
 
@@ -87,3 +89,14 @@ def test_shortcutting_with_relaxation_is_reproducible_in_the_seed(seed):
 def test_negative_relaxation_settings_are_refused():
     with pytest.raises(ValueError, match="relax_pieces"):
         ShortcutSettings(relax_sweeps=-1)
+
+
+def test_a_second_greedy_pass_after_the_relaxation_drops_waypoints_and_keeps_the_fine_check():
+    world, thin = BoxWorld(WALLS), BoxWorld([(5.0, 0.0, 5.01, 8.0)])
+    once = shorten(world, BENT, RELAX_ONLY)
+    twice = shorten(world, BENT, replace(RELAX_ONLY, regreedy=True))
+    assert len(twice.path) < len(once.path) and twice.length <= once.length
+    assert path_is_valid(SPACE, world, twice.path, FINE) == -1
+    # pieces of relaxed segments keep their flags through the second pass: the thin wall is still caught
+    out = shorten(thin, np.array([[2.0, 1.5], [5.0, 9.0], [8.0, 1.0]]), replace(RELAX_ONLY, regreedy=True))
+    assert path_is_valid(SPACE, thin, out.path, FINE / 4) == -1
