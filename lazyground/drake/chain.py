@@ -1,4 +1,4 @@
-"""A serial kinematic chain read off a Drake plant, evaluated in batches with numpy.
+"""Serial kinematic chains and body trees read off a Drake plant, evaluated in batches with numpy.
 
 Drake's ``CalcRelativeTransform`` and ``CalcJacobianSpatialVelocity`` cost tens
 of microseconds per call from Python, one configuration at a time. Goal
@@ -112,6 +112,27 @@ def joints_to_world(plant, body) -> list:
     return out
 
 
+def _joint_parts(joint):
+    """(kind, axis, X_PF @ A, A.T @ X_MC) of a revolute or prismatic joint, A turning its axis onto z;
+    (None, None, X_PC, None) of a weld.
+
+    Raises:
+        ValueError: the joint is neither revolute, prismatic nor welded (e.g. a floating or planar base).
+    """
+    X_PF = joint.frame_on_parent().GetFixedPoseInBodyFrame().GetAsMatrix4()
+    X_MC = joint.frame_on_child().GetFixedPoseInBodyFrame().inverse().GetAsMatrix4()
+    if isinstance(joint, WeldJoint):
+        return None, None, X_PF @ joint.X_FM().GetAsMatrix4() @ X_MC, None
+    if isinstance(joint, RevoluteJoint):
+        kind, axis = REVOLUTE, np.asarray(joint.revolute_axis(), float)
+    elif isinstance(joint, PrismaticJoint):
+        kind, axis = PRISMATIC, np.asarray(joint.translation_axis(), float)
+    else:
+        raise ValueError(f"joint {joint.name()} ({joint.type_name()}) cannot be part of a kinematic chain")
+    A = _align_z(axis)  # the joint frame turned so its axis is z, and back after it
+    return kind, axis, X_PF @ A, A.T @ X_MC
+
+
 def chain_to_frame(plant, frame) -> Chain:
     """The chain from the world to ``frame`` (a plant Frame).
 
@@ -123,23 +144,95 @@ def chain_to_frame(plant, frame) -> Chain:
     X_before, axes, kinds, index = [], [], [], []
     pending = np.eye(4)  # fixed transforms since the last moving joint
     for joint in joints:
-        X_PF = joint.frame_on_parent().GetFixedPoseInBodyFrame().GetAsMatrix4()
-        X_MC = joint.frame_on_child().GetFixedPoseInBodyFrame().inverse().GetAsMatrix4()
-        if isinstance(joint, WeldJoint):
-            pending = pending @ X_PF @ joint.X_FM().GetAsMatrix4() @ X_MC
+        kind, axis, X_pre, X_post = _joint_parts(joint)
+        if kind is None:
+            pending = pending @ X_pre
             continue
-        if isinstance(joint, RevoluteJoint):
-            kinds.append(REVOLUTE)
-            axes.append(np.asarray(joint.revolute_axis(), float))
-        elif isinstance(joint, PrismaticJoint):
-            kinds.append(PRISMATIC)
-            axes.append(np.asarray(joint.translation_axis(), float))
-        else:
-            raise ValueError(f"joint {joint.name()} ({joint.type_name()}) cannot be part of an IK chain")
-        A = _align_z(axes[-1])  # the joint frame turned so its axis is z, and back after it
-        X_before.append(pending @ X_PF @ A)
+        kinds.append(kind)
+        axes.append(axis)
+        X_before.append(pending @ X_pre)
         index.append(joint.position_start())
-        pending = A.T @ X_MC
+        pending = X_post
     X_after = pending @ frame.GetFixedPoseInBodyFrame().GetAsMatrix4()
     return Chain(np.array(X_before).reshape(-1, 4, 4), X_after, np.array(axes).reshape(-1, 3),
                  np.array(kinds, int), np.array(index, int))
+
+
+@dataclass(frozen=True)
+class BodyTree:
+    """World poses of several bodies at once, each moving joint computed once.
+
+    The tree is kept per moving joint ("slot" s >= 1; slot 0 is the world): the frame
+    of slot s is its joint's moving frame, ``K[s - 1]`` after slot ``parent[s - 1]``'s
+    frame, then turned about (or shifted along) z by q[index[s - 1]]. Welds fold
+    into constants: body k sits at ``F[k]`` in the frame of slot ``slot[k]``.
+    """
+
+    bodies: tuple  # BodyIndex per node
+    parent: np.ndarray  # (m,) slot of the frame each moving joint hangs from
+    K: np.ndarray  # (m, 4, 4)
+    kinds: np.ndarray  # (m,) REVOLUTE or PRISMATIC
+    index: np.ndarray  # (m,) plant position index
+    slot: np.ndarray  # (n,) per body
+    F: np.ndarray  # (n, 4, 4) per body
+
+    def forward(self, q_full: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Rotations R_WB (B, n, 3, 3) and positions p_WB (B, n, 3) of every body at B plant position vectors."""
+        q = np.atleast_2d(q_full)
+        B, m = q.shape[0], len(self.kinds)
+        R, p = [np.broadcast_to(np.eye(3), (B, 3, 3))], [np.zeros((B, 3))]  # per slot, contiguous
+        qs = q[:, self.index]
+        c, s = np.cos(qs), np.sin(qs)
+        for j in range(m):
+            Rp = R[self.parent[j]].reshape(-1, 3)  # R @ A for a constant A as one (3B, 3) product
+            pj = p[self.parent[j]] + (Rp @ self.K[j, :3, 3]).reshape(B, 3)
+            Rj = (Rp @ self.K[j, :3, :3]).reshape(B, 3, 3)
+            if self.kinds[j] == PRISMATIC:
+                pj += Rj[:, :, 2] * qs[:, j, None]
+            else:  # Rj @ Rz(q): turn the first two columns
+                cj, sj, x = c[:, j, None], s[:, j, None], Rj[:, :, 0].copy()
+                Rj[:, :, 0] = x * cj + Rj[:, :, 1] * sj
+                Rj[:, :, 1] = Rj[:, :, 1] * cj - x * sj
+            R.append(Rj)
+            p.append(pj)
+        R_out, p_out = np.empty((B, len(self.slot), 3, 3)), np.empty((B, len(self.slot), 3))
+        for k, j in enumerate(self.slot):
+            Rj = R[j].reshape(-1, 3)
+            R_out[:, k] = (Rj @ self.F[k, :3, :3]).reshape(B, 3, 3)
+            p_out[:, k] = p[j] + (Rj @ self.F[k, :3, 3]).reshape(B, 3)
+        return R_out, p_out
+
+    @property
+    def fixed(self) -> np.ndarray:
+        """Per body: whether only welds lie between it and the world (its pose never changes)."""
+        return self.slot == 0
+
+
+def body_tree(plant, bodies) -> BodyTree:
+    """The tree of ``bodies`` (plant Bodies) and every body between them and the world.
+
+    Raises:
+        ValueError: a joint on the way is neither revolute, prismatic nor welded.
+    """
+    world = plant.world_body().index()
+    where = {world: (0, np.eye(4))}  # BodyIndex -> (slot, F)
+    order, parent, K, kinds, index = [], [], [], [], []
+    for body in bodies:
+        for joint in joints_to_world(plant, body)[::-1]:
+            child = joint.child_body().index()
+            if child in where:
+                continue
+            slot, F = where[joint.parent_body().index()]
+            kind, _, X_pre, X_post = _joint_parts(joint)
+            if kind is None:
+                where[child] = (slot, F @ X_pre)
+            else:
+                parent.append(slot)
+                K.append(F @ X_pre)
+                kinds.append(kind)
+                index.append(joint.position_start())
+                where[child] = (len(kinds), X_post)
+            order.append(child)
+    return BodyTree(tuple(order), np.array(parent, int), np.array(K).reshape(-1, 4, 4), np.array(kinds, int),
+                    np.array(index, int), np.array([where[b][0] for b in order], int),
+                    np.array([where[b][1] for b in order]).reshape(-1, 4, 4))

@@ -16,10 +16,16 @@ from pydrake.planning import LinearDistanceAndInterpolationProvider, SceneGraphC
 
 from lazyground.drake.coordinates import Coordinates
 from lazyground.drake.parallel import parallel_batch
+from lazyground.drake.spheres import sphere_certifier
 
 # Drake needs a positive step at construction; a checker built without a resolution
 # replaces this once, before its first edge check, and never again.
 _UNSET_STEP = 0.05
+# Batches from which the certifier is tried first. Its numpy calls cost ~0.5-1 ms per batch whatever
+# its size, so it pays from about a hundred configurations: replaying the batches of 4 plans on
+# fetch_cans_1 / fetch_boxes_3, batches of 8-64 took 1.5-4.7x Drake's time, 128-255 0.96 / 0.35x,
+# 256 and more 0.69 / 0.26x (CPU time, interleaved; /tmp/notes/spheres4.md).
+CERTIFY_MIN_BATCH = 128
 
 
 class DrakeChecker:
@@ -32,9 +38,12 @@ class DrakeChecker:
         padding: collision padding in metres, against the environment and the robot itself.
         edge_resolution: spacing of edge checks in the planner's weighted metric;
             None fixes it at the first edge check.
+        certify: prove batches free with :mod:`lazyground.drake.spheres` before asking
+            Drake (the answers are Drake's either way).
     """
 
-    def __init__(self, diagram, robot, coordinates: Coordinates, padding: float, edge_resolution: float | None = None):
+    def __init__(self, diagram, robot, coordinates: Coordinates, padding: float, edge_resolution: float | None = None,
+                 certify: bool = True):
         self.coordinates = coordinates
         self.padding = padding
         self._resolution = edge_resolution
@@ -51,6 +60,9 @@ class DrakeChecker:
         self.checks = 0
         self._context = self.drake.model_context()  # the main thread's context (the one single checks use)
         self._penetration_first = _candidates_all_checked(self.drake)
+        # proves batches free in numpy before Drake is asked (None: this world cannot be bounded; lazyground.drake.spheres)
+        self.certifier = sphere_certifier(self.drake) if certify else None
+        self.certified = 0  # configurations of batches the certifier proved free
 
     @property
     def edge_resolution(self) -> float | None:
@@ -95,14 +107,22 @@ class DrakeChecker:
         if len(qs) == 1:
             return np.array([self.config_free(qs[0])])
         t0 = time.perf_counter()
-        free = self._batch(list(self.coordinates.full(qs)))
+        free = self._batch(self.coordinates.full(qs))
         self.check_time += time.perf_counter() - t0
         self.checks += len(qs)
         return free
 
-    def _batch(self, configs: list[np.ndarray]) -> np.ndarray:
-        """Drake's batch check, on several threads when the batch is large enough (lazyground.drake.parallel)."""
-        return np.asarray(self.drake.CheckConfigsCollisionFree(configs, parallelize=parallel_batch(len(configs))), bool)
+    def _batch(self, configs: np.ndarray) -> np.ndarray:
+        """Drake's batch check of the configurations the certifier cannot prove free, on several
+        threads when that is many (lazyground.drake.parallel)."""
+        free = np.zeros(len(configs), bool)
+        if self.certifier is not None and len(configs) >= CERTIFY_MIN_BATCH:
+            free = self.certifier.certified_free(configs)
+            self.certified += int(free.sum())
+        rest = np.flatnonzero(~free)
+        if len(rest):
+            free[rest] = self.drake.CheckConfigsCollisionFree(list(configs[rest]), parallelize=parallel_batch(len(rest)))
+        return free
 
     def edge_free(self, a: np.ndarray, b: np.ndarray, resolution: float) -> bool:
         """Whether the motion a → b is free, checked in C++ every ``resolution`` with early exit.

@@ -101,7 +101,8 @@ class DrakeWorld:
             self._extra.move_to_end(resolution)
             return self._extra[resolution]
         diagram, robot = build_diagram(self.scene, self.attached, visual=False)
-        checker = DrakeChecker(diagram, robot, self.coordinates, self.padding, resolution)
+        # only edge checks come here (batches go to self.checker): no certifier to build
+        checker = DrakeChecker(diagram, robot, self.coordinates, self.padding, resolution, certify=False)
         self._extra[resolution] = checker
         if len(self._extra) > MAX_EXTRA_CHECKERS:
             old = self._extra.popitem(last=False)[1]  # keep its counts in the totals

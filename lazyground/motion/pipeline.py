@@ -9,6 +9,7 @@ import numpy as np
 
 from lazyground.motion.shortcut import ShortcutResult, ShortcutSettings, ShortcutStatus, shortcut_path
 from lazyground.motion.trajectory import Limits, MotionError, TimingSettings, Trajectory, time_path
+from lazyground.planning.car import CarSpace
 from lazyground.planning.problem import PlanResult, ValidityChecker
 from lazyground.settings import PlannerSettings
 from lazyground.planning.space import ConfigSpace
@@ -59,6 +60,7 @@ def make_motion(
     limits: Limits | None,
     rng: np.random.Generator,
     stops: tuple[int, ...] | None = None,
+    car: CarSpace | None = None,
 ) -> Motion:
     """Shorten and time a solved result's path.
 
@@ -72,6 +74,8 @@ def make_motion(
         rng: the plan's generator (continues its stream, so the motion follows from the seed).
         stops: None to shorten the path; else it is timed as driven (a car's curves), not
             shortened, resting at these waypoints (its gear changes).
+        car: the car space of a car's path (with ``stops``): timed along its curves as a car drives
+            (:mod:`lazyground.motion.car_timing`).
 
     Returns:
         The Motion; its ``shortcut.path`` passed the fine re-check.
@@ -91,7 +95,7 @@ def make_motion(
             # at the same resolution tests other points of those segments, and a path grazing an obstacle
             # between the two sets failed it (panda_tabletop, "pick up cup_shelf", seed 3).
             timing = timing_settings(planner) if stops is not None else timing_settings(planner).for_shortened()
-            traj = time_path(space, checker, attempt.path, limits, fine, timing, stops=rests)
+            traj = time_path(space, checker, attempt.path, limits, fine, timing, stops=rests, car=car)
         except MotionError as exc:
             if attempt.path is attempt.raw_path:
                 return Motion(short, None, short.time_s, time.perf_counter() - t0, f"no trajectory: {exc}")
@@ -110,7 +114,8 @@ def with_motion(result: PlanResult, motion: Motion) -> PlanResult:
 
 
 def motion_for_world(world, result: PlanResult, planner: PlannerSettings,
-                     rng: np.random.Generator, stops: tuple[int, ...] | None = None) -> tuple[PlanResult, Motion | None]:
+                     rng: np.random.Generator, stops: tuple[int, ...] | None = None,
+                     car: CarSpace | None = None) -> tuple[PlanResult, Motion | None]:
     """The API's hook: shorten and time a result planned in a DrakeWorld.
 
     Returns:
@@ -126,7 +131,7 @@ def motion_for_world(world, result: PlanResult, planner: PlannerSettings,
         limits, note = world_limits(world), ""
     except SceneError as exc:
         limits, note = None, f"no trajectory: {exc}"
-    motion = make_motion(world.space, world, result, planner, limits, rng, stops)
+    motion = make_motion(world.space, world, result, planner, limits, rng, stops, car)
     if note and not motion.note:
         motion = replace(motion, note=note)
     if stops is not None:  # timed as driven, not shortened: the path and its (driven) length stay the planner's

@@ -108,6 +108,7 @@ def time_path(
     fine_resolution: float,
     settings: TimingSettings = TimingSettings(),
     stops: tuple[int, ...] = (),
+    car=None,
 ) -> Trajectory:
     """A timed trajectory through ``path`` (start to goal, resting at both).
 
@@ -120,28 +121,63 @@ def time_path(
         settings: speed, sample rate, blends.
         stops: waypoint indices where the robot stops (e.g. the start of a straight approach);
             the segment after a stop stays straight.
+        car: the CarSpace of a car's dense path (``stops`` its gear changes): each gear segment
+            is driven along its curves (:mod:`lazyground.motion.car_timing`), not blended.
 
     Returns:
         The Trajectory, sampled every ``1 / settings.sample_rate`` s and at its end.
+
+    Raises:
+        MotionError: every way of timing a piece collides (the path grazes an obstacle).
     """
     t0 = time.perf_counter()
     q = unwrap_path(space, path)
     scaled = Limits(limits.velocity * settings.speed, limits.acceleration * settings.speed**2)
+    pieces = split_at_stops(q, stops)
+    if car is not None:
+        from lazyground.motion.car_timing import car_piece_timer  # (it builds on this module)
+
+        time_piece, levels = car_piece_timer(car, pieces, scaled)
+    else:
+        options = [*settings.blends, None]  # None: stop at every waypoint
+        levels = len(options)
+
+        def time_piece(k: int, level: int):
+            return _time_piece(space, pieces[k], options[level], fine_resolution, scaled, 1.0 / settings.sample_rate,
+                               settings.grid_per_span)
+
+    return assemble(space, checker, q[0], len(pieces), levels, time_piece, scaled, fine_resolution,
+                    settings.sample_rate, t0)
+
+
+def split_at_stops(q: np.ndarray, stops: tuple[int, ...]) -> list[np.ndarray]:
+    """The pieces of a path between the waypoints where it stops (and its ends)."""
     cuts = sorted({0, len(q) - 1, *(k for k in stops if 0 < k < len(q) - 1)})
-    pieces = [q[a : b + 1] for a, b in zip(cuts[:-1], cuts[1:])]
-    dt = 1.0 / settings.sample_rate
-    options = [*settings.blends, None]  # None: stop at every waypoint
-    level = [0] * len(pieces)
-    timed = [_time_piece(space, p, options[0], fine_resolution, scaled, dt, settings.grid_per_span) for p in pieces]
+    return [q[a : b + 1] for a, b in zip(cuts[:-1], cuts[1:])]
+
+
+def assemble(space: ConfigSpace, checker: ValidityChecker, q0: np.ndarray, n_pieces: int, n_levels: int,
+             time_piece, limits: Limits, fine_resolution: float, sample_rate: float, t0: float) -> Trajectory:
+    """The timed pieces played one after another, sampled, within the limits and checked densely.
+
+    ``time_piece(k, level)`` gives piece k's ([timed parts], label) at a level of caution (0 first);
+    the piece playing where the sampled motion collides is redone at the next level.
+
+    Raises:
+        MotionError: a piece collides at its last level.
+    """
+    dt = 1.0 / sample_rate
+    level = [0] * n_pieces
+    timed = [time_piece(k, 0) for k in range(n_pieces)]
     slowdowns = 0
     while True:
-        parts = [part for piece in timed for part in piece[0]] or [_Rest(q[0])]
+        parts = [part for piece in timed for part in piece[0]] or [_Rest(q0)]
         # all of the curve is checked, its straight spans too: a check that skipped them (they lie on
         # fine-checked segments) let a grazing path through a re-check that tests other points of them
         t, qs, qd, qdd = _sample(parts, dt)
-        slower = _over_limits(qd, qdd, scaled)
+        slower = _over_limits(qd, qdd, limits)
         if slower > 1.0 and slowdowns < MAX_SLOWDOWNS:
-            # a peak between the probes of _time_curve shows in the output samples: every curve is slowed
+            # a peak between the probes of the timing shows in the output samples: every part is slowed
             # by it, and the new samples are checked again (they lie elsewhere on the same curves)
             slowdowns += 1
             timed = [([_slowed(part, slower) for part in curves], label) for curves, label in timed]
@@ -149,17 +185,18 @@ def time_path(
         bad = first_colliding_join(space, checker, qs, fine_resolution)
         if bad is None:
             break
-        # the piece playing at the colliding join gets less blending; the whole output is checked again
-        # (rarely needed), so that it passes the very check a re-check runs
+        # the piece playing at the colliding join is redone more cautiously; the whole output is checked
+        # again (rarely needed), so that it passes the very check a re-check runs
         ends = np.cumsum([sum(part.duration for part in piece[0]) for piece in timed])
-        k = min(int(np.searchsorted(ends, t[bad], side="right")), len(pieces) - 1)
+        k = min(int(np.searchsorted(ends, t[bad], side="right")), n_pieces - 1)
         level[k] += 1
-        if level[k] >= len(options):
+        if level[k] >= n_levels:
             raise MotionError(f"no collision-free timing: the path grazes an obstacle between its fine-resolution "
                               f"checks near t = {t[bad]:.2f} s")
-        timed[k] = _time_piece(space, pieces[k], options[level[k]], fine_resolution, scaled, dt, settings.grid_per_span)
+        timed[k] = time_piece(k, level[k])
     labels = " + ".join(piece[1] for piece in timed)
-    return Trajectory(space.names, tuple(bool(w) for w in space.wrap), t, qs, qd, qdd, scaled, labels, time.perf_counter() - t0)
+    return Trajectory(space.names, tuple(bool(w) for w in space.wrap), t, qs, qd, qdd, limits, labels,
+                      time.perf_counter() - t0)
 
 
 MAX_SLOWDOWNS = 3  # uniform slow-downs of a timed path whose output samples still exceed a limit
@@ -173,8 +210,8 @@ def _over_limits(qd: np.ndarray, qdd: np.ndarray, limits: Limits) -> float:
 
 
 def _slowed(part, factor: float):
-    """A timed curve played ``factor`` times slower (a rest stays a rest)."""
-    return replace(part, stretch=part.stretch * factor) if isinstance(part, _Timed) else part
+    """A timed part played ``factor`` times slower (a rest, which has no ``stretch``, stays a rest)."""
+    return replace(part, stretch=part.stretch * factor) if hasattr(part, "stretch") else part
 
 
 class MotionError(RuntimeError):

@@ -16,6 +16,7 @@ pytest.importorskip("pydrake")
 from lazyground import api  # noqa: E402
 from lazyground.cli import main  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
+from lazyground.motion.car_shortcut import driven_lengths  # noqa: E402
 from lazyground.motion.export import read_ros_trajectory, read_trajectory_csv, write_ros_trajectory, write_trajectory  # noqa: E402
 from lazyground.motion.limits import world_limits  # noqa: E402
 from lazyground.motion.trajectory import TimingSettings, time_path  # noqa: E402
@@ -48,6 +49,13 @@ def fetch():
 @pytest.fixture(scope="module")
 def parking():
     return planned("parking_1.yaml", "park", seed=3)
+
+
+def car_space(world):
+    """The bundled car's Reeds-Shepp space (turning radius and rear axle of models/car/robot.yaml)."""
+    from lazyground.robots.car import planning_space
+
+    return planning_space(world.scene, world.space, "reeds-shepp")
 
 
 def assert_valid_trajectory(world, report):
@@ -85,6 +93,25 @@ def test_parking_trajectory_is_valid_and_the_heading_wraps(parking):
     assert limits.velocity.tolist() == [1.5, 1.5, 0.5] and limits.acceleration.tolist() == [1.0, 1.0, 1.0]
     assert doc["raw_path_length"] >= doc["path_length"]
     assert len(doc["trajectory"]["trajectory"]["t"]) == len(doc["trajectory"]["trajectory"]["q"])
+
+
+def test_the_parked_car_drives_along_its_heading_near_its_fastest(parking):
+    """The rear axle never slides sideways, and the motion takes at most 1.5x a lower bound: per gear
+    segment, rest to rest along the driven length at sqrt(2) x the x / y limits (a diagonal heading)."""
+    world, report = parking
+    tr, space = report.motion.trajectory, car_space(world)
+    c, s = np.cos(tr.q[:, 2]), np.sin(tr.q[:, 2])
+    vx, vy = tr.qd[:, 0] - space.offset * s * tr.qd[:, 2], tr.qd[:, 1] + space.offset * c * tr.qd[:, 2]  # rear axle
+    speed = np.hypot(vx, vy)
+    moving = speed > 0.05
+    assert np.max(np.abs(c * vy - s * vx)[moving] / speed[moving]) < 1e-6
+    path, bound = report.result.path, 0.0
+    cuts = [0, *space.cusp_indices(path), len(path) - 1]
+    v, a = np.sqrt(2.0) * 1.5, np.sqrt(2.0) * 1.0
+    for i, j in zip(cuts[:-1], cuts[1:]):
+        d = driven_lengths(space, path[i : j + 1]).sum()
+        bound += d / v + v / a if d > v * v / a else 2.0 * np.sqrt(d / a)
+    assert bound < tr.duration < 1.5 * bound
 
 
 def test_half_speed_takes_twice_as_long(fetch):

@@ -1,0 +1,364 @@
+"""A conservative test that proves configurations collision-free before Drake's checker is asked (#16, #19).
+
+Drake's ``SceneGraphCollisionChecker`` asks FCL for the signed distance of every
+geometry pair it checks: ~40-110 µs per Fetch configuration. Most configurations
+the fine re-checks and shortcuts ask about are far from everything;
+:class:`SphereCertifier` proves that for a whole batch in numpy, and only the
+configurations it cannot prove go to Drake. The checker's answers stay exactly
+Drake's because the test is one-sided:
+
+* Drake calls a configuration colliding when some pair it checks (a collision
+  candidate of SceneGraph, a robot body in it, the bodies not filtered by the
+  checker) has signed distance <= the pair's padding
+  (``SceneGraphCollisionChecker::DoCheckContextConfigCollisionFree``).
+* Here a configuration is certified only when, for every such pair, a *lower
+  bound* of the pair's distance exceeds max(padding, 0) + ``margin``: then Drake's
+  distance exceeds the padding too. ``margin`` (0.1 mm) absorbs Drake's own
+  distance error and the rounding of the two forward kinematics (~1e-15 m).
+* Lower bounds come from supersets (the distance of two sets is at least that of
+  two supersets): geometry whose pose never changes (the environment, robot links
+  welded to the world) and the larger geometry of a robot-robot pair are solids
+  with an exact or enclosing shape (lazyground.drake.solids); the other side of a
+  pair is a cover of spheres enclosing it (a sphere's distance to a solid is its
+  centre's minus its radius).
+* Each pair is tried coarse to fine: bounding sphere against bounding sphere, the
+  moving geometry's bounding sphere against the other solid, then sphere by sphere.
+* Pairs of two never-moving geometries are decided once, by Drake, at
+  construction; a world where one of them collides gets no certifier.
+
+A world with a joint or shape this cannot bound (a planar or floating joint, a
+moving environment body, a mesh it cannot read) gets no certifier
+(:func:`sphere_certifier` returns None) and Drake checks everything.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from lazyground.drake.chain import PRISMATIC, BodyTree, body_tree
+from lazyground.drake.solids import cover, solid, solid_distance, solid_radius
+
+MARGIN = 1e-4  # metres beyond the padding a lower bound must clear
+SLACK = 0.015  # metres a cover's spheres may reach beyond their shape (finer: more spheres)
+ANCHOR_EVERY = 3  # rows of a batch per anchor (see SphereCertifier.certified_free)
+
+
+@dataclass(frozen=True)
+class _Solids:
+    """Solids posed in a parent frame (the world for obstacles, the body for moving geometry)."""
+
+    R: np.ndarray  # (n, 3, 3) R_PG
+    o: np.ndarray  # (n, 3) centre in the parent frame
+    half: np.ndarray  # (n, 3)
+    rounding: np.ndarray  # (n,)
+    cylinder: np.ndarray  # (n,) bool
+    radius: np.ndarray  # (n,) of the enclosing sphere about o
+
+    @staticmethod
+    def of(shapes, X_PG: list[np.ndarray]) -> "_Solids":
+        parts = [solid(s) for s in shapes]
+        R = np.array([X[:3, :3] for X in X_PG]).reshape(-1, 3, 3)
+        o = np.array([X[:3, :3] @ c + X[:3, 3] for X, (c, _, _, _) in zip(X_PG, parts)]).reshape(-1, 3)
+        return _Solids(R, o, np.array([p[1] for p in parts]).reshape(-1, 3), np.array([p[2] for p in parts], float),
+                       np.array([p[3] for p in parts], bool), np.array([solid_radius(*p[1:]) for p in parts], float))
+
+
+@dataclass(frozen=True)
+class _Pairs:
+    """Checked pairs: a moving geometry (its spheres) against another one's solid, and the distance to clear."""
+
+    mover: np.ndarray
+    other: np.ndarray
+    threshold: np.ndarray
+
+
+class SphereCertifier:
+    """Proves batches of plant configurations collision-free for one SceneGraphCollisionChecker (build with :func:`sphere_certifier`).
+
+    Args:
+        tree: forward kinematics of every body with geometry.
+        node: per moving geometry, its body's tree node.
+        solids: per moving geometry, its solid in its body's frame.
+        centers, radii, start: every moving geometry's cover in its body frame; geometry g
+            owns spheres start[g]:start[g + 1].
+        obstacles: the never-moving geometry, in the world frame.
+        env_threshold: (moving geometries, obstacles) the distance to clear; -inf: a pair Drake does not check.
+        self_pairs: moving geometry (its spheres) against another moving geometry's solid.
+        motion_weights: (moving geometries, plant positions): no point of geometry g moves
+            farther than |q' - q| @ motion_weights[g] between q and q'.
+    """
+
+    def __init__(self, tree: BodyTree, node: np.ndarray, solids: _Solids, centers: np.ndarray, radii: np.ndarray,
+                 start: np.ndarray, obstacles: _Solids, env_threshold: np.ndarray, self_pairs: _Pairs,
+                 motion_weights: np.ndarray):
+        self.tree, self._node, self._solids, self._obstacles = tree, node, solids, obstacles
+        self._centers, self._radii, self._start = centers, radii, start
+        self._count = np.diff(start)
+        self._sphere_node = np.repeat(node, self._count)
+        self._env_threshold, self._self = env_threshold, self_pairs
+        self._aabb_centre, self._aabb_half = obstacles.o, _world_half_extents(obstacles)
+        # squared reach of each (moving geometry, obstacle) pair; -1 where Drake does not check the pair
+        reach = env_threshold + solids.radius[:, None]
+        self._env_reach2 = np.where(np.isfinite(reach), np.maximum(reach, 0.0) ** 2, -1.0)
+        self._env_unchecked = np.where(np.isfinite(reach), 0.0, np.inf)
+        self._env_clear_offset = np.where(np.isfinite(reach), reach, -np.inf).max(axis=1, initial=0.0)
+        self.motion_weights = motion_weights
+        self._self_sides = []  # per side of the self pairs: (pair order by geometry, first of each run, its geometry)
+        for side in (self_pairs.mover, self_pairs.other):
+            order = np.argsort(side, kind="stable")
+            owner, first = np.unique(side[order], return_index=True)
+            self._self_sides.append((order, first, owner))
+
+    @property
+    def spheres(self) -> int:
+        return len(self._radii)
+
+    @property
+    def pairs(self) -> int:
+        return int(np.isfinite(self._env_threshold).sum()) + len(self._self.mover)
+
+    def certified_free(self, q_full: np.ndarray) -> np.ndarray:
+        """Per plant position vector (rows of ``q_full``): True only if Drake's checker calls it free.
+
+        Every ``ANCHOR_EVERY``-th row (an anchor) is bounded pair by pair. A row between two
+        anchors is free when, from one of them, none of its moving geometries can have moved
+        (:attr:`motion_weights`) as far as that geometry's clearance there; the other rows are
+        bounded themselves. Consecutive rows of a densely checked path are mostly such neighbours.
+        """
+        q = np.atleast_2d(np.asarray(q_full, float))
+        if len(q) < 2 * ANCHOR_EVERY or not np.all(np.isfinite(self.motion_weights)):
+            return self.clearance(q).min(axis=1) > 0.0
+        anchors = np.arange(0, len(q), ANCHOR_EVERY)
+        clear = self.clearance(q[anchors])
+        run = np.arange(len(q)) // ANCHOR_EVERY  # each row's anchor, and the next one
+        nxt = np.minimum(run + 1, len(anchors) - 1)
+        moved = lambda a: np.abs(q - q[anchors[a]]) @ self.motion_weights.T  # noqa: E731  (rows, geometries)
+        free = np.all(moved(run) < clear[run], axis=1) | np.all(moved(nxt) < clear[nxt], axis=1)
+        free[anchors] = clear.min(axis=1) > 0.0
+        rest = np.flatnonzero(~free)
+        rest = rest[rest % ANCHOR_EVERY != 0]
+        if len(rest):
+            free[rest] = self.clearance(q[rest]).min(axis=1) > 0.0
+        return free
+
+    def clearance(self, q_full: np.ndarray) -> np.ndarray:
+        """Per plant position vector and moving geometry (B, geometries): a lower bound of how far the
+        geometry can move before a checked pair of it comes within its threshold (all > 0: Drake
+        calls the configuration free); a self pair gives each side half, both moving."""
+        q = np.atleast_2d(np.asarray(q_full, float))
+        R, p = self.tree.forward(q)
+        # every moving geometry's solid centre in the world, (B, geometries, 3)
+        centre = np.einsum("bgij,gj->bgi", R[:, self._node], self._solids.o) + p[:, self._node]
+        clear, near = self._near_obstacles(centre)
+        self._finer(R, p, centre, clear, *near, moving=False)
+        if len(self._self.mover):
+            self._finer(R, p, centre, clear, *self._near_each_other(centre, clear), moving=True)
+        return clear
+
+    def _near_obstacles(self, centre: np.ndarray):
+        """(per configuration and geometry: the clearance of the pairs far from the obstacles' world boxes,
+        (b, g, o, threshold) of the other pairs)."""
+        shape = centre.shape[:2] + self._aabb_half.shape[:1]
+        gap2, d = np.zeros(shape), np.empty(shape)  # in place: temporaries of this size cost more than the arithmetic
+        for k in range(3):  # distance from each moving centre to each obstacle's axis-aligned box, squared
+            np.subtract(centre[:, :, k, None], self._aabb_centre[:, k], out=d)
+            np.abs(d, out=d)
+            d -= self._aabb_half[:, k]
+            np.maximum(d, 0.0, out=d)
+            d *= d
+            gap2 += d
+        near = gap2 <= self._env_reach2
+        b, g, o = np.nonzero(near)
+        gap2[near] = np.inf
+        gap2 += self._env_unchecked  # inf for pairs Drake does not check
+        # the nearest far obstacle, less the largest radius + threshold of the geometry's pairs: a lower bound
+        return np.sqrt(gap2.min(axis=2)) - self._env_clear_offset, (b, g, o, self._env_threshold[g, o])
+
+    def _near_each_other(self, centre: np.ndarray, clear: np.ndarray):
+        """(b, g, o, threshold) of the moving pairs whose bounding spheres are within reach; the others
+        lower ``clear`` of both their sides by half their gap."""
+        g, o, threshold = self._self.mover, self._self.other, self._self.threshold
+        v = centre[:, g] - centre[:, o]
+        gap = np.sqrt(np.einsum("bki,bki->bk", v, v)) - self._solids.radius[g] - self._solids.radius[o] - threshold
+        near = gap <= 0.0
+        b, k = np.nonzero(near)
+        gap[near] = np.inf
+        gap /= 2
+        for order, first, owner in self._self_sides:  # each side's pairs in a run: one reduction per geometry
+            clear[:, owner] = np.minimum(clear[:, owner], np.minimum.reduceat(gap[:, order], first, axis=1))
+        return b, g[k], o[k], threshold[k]
+
+    def _finer(self, R, p, centre, clear, b, g, o, threshold, moving: bool) -> None:
+        """Lowers ``clear`` by the pairs (b, g, o): the moving geometry's bounding sphere against the other
+        solid, then, where that comes within ``threshold``, sphere by sphere."""
+        if not len(b):
+            return
+        R_WG, o_W, solids = self._other_pose(R, p, b, o, moving)
+        gap = self._distance(centre[b, g], R_WG, o_W, solids, o) - self._solids.radius[g] - threshold
+        near = gap <= 0.0
+        self._lower(clear, b[~near], g[~near], o[~near], gap[~near], moving)
+        b, g, o, threshold, R_WG, o_W = b[near], g[near], o[near], threshold[near], R_WG[near], o_W[near]
+        row, sphere = _ranges(self._start[g], self._count[g])
+        bs, ns = b[row], self._sphere_node[sphere]
+        c = np.einsum("nij,nj->ni", R[bs, ns], self._centers[sphere]) + p[bs, ns]
+        gap = self._distance(c, R_WG[row], o_W[row], solids, o[row]) - self._radii[sphere] - threshold[row]
+        self._lower(clear, bs, g[row], o[row], gap, moving)
+
+    @staticmethod
+    def _lower(clear, b, g, o, gap, moving: bool) -> None:
+        """clear[b, g] = min(clear[b, g], gap); for a self pair half the gap, on both sides."""
+        flat, n = clear.reshape(-1), clear.shape[1]  # a view: numpy's ufunc.at is fast on one flat index
+        if moving:
+            np.minimum.at(flat, b * n + g, gap / 2)
+            np.minimum.at(flat, b * n + o, gap / 2)
+        else:
+            np.minimum.at(flat, b * n + g, gap)
+
+    def _other_pose(self, R, p, b, o, moving: bool):
+        """World pose (R_WG, centre) of the other side of pairs at configurations b, and its solids."""
+        if not moving:
+            return self._obstacles.R[o], self._obstacles.o[o], self._obstacles
+        s, n = self._solids, self._node[o]
+        return np.einsum("nij,njk->nik", R[b, n], s.R[o]), np.einsum("nij,nj->ni", R[b, n], s.o[o]) + p[b, n], s
+
+    @staticmethod
+    def _distance(points, R_WG, o_W, solids: _Solids, o) -> np.ndarray:
+        """Signed distance from world points to solids ``o`` posed at (R_WG, o_W), one per point."""
+        x = np.einsum("nji,nj->ni", R_WG, points - o_W)
+        return solid_distance(x, solids.half[o], solids.rounding[o], solids.cylinder[o])
+
+
+def _ranges(starts: np.ndarray, counts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For ranges start_i .. start_i + count_i - 1: (the range each index belongs to, the index), concatenated."""
+    owner = np.repeat(np.arange(len(counts)), counts)
+    offset = np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts)
+    return owner, np.repeat(starts, counts) + offset
+
+
+def sphere_certifier(checker, margin: float = MARGIN, slack: float = SLACK) -> SphereCertifier | None:
+    """The certifier of a SceneGraphCollisionChecker, or None when this world cannot be bounded soundly.
+
+    Args:
+        checker: Drake's checker (its robot, filters and paddings are read once; lazyground never changes them).
+        margin: metres beyond a pair's padding a lower bound must clear.
+        slack: metres a cover's spheres may reach beyond their shape.
+
+    Returns:
+        The certifier; None for a joint that is neither revolute, prismatic nor welded, a
+        moving environment body, a shape without a solid, or a pair of never-moving
+        geometries that Drake finds in collision.
+    """
+    plant = checker.plant()
+    inspector = checker.model().scene_graph().model_inspector()
+    geometries = [g for g in inspector.GetAllGeometryIds() if inspector.GetProximityProperties(g) is not None]
+    body = {g: plant.GetBodyFromFrameId(inspector.GetFrameId(g)) for g in geometries}
+    world = plant.world_body().index()
+    try:
+        tree = body_tree(plant, [body[g] for g in geometries if body[g].index() != world])
+    except ValueError:
+        return None
+    node = {b: k for k, b in enumerate(tree.bodies)}
+    fixed = tree.fixed
+    moving = [g for g in geometries if body[g].index() != world and not fixed[node[body[g].index()]]]
+    if any(not checker.IsPartOfRobot(body[g]) for g in moving):
+        return None  # an environment body that moves
+    still = [g for g in geometries if g not in set(moving)]
+    X_BG = {g: inspector.GetPoseInFrame(g).GetAsMatrix4() for g in geometries}
+    try:
+        covers = [cover(inspector.GetShape(g), slack) for g in moving]
+        solids = _Solids.of([inspector.GetShape(g) for g in moving], [X_BG[g] for g in moving])
+        X_W = _fixed_poses(tree, node, plant.num_positions())
+        obstacles = _Solids.of([inspector.GetShape(g) for g in still], [X_W.get(body[g].index(), np.eye(4)) @ X_BG[g] for g in still])
+    except ValueError:
+        return None
+    env, self_pairs, welded = _checked_pairs(checker, inspector, body, moving, still, [len(r) for _, r in covers], margin)
+    if _welded_pair_collides(checker, welded):
+        return None
+    start = np.concatenate([[0], np.cumsum([len(r) for _, r in covers])]).astype(int)
+    centers = np.vstack([c @ X_BG[g][:3, :3].T + X_BG[g][:3, 3] for g, (c, _) in zip(moving, covers)]).reshape(-1, 3)
+    radii = np.concatenate([r for _, r in covers] + [np.zeros(0)])
+    nodes = np.array([node[body[g].index()] for g in moving], int)
+    return SphereCertifier(tree, nodes, solids, centers, radii, start, obstacles, env, self_pairs,
+                           _motion_weights(tree, nodes, solids, plant))
+
+
+def _motion_weights(tree: BodyTree, nodes: np.ndarray, solids: _Solids, plant) -> np.ndarray:
+    """(moving geometries, plant positions): how far (m) a point of each geometry can move per unit of each position.
+
+    A prismatic joint moves points by its own travel; a revolute joint by the angle times
+    their distance from its axis, at most their distance from its frame's origin, bounded by
+    the triangle inequality up the tree (fixed offsets, plus the travel of prismatic joints
+    on the way): a bound for every configuration, so no point of geometry g moves farther than
+    |q' - q| @ weights[g] along the straight line from q to q' (inf: a prismatic joint without limits).
+    """
+    lo, hi = plant.GetPositionLowerLimits(), plant.GetPositionUpperLimits()
+    travel = np.where(tree.kinds == PRISMATIC, np.maximum(np.abs(lo[tree.index]), np.abs(hi[tree.index])), 0.0)
+    weights = np.zeros((len(nodes), plant.num_positions()))
+    for g, k in enumerate(nodes):
+        F = tree.F[k]
+        reach = np.linalg.norm(F[:3, :3] @ solids.o[g] + F[:3, 3]) + solids.radius[g]  # from its slot's origin
+        slot = tree.slot[k]
+        while slot > 0:
+            j = slot - 1
+            weights[g, tree.index[j]] = 1.0 if tree.kinds[j] == PRISMATIC else reach
+            reach += np.linalg.norm(tree.K[j, :3, 3]) + travel[j]
+            slot = tree.parent[j]
+    return weights
+
+
+def _checked_pairs(checker, inspector, body, moving, still, spheres, margin):
+    """The pairs Drake's checker checks, as (env thresholds, self pairs, never-moving pairs (id, id, threshold)).
+
+    A self pair's moving side is the geometry with fewer spheres; the other is taken as a solid.
+    """
+    m_index, s_index = {g: i for i, g in enumerate(moving)}, {g: i for i, g in enumerate(still)}
+    padding = checker.GetPaddingMatrix()
+    env = np.full((len(moving), len(still)), -np.inf)
+    self_pairs, welded = ([], [], []), []
+    for ga, gb in inspector.GetCollisionCandidates():
+        A, B = body[ga], body[gb]
+        if not (checker.IsPartOfRobot(A) or checker.IsPartOfRobot(B)) or checker.IsCollisionFilteredBetween(A, B):
+            continue  # pairs Drake's checker skips
+        threshold = max(padding[int(A.index()), int(B.index())], 0.0) + margin
+        if ga in m_index and gb in m_index:
+            a, b = sorted((m_index[ga], m_index[gb]), key=lambda i: spheres[i])
+            for column, v in zip(self_pairs, (a, b, threshold)):
+                column.append(v)
+        elif ga in m_index or gb in m_index:
+            g, o = (ga, gb) if ga in m_index else (gb, ga)
+            env[m_index[g], s_index[o]] = threshold
+        else:
+            welded.append((ga, gb, threshold))
+    return env, _Pairs(np.array(self_pairs[0], int), np.array(self_pairs[1], int), np.array(self_pairs[2], float)), welded
+
+
+def _world_half_extents(solids: _Solids) -> np.ndarray:
+    """Half extents of each solid's world-axis-aligned box (about its centre)."""
+    A = np.abs(solids.R)
+    box = np.einsum("nij,nj->ni", A, solids.half)
+    axis = solids.R[:, :, 2]  # a cylinder: its caps' extent along the axis, its rims' across
+    cyl = A[:, :, 2] * solids.half[:, 2, None] + solids.half[:, 0, None] * np.sqrt(np.clip(1 - axis ** 2, 0.0, None))
+    return np.where(solids.cylinder[:, None], cyl, box) + solids.rounding[:, None]
+
+
+def _fixed_poses(tree: BodyTree, node: dict, num_positions: int) -> dict:
+    """World poses of the tree's bodies at q = 0 (the never-moving ones' poses at every q), by BodyIndex."""
+    R, p = tree.forward(np.zeros(num_positions))
+    out = {}
+    for b, k in node.items():
+        out[b] = np.eye(4)
+        out[b][:3, :3], out[b][:3, 3] = R[0, k], p[0, k]
+    return out
+
+
+def _welded_pair_collides(checker, pairs) -> bool:
+    """Whether Drake finds any of these pairs (poses that never change) within its threshold."""
+    if not pairs:
+        return False
+    query = checker.model_context().GetQueryObject()
+    close = {}
+    for p in query.ComputeSignedDistancePairwiseClosestPoints(max(t for _, _, t in pairs)):
+        close[p.id_A, p.id_B] = close[p.id_B, p.id_A] = p.distance
+    return any(close.get((a, b), np.inf) <= t for a, b, t in pairs)
