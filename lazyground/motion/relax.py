@@ -33,7 +33,11 @@ def subdivide(space: ConfigSpace, q: list, new: list, pieces: int) -> tuple[list
 
 
 def toward_segment(space: ConfigSpace, a: np.ndarray, x: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """The step from x to the point of the segment a -> b nearest to x (in the space's weighted coordinates)."""
+    """The step from x to the point of the segment a -> b nearest to x (in the space's weighted coordinates).
+
+    For wrapping angles this is the tangent-space projection, not the chord metric's: the caller
+    keeps a move only if the metric says it gains.
+    """
     w2 = space.weights**2
     da, ab = space.difference(x, a), space.difference(a, b)
     den = float(np.dot(w2, ab * ab))
