@@ -6,16 +6,19 @@ arc length), then again from there. Then random shortcuts between two random way
 (OMPL's ``reduceVertices``), between two random points anywhere on the path (OMPL's
 ``shortcutPath``) and partial shortcuts that straighten one coordinate only between two
 points (Geraerts and Overmars, "Creating High-quality Paths for Motion Planning", IJRR
-2007), until ``patience`` attempts in a row gain nothing. The start, the goal and, when the
-goal sample has an approach, the final straight approach segment are kept.
+2007), until ``patience`` attempts in a row gain nothing. Then a few sweeps of vertex
+relaxation (:mod:`lazyground.motion.relax`) pull the waypoints the shortcuts left tight
+between their neighbours, and optionally (``regreedy``) a second greedy pass drops the
+waypoints that no longer bend around anything. The start, the goal and, when the goal sample has an approach,
+the final straight approach segment are kept.
 
 Every new segment is checked at the planner's resolution when it is tried. The greedy
 pass's segments are checked at the fine resolution (``resolution / validation_factor``, as
 every returned path) when chosen: each lies where the path just passes an obstacle, so
 the fine check fails for a few, which are pulled back. The random shortcuts' fine check is
 deferred to the segments of the final path that are new, because most accepted shortcuts
-are later cut again. Segments that are pieces of the input path were checked finely by the
-planner. When a new segment fails the fine check, the newest earlier version of the path
+are later cut again; so is that of the relaxed segments. Segments that are pieces of the input
+path were checked finely by the planner. When a new segment fails the fine check, the newest earlier version of the path
 whose new segments all pass is returned (the greedy pass's, at worst).
 """
 
@@ -29,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from lazyground.motion.curve import segment_lengths
+from lazyground.motion.relax import relax
 from lazyground.planning.problem import ValidityChecker
 from lazyground.planning.space import ConfigSpace
 
@@ -48,7 +52,9 @@ class ShortcutStatus(str, enum.Enum):
 class ShortcutSettings:
     """How hard to shorten. The random shortcuts stop at whichever comes first: ``max_iterations``
     attempts, ``time_budget`` seconds (from the start of the shortening) or ``patience`` attempts in
-    a row without gain; the greedy pass before them makes a few dozen edge checks and is not cut short."""
+    a row without gain; the greedy pass before them makes a few dozen edge checks and is not cut short.
+    The relaxation after them makes at most ``relax_sweeps`` sweeps, none started after the deadline;
+    ``regreedy`` then pulls the string once more (not started after the deadline either)."""
 
     enabled: bool = True
     max_iterations: int = 100  # random shortcut attempts after the greedy pass
@@ -57,13 +63,18 @@ class ShortcutSettings:
     partial_fraction: float = 0.2  # share of attempts that straighten one coordinate only
     greedy: bool = True  # first go straight to the farthest visible point of the path, again and again
     patience: int = 10  # stop after this many attempts in a row gain less than ``min_gain`` of the length
-    min_gain: float = 1e-3
+    min_gain: float = 1e-3  # ... and a relaxation move must gain as much
+    relax_pieces: int = 8  # relaxation first cuts segments to at most 1/relax_pieces of the length (0: no relaxation)
+    relax_sweeps: int = 1  # sweeps over the waypoints (it stops earlier when a sweep moves none)
+    relax_halvings: int = 1  # a blocked move is tried again at 1/2, ... 1/2**relax_halvings of its step
+    regreedy: bool = False  # after shortcuts or relaxation changed the path, a second greedy pass (fewer waypoints, ~+60 % checks)
 
     def __post_init__(self):
         shares = (self.vertex_fraction, self.partial_fraction)
-        if self.max_iterations < 0 or not self.time_budget >= 0 or min(shares) < 0 or sum(shares) > 1 or self.patience < 1:
-            raise ValueError("shortcut settings: max_iterations >= 0, time_budget >= 0, shares >= 0 summing to <= 1, "
-                             "patience >= 1")
+        counts = (self.max_iterations, self.relax_pieces, self.relax_sweeps, self.relax_halvings)
+        if min(counts) < 0 or not self.time_budget >= 0 or min(shares) < 0 or sum(shares) > 1 or self.patience < 1:
+            raise ValueError("shortcut settings: max_iterations, relax_pieces, relax_sweeps, relax_halvings >= 0, "
+                             "time_budget >= 0, shares >= 0 summing to <= 1, patience >= 1")
 
 
 @dataclass(frozen=True)
@@ -147,6 +158,9 @@ def shortcut_path(
     if settings.greedy and len(versions[0].q) > 2:
         versions[0] = _drop_redundant(space, _greedy(space, edge, fine.segment_free, versions[0]))
     iterations = _random_shortcuts(space, edge, versions, settings, rng, deadline)
+    _relax(space, edge, versions, settings, deadline)
+    if settings.regreedy and len(versions) > 1 and len(versions[-1].q) > 2 and time.perf_counter() < deadline:
+        versions.append(_drop_redundant(space, _greedy(space, edge, fine.segment_free, versions[-1])))
     backtracked = False
     while (bad := fine.first_failure(versions[-1])) is not None:
         del versions[bad:]  # back to the newest version made before the failing segment
@@ -183,6 +197,17 @@ def _random_shortcuts(space: ConfigSpace, edge, versions: list, settings: Shortc
             work = _drop_redundant(space, new)
             versions.append(work)
     return iterations
+
+
+def _relax(space: ConfigSpace, edge, versions: list, settings: ShortcutSettings, deadline: float) -> None:
+    """Relaxation sweeps over the newest version (lazyground.motion.relax); each sweep that moves a waypoint
+    appends a version, so a segment failing the fine check costs only the sweeps from its own on."""
+    work = versions[-1]
+    if not settings.relax_pieces or len(work.q) < 3:
+        return
+    sweeps = relax(space, edge, work.q, work.new, len(versions), settings.relax_pieces, settings.relax_sweeps,
+                   settings.relax_halvings, settings.min_gain * work.cum[-1], lambda: time.perf_counter() < deadline)
+    versions.extend(_drop_redundant(space, _Path(space, q, new)) for q, new in sweeps)
 
 
 class _FineCheck:
@@ -230,16 +255,17 @@ def _greedy(space: ConfigSpace, edge, fine_free, path: _Path) -> _Path:
     The farthest point is found by binary search over arc length (points inside segments
     included) with ``edge``, the planner's check. It lies where the segment just passes an
     obstacle, so it is then checked at the fine resolution (``fine_free``) and, failing that,
-    pulled back towards the current point. Every segment of the result is therefore checked
-    at the fine resolution: its flags are all 0 (later shortcuts build on it; none backtracks past it).
+    pulled back towards the current point. Every segment it makes is therefore checked at the
+    fine resolution (flag 0: none backtracks past it); the pieces of the input's segments it
+    follows keep their flags (all 0 on the first pass, over the planner's path).
     """
     q, cum = path.q, path.cum
-    out = [q[0]]
+    out, flags = [q[0]], []
     cur, k = q[0], 0  # the current point lies on segment k (q[k] -> q[k + 1])
     while k < len(q) - 2:
         if edge(cur, q[-1]) and fine_free(cur, q[-1]):
             out.append(q[-1])
-            return _Path(space, out, [0] * (len(out) - 1))
+            return _Path(space, out, flags + [0])
         lo, hi = cum[k + 1], cum[-1]  # q[k + 1] is visible (along the segment), the goal is not
         for _ in range(GREEDY_SPLITS):
             mid = 0.5 * (lo + hi)
@@ -256,12 +282,14 @@ def _greedy(space: ConfigSpace, edge, fine_free, path: _Path) -> _Path:
         else:
             lo = cum[k + 1]
         if lo <= cum[k + 1]:  # only the next waypoint: follow the segment to it
+            flags.append(path.new[k])
             cur, k = q[k + 1], k + 1
         else:
+            flags.append(0)
             k, cur = _point_at(space, q, cum, lo)
         out.append(cur)
     out.append(q[-1])  # the rest of the last segment
-    return _Path(space, out, [0] * (len(out) - 1))
+    return _Path(space, out, flags + [path.new[-1]])
 
 
 def _try_vertices(edge, path: _Path, rng, born: int) -> _Path | None:
