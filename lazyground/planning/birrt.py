@@ -17,7 +17,9 @@ drawn is the root of its own goal subtree. The two sides take turns:
 
 The trees meet when a greedy connection reaches the other tree's new node; the
 path is the start branch, the goal branch back to its root sample, and that
-sample's approach segment.
+sample's approach segment. The start tree's edges are checked lazily (its new
+node and the edge's midpoint when it grows, the whole edge when a path uses it);
+the goal trees' edges in full as they grow (see :func:`_step`).
 """
 
 from __future__ import annotations
@@ -25,8 +27,11 @@ from __future__ import annotations
 import numpy as np
 
 from lazyground.planning.problem import PlanResult, PlanStatus
-from lazyground.planning.search import Search, edge_free
+from lazyground.planning.search import Search, edge_free, path_is_valid
 from lazyground.planning.tree import Tree
+
+# Where along a start-tree edge a step checks a configuration besides its end (the rest waits for _join).
+LAZY_PROBES = (0.5,)
 
 
 def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
@@ -90,11 +95,29 @@ def _credit(s: Search, gi: int, closest: dict[int, float], gap: float) -> None:
 
 def _extend(s: Search, tree: Tree, near: int, q_towards: np.ndarray) -> int:
     """One step from node ``near`` towards q_towards: the new node, or -1 if blocked."""
-    q_near = tree.nodes[near]
-    q_new, _ = s.space.steer(q_near, q_towards, s.settings.step_size)
-    if not edge_free(s.space, s.checker, q_near, q_new, s.settings.resolution):
+    q_new, _ = s.space.steer(tree.nodes[near], q_towards, s.settings.step_size)
+    return _step(s, tree, near, q_new)
+
+
+def _step(s: Search, tree: Tree, parent: int, q_new: np.ndarray) -> int:
+    """Add q_new below ``parent`` if the step is free, else -1.
+
+    Goal-tree steps get the full edge check. Start-tree steps are checked lazily: q_new
+    and the edge's midpoint only, the rest of the edge once a path uses it (:func:`_join`).
+    The start tree grows in the open, where most steps are free and most of its nodes never
+    lie on the path: on fetch_boxes_3 its full edge checks were over half the collision time,
+    and checking them lazily cut the median planning time by about a third (40 seeds, #19).
+    Goal trees grow out of shelf slots, where a lazy edge often crosses a board: checking
+    every tree lazily doubled the iterations there. The midpoint probe catches some of the
+    start tree's crossings before they cost a failed join.
+    """
+    q_parent = tree.nodes[parent]
+    if tree is not s.trees[0]:
+        return tree.add(q_new, parent) if edge_free(s.space, s.checker, q_parent, q_new, s.settings.resolution) else -1
+    probes = [q_new] + [s.space.interpolate(q_parent, q_new, t) for t in LAZY_PROBES]
+    if not all(s.checker.config_free(q) for q in probes):
         return -1
-    return tree.add(q_new, near)
+    return tree.add(q_new, parent, checked=False)
 
 
 def _connect(s: Search, tree: Tree, q_target: np.ndarray) -> tuple[int, bool]:
@@ -104,9 +127,10 @@ def _connect(s: Search, tree: Tree, q_target: np.ndarray) -> tuple[int, bool]:
         return -1, False
     while s.time_left():
         q_new, reached = s.space.steer(tree.nodes[node], q_target, s.settings.step_size)
-        if not edge_free(s.space, s.checker, tree.nodes[node], q_new, s.settings.resolution):
+        new = _step(s, tree, node, q_new)
+        if new < 0:
             return node, False
-        node = tree.add(q_new, node)
+        node = new
         if reached:
             return node, True
     return node, False
@@ -115,6 +139,7 @@ def _connect(s: Search, tree: Tree, q_target: np.ndarray) -> tuple[int, bool]:
 def _join(s: Search, ts: Tree, a: int, tg: Tree, b: int) -> PlanResult | None:
     """The path through start node a and goal node b (the same configuration), if it passes the fine re-check.
 
+    The start-tree edges not checked yet are checked first, at the planner's resolution.
     A segment that fails cuts the branch below it in whichever tree it lies;
     a failing approach segment retires its goal sample.
     """
@@ -124,10 +149,12 @@ def _join(s: Search, ts: Tree, a: int, tg: Tree, b: int) -> PlanResult | None:
     path = s.with_approach(
         np.array([ts.nodes[i] for i in start_side] + [tg.nodes[j] for j in goal_side[1:]]), gi
     )
-    bad = s.first_invalid_segment(path)
+    n_start = len(start_side) - 1  # segments on the start side
+    bad = _check_start_edges(s, ts, start_side, path)
+    if bad < 0:
+        bad = s.first_invalid_segment(path)
     if bad < 0:
         return s.result(PlanStatus.SOLVED, "", path, gi)
-    n_start = len(start_side) - 1  # segments on the start side
     if bad < n_start:
         ts.prune(start_side[bad + 1])
     elif bad < n_start + len(goal_side) - 1:
@@ -136,3 +163,17 @@ def _join(s: Search, ts: Tree, a: int, tg: Tree, b: int) -> PlanResult | None:
         tg.prune(goal_side[-1])
         s.dead.add(gi)
     return None
+
+
+def _check_start_edges(s: Search, ts: Tree, start_side: list[int], path: np.ndarray) -> int:
+    """Check the start-tree edges of ``path`` not checked yet (one batch): the first bad segment, or -1.
+
+    Segment k of the path ends at start-tree node start_side[k + 1]; those before a bad one count as checked.
+    """
+    todo = [k for k in range(len(start_side) - 1) if not ts.checked[start_side[k + 1]]]
+    bad = path_is_valid(s.space, s.checker, path, s.settings.resolution, todo) if todo else -1
+    for k in todo:
+        if 0 <= bad <= k:
+            break
+        ts.checked[start_side[k + 1]] = True
+    return bad

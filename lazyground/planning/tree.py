@@ -22,6 +22,7 @@ class Tree:
         self.labels: list[int] = []
         self.goal_biased: list[bool] = []
         self.alive: list[bool] = []
+        self.checked: list[bool] = []  # whether the edge from the node's parent has been collision-checked
         self.nn = NearestNeighbors(space.embed_dim)
         self._per_label = per_label
         self._label_nn: dict[int, tuple[NearestNeighbors, list[int]]] = {}
@@ -31,17 +32,19 @@ class Tree:
         return len(self.nodes)
 
     def add_root(self, q: np.ndarray, label: int = -1) -> int:
-        return self._add(np.asarray(q, float), -1, label, False)
+        return self._add(np.asarray(q, float), -1, label, False, True)
 
-    def add(self, q: np.ndarray, parent: int, goal_biased: bool = False) -> int:
-        return self._add(q, parent, self.labels[parent], goal_biased)
+    def add(self, q: np.ndarray, parent: int, goal_biased: bool = False, checked: bool = True) -> int:
+        """Add node q below ``parent``; ``checked=False`` leaves the edge between them to be checked later."""
+        return self._add(q, parent, self.labels[parent], goal_biased, checked)
 
-    def _add(self, q: np.ndarray, parent: int, label: int, goal_biased: bool) -> int:
+    def _add(self, q: np.ndarray, parent: int, label: int, goal_biased: bool, checked: bool) -> int:
         self.nodes.append(q)
         self.parents.append(parent)
         self.labels.append(label)
         self.goal_biased.append(goal_biased)
         self.alive.append(True)
+        self.checked.append(checked)
         x = self.space.embed(q)
         i = self.nn.add(x)
         if self._per_label:

@@ -103,3 +103,20 @@ def test_keep_tree_without_any_valid_goal_is_a_planning_failure():
     assert res.status is PlanStatus.NO_VALID_GOAL
     nodes, parents, goal_side = res.tree
     assert nodes.shape == (1, SPACE.dim) and parents.tolist() == [-1] and goal_side.dtype == bool
+
+
+def test_start_tree_edges_are_checked_when_a_path_uses_them(monkeypatch):
+    # A wall 0.1 thick, a fifth of a step: start-tree nodes and midpoints, checked alone, land on both sides
+    # of it, and their edges cross it. The join checks those edges at the planner's resolution and
+    # cuts the branch, so no path through the wall ever reaches the fine re-check.
+    import lazyground.planning.birrt as birrt
+
+    verdicts = []
+    check = birrt.path_is_valid
+    monkeypatch.setattr(birrt, "path_is_valid", lambda *a: verdicts.append(check(*a)) or verdicts[-1])
+    walls = [(4.0, 0.0, 4.1, 8.0), (4.0, 9.0, 4.1, 10.0)]
+    for seed in range(10):
+        world, res = run([REACHABLE], seed, walls=walls)
+        assert res.solved and res.invalid_paths_rejected == 0, (seed, res.message)
+        assert path_is_valid(SPACE, world, res.path, BI.resolution) == -1
+    assert any(v >= 0 for v in verdicts), "no start-tree edge crossed the wall: the test lost its point"
