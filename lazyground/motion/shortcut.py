@@ -187,7 +187,7 @@ def _random_shortcuts(space: ConfigSpace, edge, versions: list, settings: Shortc
         draw = rng.random()
         born = len(versions)
         # an attempt that cannot gain ``min_gain`` of the length is dropped before its check
-        gain = settings.min_gain * work.cum[-1] if SKIP_SMALL else 1e-12
+        gain = settings.min_gain * work.cum[-1]
         if draw < settings.vertex_fraction:
             new = _try_vertices(edge, work, rng, born, gain)
         elif draw < settings.vertex_fraction + settings.partial_fraction:
@@ -247,7 +247,6 @@ class _FineCheck:
         return {key for key, ok in self.known.items() if not ok}
 
 
-SKIP_SMALL = True
 GREEDY_SPLITS = 6  # halvings of the search for the farthest visible point (1/64 of the rest of the path)
 GREEDY_BACKOFFS = 3  # pull-backs of a farthest point whose segment fails the fine check
 
