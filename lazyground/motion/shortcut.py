@@ -32,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from lazyground.motion.curve import segment_lengths
+from lazyground.motion.edges import bisected_edge
 from lazyground.motion.relax import relax
 from lazyground.planning.problem import ValidityChecker
 from lazyground.planning.space import ConfigSpace
@@ -154,7 +155,7 @@ def shortcut_path(
     versions = [_drop_redundant(space, _Path(space, list(body), [0] * (len(body) - 1)))]
     deadline = t0 + settings.time_budget
     fine = _FineCheck(space, checker, resolution / validation_factor)
-    edge = lambda a, b: checker.edge_free(a, b, resolution)  # noqa: E731
+    edge = bisected_edge(space, checker, resolution)
     if settings.greedy and len(versions[0].q) > 2:
         versions[0] = _drop_redundant(space, _greedy(space, edge, fine.segment_free, versions[0]))
     iterations = _random_shortcuts(space, edge, versions, settings, rng, deadline)
@@ -185,12 +186,14 @@ def _random_shortcuts(space: ConfigSpace, edge, versions: list, settings: Shortc
         idle += 1
         draw = rng.random()
         born = len(versions)
+        # an attempt that cannot gain ``min_gain`` of the length is dropped before its check
+        gain = settings.min_gain * work.cum[-1]
         if draw < settings.vertex_fraction:
-            new = _try_vertices(edge, work, rng, born)
+            new = _try_vertices(edge, work, rng, born, gain)
         elif draw < settings.vertex_fraction + settings.partial_fraction:
-            new = _try_partial(space, edge, work, rng, born)
+            new = _try_partial(space, edge, work, rng, born, gain)
         else:
-            new = _try_full(space, edge, work, rng, born)
+            new = _try_full(space, edge, work, rng, born, gain)
         if new is not None:
             if work.cum[-1] - new.cum[-1] >= settings.min_gain * work.cum[-1]:
                 idle = 0
@@ -292,10 +295,12 @@ def _greedy(space: ConfigSpace, edge, fine_free, path: _Path) -> _Path:
     return _Path(space, out, flags + [path.new[-1]])
 
 
-def _try_vertices(edge, path: _Path, rng, born: int) -> _Path | None:
-    """Replace the waypoints between two random waypoints i < j - 1 by one straight segment."""
+def _try_vertices(edge, path: _Path, rng, born: int, min_gain: float) -> _Path | None:
+    """Replace the waypoints between two random waypoints i < j - 1 by one straight segment (if it gains ``min_gain``)."""
     i, j = np.sort(rng.choice(len(path.q), 2, replace=False))
-    if j - i < 2 or not edge(path.q[i], path.q[j]):
+    if j - i < 2 or path.cum[j] - path.cum[i] - path.space.distance(path.q[i], path.q[j]) < min_gain:
+        return None
+    if not edge(path.q[i], path.q[j]):
         return None
     return path.cut(i, j, [], [born])
 
@@ -319,22 +324,22 @@ def _two_points(space: ConfigSpace, path: _Path, rng: np.random.Generator):
     return None if ka == kb else (ka, a, kb, b, cum)
 
 
-def _try_full(space, edge, path: _Path, rng, born: int) -> _Path | None:
-    """Replace the stretch between two random points by one straight segment, if free and shorter."""
+def _try_full(space, edge, path: _Path, rng, born: int, min_gain: float) -> _Path | None:
+    """Replace the stretch between two random points by one straight segment, if free and ``min_gain`` shorter."""
     picked = _two_points(space, path, rng)
     if picked is None:
         return None
     ka, a, kb, b, cum = picked
     q = path.q
     old = space.distance(a, q[ka + 1]) + (cum[kb] - cum[ka + 1]) + space.distance(q[kb], b)
-    if space.distance(a, b) >= old - 1e-12 or not edge(a, b):
+    if space.distance(a, b) > old - min_gain or not edge(a, b):
         return None
     # q[ka] -> a and b -> q[kb + 1] are pieces of old segments: as new as those were
     return path.cut(ka, kb + 1, [a, b], [path.new[ka], born, path.new[kb]])
 
 
-def _try_partial(space, edge, path: _Path, rng, born: int) -> _Path | None:
-    """Straighten one coordinate between two random points (the others follow the path), if free and shorter."""
+def _try_partial(space, edge, path: _Path, rng, born: int, min_gain: float) -> _Path | None:
+    """Straighten one coordinate between two random points (the others follow the path), if free and ``min_gain`` shorter."""
     picked = _two_points(space, path, rng)
     if picked is None:
         return None
@@ -349,7 +354,7 @@ def _try_partial(space, edge, path: _Path, rng, born: int) -> _Path | None:
     new[:, j] = a[j] + along / along[-1] * diff_j
     if space.wrap[j]:
         new = space.interpolate(new, new, 0.0)  # interpolate wraps angles
-    if space.path_length(new) >= along[-1] - 1e-12:
+    if space.path_length(new) > along[-1] - min_gain:
         return None
     if not all(edge(p, q) for p, q in zip(new[:-1], new[1:])):
         return None

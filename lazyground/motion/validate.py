@@ -70,16 +70,19 @@ def first_colliding_join(space: ConfigSpace, checker: ValidityChecker, q: np.nda
 
 
 def _dense(space: ConfigSpace, q: np.ndarray, resolution: float) -> tuple[np.ndarray, np.ndarray]:
-    """Configurations along the joins of q at most ``resolution`` apart, and the sample each follows
-    (as ``space.discretize`` join by join, vectorised: a trajectory has thousands of joins)."""
-    # Samples closer together than the resolution (a robot speeding up or slowing down) need not
-    # all be checked: keep one per ``resolution`` of arc length, and discretize what lies between.
+    """Configurations along the joins of q at most ``resolution`` apart, and the sample each follows.
+
+    The points lie evenly along the polyline through all samples (its first and last included), at
+    most ``resolution`` of arc length apart; a trajectory's samples are often less than ``resolution``
+    apart (a robot speeding up or slowing down) or just over it, and discretizing join by join would
+    check up to twice as many configurations for the same spacing.
+    """
     e = space.embed(q)
     s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(e, axis=0), axis=1))])
-    keep = np.unique(np.concatenate([np.searchsorted(s, np.arange(0.0, s[-1], resolution), side="right") - 1, [0, len(q) - 1]]))
-    a, b = q[keep[:-1]], q[keep[1:]]
-    n = np.maximum(1, np.ceil(np.linalg.norm(e[keep[1:]] - e[keep[:-1]], axis=1) / resolution).astype(int))
-    pair = np.repeat(np.arange(len(n)), n)
-    t = (np.arange(len(pair)) - np.repeat(np.cumsum(n) - n, n) + 1) / n[pair]  # 1/n .. 1 along each join
-    points = a[pair] + t[:, None] * space.difference(a, b)[pair]
-    return np.vstack([q[:1], points]), np.concatenate([[0], keep[:-1][pair]])
+    t = np.linspace(0.0, s[-1], max(1, int(np.ceil(s[-1] / resolution))) + 1)
+    k = np.clip(np.searchsorted(s, t, side="right") - 1, 0, len(q) - 2)
+    span = s[k + 1] - s[k]
+    frac = np.divide(t - s[k], span, out=np.zeros_like(t), where=span > 0)
+    points = q[k] + np.clip(frac, 0.0, 1.0)[:, None] * space.difference(q[k], q[k + 1])
+    points[-1] = q[-1]
+    return points, k

@@ -13,17 +13,24 @@ SETTINGS = PlannerSettings(step_size=0.5, time_limit=30.0, goal_bias=0.1)
 FINE = SETTINGS.resolution / SETTINGS.validation_factor
 
 
-def test_the_dense_join_points_are_the_discretized_joins():
+def test_the_dense_join_points_follow_every_join_at_most_a_resolution_apart():
     space = ConfigSpace(("x", "theta"), np.array([0.0, -np.pi]), np.array([10.0, np.pi]), wrap=np.array([False, True]))
     q = np.cumsum(np.random.default_rng(0).normal(0.0, 0.02, (300, 2)), axis=0) + [5.0, 3.0]
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(space.embed(q), axis=0), axis=1))])
     for resolution in (0.005, 0.03):
         dense, owner = _dense(space, q, resolution)
-        # the reference: one discretize per join, the joins thinned to one per resolution of arc length
-        s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(space.embed(q), axis=0), axis=1))])
-        keep = np.unique(np.concatenate([np.searchsorted(s, np.arange(0.0, s[-1], resolution), side="right") - 1, [0, len(q) - 1]]))
-        ref = np.vstack([space.discretize(q[a], q[b], resolution, skip_first=k > 0) for k, (a, b) in enumerate(zip(keep[:-1], keep[1:]))])
-        assert np.abs(space.difference(ref, space.interpolate(dense, dense, 0.0))).max() < 1e-12
-        assert np.all(np.diff(owner) >= 0) and owner[0] == 0 and owner[-1] == keep[-2]
+        assert np.array_equal(dense[0], q[0]) and np.array_equal(dense[-1], q[-1])
+        assert np.all(np.diff(owner) >= 0) and owner[0] == 0 and owner[-1] == len(q) - 2
+        # every point lies on the join of its owner, at arc length t along the polyline
+        a, b = q[owner], q[owner + 1]
+        d = space.difference(a, b)
+        frac = np.einsum("ij,ij->i", dense - a, d) / np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
+        assert np.abs(a + frac[:, None] * d - dense).max() < 1e-12 and frac.min() > -1e-9 and frac.max() < 1 + 1e-9
+        t = s[owner] + frac * (s[owner + 1] - s[owner])
+        steps = np.diff(t)
+        assert steps.min() > 0 and steps.max() <= resolution * (1 + 1e-9)
+        # as few as that spacing needs (discretizing join by join checked up to twice as many)
+        assert len(dense) == int(np.ceil(s[-1] / resolution)) + 1
 
 
 def test_the_join_check_finds_the_first_crossing_join():

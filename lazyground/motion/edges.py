@@ -1,0 +1,52 @@
+"""Edge checks ordered to find collisions early (no Drake).
+
+A shortcut's straight segment that collides mostly does so well inside it, where it leaves the
+path it cuts, while its ends lie on that (checked) path. Drake's ``CheckEdgeCollisionFree`` steps
+from one end to the other; here the same kind of configurations, ``resolution`` apart, are checked
+by bisection (the middle first, then the middles of the halves, ...), one small batch per level,
+the ends last, stopping at the first colliding level. A free edge has every configuration checked.
+"""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+from lazyground.planning.problem import ValidityChecker
+from lazyground.planning.space import ConfigSpace
+
+
+# Configurations probed level by level (1 + 2 + 4) before the rest goes in one batch. Replaying the
+# shortcut edges of 6 plans per scene (CPU time): probing all levels one by one cost ~20 % more than
+# Drake's check on free edges; 7 probes then one batch found most collisions as early.
+PROBES = 7
+
+
+@functools.lru_cache(maxsize=512)
+def bisection_levels(n: int) -> tuple[np.ndarray, ...]:
+    """Indices 0 .. n-1 in batches: the middle of 1 .. n-2, the middles of both halves, ...; then 0 and n-1."""
+    levels, spans = [], [(1, n - 2)] if n > 2 else []
+    while spans:
+        mids = [(lo + hi) // 2 for lo, hi in spans]
+        levels.append(np.array(mids))
+        spans = [s for lo, hi in spans for s in ((lo, (lo + hi) // 2 - 1), ((lo + hi) // 2 + 1, hi)) if s[0] <= s[1]]
+    levels.append(np.array([0, n - 1]) if n > 1 else np.array([0]))
+    return tuple(levels)
+
+
+def bisected_edge(space: ConfigSpace, checker: ValidityChecker, resolution: float):
+    """``edge(a, b) -> bool``: a -> b free at ``resolution``, checked in bisection order with early exit."""
+
+    def edge(a: np.ndarray, b: np.ndarray) -> bool:
+        qs = space.discretize(a, b, resolution)
+        levels, probed = bisection_levels(len(qs)), 0
+        for k, level in enumerate(levels):
+            if probed >= PROBES:  # the rest in one batch: a free edge costs about what Drake's check does
+                return bool(np.all(checker.configs_free(qs[np.concatenate(levels[k:])])))
+            if not np.all(checker.configs_free(qs[level])):
+                return False
+            probed += len(level)
+        return True
+
+    return edge

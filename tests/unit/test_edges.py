@@ -1,0 +1,43 @@
+"""Bisection-ordered edge checks (lazyground.motion.edges) on the toy world (no Drake)."""
+
+import numpy as np
+
+from lazyground.motion.edges import bisected_edge, bisection_levels
+from tests.unit.toy import SPACE, BoxWorld
+
+
+def test_the_levels_hold_every_index_once_middle_first_ends_last():
+    for n in range(1, 200):
+        levels = bisection_levels(n)
+        assert sorted(int(i) for level in levels for i in level) == list(range(n))
+        assert sorted(levels[-1].tolist()) == ([0] if n == 1 else [0, n - 1])
+        if n > 2:
+            assert levels[0].tolist() == [(n - 1) // 2]
+
+
+class _Counting(BoxWorld):
+    def __init__(self, boxes):
+        super().__init__(boxes)
+        self.asked = 0
+
+    def configs_free(self, qs):
+        self.asked += len(np.atleast_2d(qs))
+        return super().configs_free(qs)
+
+
+def test_it_answers_as_the_sequential_check_and_stops_early_on_a_collision():
+    world = _Counting([(4.9, 4.0, 5.1, 6.0)])  # a post in the middle of the edges across it
+    edge = bisected_edge(SPACE, world, 0.05)
+    rng = np.random.default_rng(0)
+    for _ in range(200):
+        a, b = rng.uniform(1.0, 9.0, 2), rng.uniform(1.0, 9.0, 2)
+        if not (world.config_free(a) and world.config_free(b)):
+            continue
+        qs = SPACE.discretize(a, b, 0.05)
+        assert edge(a, b) == bool(np.all(world.configs_free(qs)))
+    world.asked = 0
+    a, b = np.array([1.0, 5.0]), np.array([9.0, 5.0])  # 161 configurations, the middle one colliding
+    assert not edge(a, b) and world.asked == 1
+    world.asked = 0
+    a, b = np.array([1.0, 2.0]), np.array([9.0, 2.0])  # free: every configuration checked once
+    assert edge(a, b) and world.asked == len(SPACE.discretize(a, b, 0.05))
