@@ -4,8 +4,8 @@ RRT-Connect (Kuffner and LaValle 2000) with a goal *forest*: every goal sample
 drawn is the root of its own goal subtree. The two sides take turns:
 
 * **start turn** — the start tree takes one step towards a uniform sample; the
-  goal forest then steps greedily towards the new node from its nearest node
-  (whichever goal sample that subtree grows from);
+  goal forest then steps greedily towards the new node from its nearest nodes
+  (whichever goal samples their subtrees grow from);
 * **goal turn** — with probability ``goal_bias`` the goal-selection strategy
   picks a goal sample (the top of the reward-penalty max-heap, or round-robin,
   or at random) and *that* sample's subtree takes one step towards a uniform
@@ -15,9 +15,10 @@ drawn is the root of its own goal subtree. The two sides take turns:
   uniform sample, as in RRT-Connect, and nobody is credited. Either way the
   start tree then steps greedily towards the new goal node.
 
-The trees meet when a greedy connection reaches the other tree's new node; the
-path is the start branch, the goal branch back to its root sample, and that
-sample's approach segment. The start tree's edges are checked lazily (its new
+The trees meet when a greedy connection reaches the other tree's new node (it
+starts from each of the tree's few nearest nodes in turn); the path is the start
+branch, the goal branch back to its root sample, and that sample's approach
+segment. The start tree's edges are checked lazily (its new
 node and the edge's midpoint when it grows, the whole edge when a path uses it);
 the goal trees' edges in full as they grow (see :func:`_step`).
 """
@@ -32,6 +33,12 @@ from lazyground.planning.tree import Tree
 
 # Where along a start-tree edge a step checks a configuration besides its end (the rest waits for _join).
 LAZY_PROBES = (0.5,)
+# A greedy connection starts from the tree's nearest node, then from its next nearest ones, until one
+# reaches the new node: most connections stop at their first step (the straight line from the nearest
+# node is blocked), and another nearby node often sees the new one. Trying 3 instead of 1 cut the mean
+# iterations by 19-25 % on fetch_cans_1 / cans_2 / boxes_3 and the mean CPU time by 5-7 % (120 seeds
+# each, paired, interleaved; #19). Trying them from distinct goal trees first was no better.
+CONNECT_FROM = 3
 
 
 def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
@@ -121,10 +128,21 @@ def _step(s: Search, tree: Tree, parent: int, q_new: np.ndarray) -> int:
 
 
 def _connect(s: Search, tree: Tree, q_target: np.ndarray) -> tuple[int, bool]:
-    """Greedy steps from the tree's nearest node towards q_target: (last node, reached)."""
-    node = tree.nearest(q_target)
-    if node < 0:
-        return -1, False
+    """Greedy steps towards q_target from each of the tree's :data:`CONNECT_FROM` nearest nodes in turn,
+    until one reaches it: (that node, True), else (the last node nearest q_target, False)."""
+    best, best_gap = -1, np.inf
+    for node in tree.nearest_k(q_target, CONNECT_FROM):
+        last, reached = _greedy(s, tree, node, q_target)
+        if reached:
+            return last, True
+        gap = s.space.distance(tree.nodes[last], q_target)
+        if gap < best_gap:
+            best, best_gap = last, gap
+    return best, False
+
+
+def _greedy(s: Search, tree: Tree, node: int, q_target: np.ndarray) -> tuple[int, bool]:
+    """Greedy steps from ``node`` towards q_target: (last node, reached)."""
     while s.time_left():
         q_new, reached = s.space.steer(tree.nodes[node], q_target, s.settings.step_size)
         new = _step(s, tree, node, q_new)
