@@ -203,11 +203,52 @@ class MotionError(RuntimeError):
     """No valid timed trajectory could be made (the caller reports it; the path stays valid)."""
 
 
-STRAIGHT = 1.0 / 3.0  # a blend that spaces a straight segment's control points evenly (constant dq/du)
+@dataclass(frozen=True)
+class _TimedLine:
+    """The fastest rest-to-rest motion along the straight line a -> a + d, played ``stretch`` times slower.
+
+    Along a line every coordinate moves in proportion, q = a + s d, so the limits bound s' by
+    V = min v_j / |d_j| and s'' by A = min a_j / |d_j|: the time-optimal s(t) accelerates at A, cruises
+    at V (when it reaches it) and brakes at A, exactly (no grid to refine, no overshoot to slow down);
+    TOPP-RA found the same timing (within its grid) at ~2 ms per line.
+    """
+
+    a: np.ndarray
+    d: np.ndarray
+    V: float
+    A: float
+    stretch: float = 1.0
+
+    @property
+    def _ramp(self) -> float:
+        """Seconds of speeding up (and of slowing down)."""
+        return min(self.V / self.A, 1.0 / np.sqrt(self.A))
+
+    @property
+    def duration(self) -> float:
+        ramp = self._ramp
+        return (2.0 * ramp + (1.0 - self.A * ramp**2) / self.V) * self.stretch
+
+    def evaluate(self, t: np.ndarray):
+        """q, qd, qdd at times t in [0, duration]."""
+        ramp, total = self._ramp, self.duration / self.stretch
+        tau = np.clip(np.asarray(t, float) / self.stretch, 0.0, total)
+        top = self.A * ramp  # the cruising speed (V, or the peak of a triangle)
+        up, down = tau < ramp, tau > total - ramp
+        left = total - tau
+        s = np.where(up, 0.5 * self.A * tau**2,
+                     np.where(down, 1.0 - 0.5 * self.A * left**2, 0.5 * self.A * ramp**2 + top * (tau - ramp)))
+        sd = np.where(up, self.A * tau, np.where(down, self.A * left, top)) / self.stretch
+        sdd = np.where(up, self.A, np.where(down, -self.A, 0.0)) / self.stretch**2
+        return self.a + s[:, None] * self.d, sd[:, None] * self.d, sdd[:, None] * self.d
 
 
-def _straight(a: np.ndarray, b: np.ndarray) -> Curve:
-    return blended_curve(np.array([a, b]), STRAIGHT)
+def _time_line(a: np.ndarray, b: np.ndarray, limits: Limits) -> _TimedLine:
+    d = b - a
+    moving = np.abs(d) > 0
+    V = float(np.min(limits.velocity[moving] / np.abs(d[moving])))
+    A = float(np.min(limits.acceleration[moving] / np.abs(d[moving])))
+    return _TimedLine(a, d, V, A)
 
 
 def _time_piece(space, piece: np.ndarray, blend: float | None, resolution: float, limits: Limits, dt: float, grid: int):
@@ -215,7 +256,7 @@ def _time_piece(space, piece: np.ndarray, blend: float | None, resolution: float
     or TOPP-RA failing on the curve) straight segments with a stop at every waypoint."""
     if len(piece) == 2 or blend is None:
         label = "straight" if len(piece) == 2 else "stops at waypoints"
-        return [_time_curve(_straight(a, b), limits, dt, grid) for a, b in zip(piece[:-1], piece[1:]) if np.any(a != b)], label
+        return [_time_line(a, b, limits) for a, b in zip(piece[:-1], piece[1:]) if np.any(a != b)], label
     keep = _merge_close(space, piece, resolution)
     try:
         return [_time_curve(blended_curve(piece[keep], blend), limits, dt, grid)], f"blend {blend:g}"

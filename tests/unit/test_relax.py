@@ -12,7 +12,8 @@ from tests.unit.toy import SPACE, WALLS, BoxWorld
 
 SETTINGS = PlannerSettings(step_size=0.5, time_limit=30.0, goal_bias=0.1)
 FINE = SETTINGS.resolution / SETTINGS.validation_factor
-RELAX_ONLY = ShortcutSettings(greedy=False, max_iterations=0, time_budget=1e9, relax_pieces=16, relax_sweeps=10)  # no clock, no shortcut
+RELAX_ONLY = ShortcutSettings(greedy=False, max_iterations=0, time_budget=1e9, relax_pieces=16, relax_sweeps=10,
+                              min_gain=1e-3)  # no clock, no shortcut; moves down to 0.1 % of the length
 # through the wall's gap at y in [8, 9], with detours on both sides
 BENT = np.array([[1.0, 1.0], [1.5, 6.0], [3.0, 9.5], [4.5, 8.5], [6.0, 9.5], [6.0, 5.0], [8.0, 4.5], [8.0, 5.5]])
 
