@@ -135,8 +135,11 @@ def _step(s: Search, tree: Tree, parent: int, q_new: np.ndarray) -> int:
 def _connect(s: Search, tree: Tree, q_target: np.ndarray) -> tuple[int, bool]:
     """Greedy steps towards q_target from each of the tree's :data:`CONNECT_FROM` nearest nodes in turn,
     until one reaches it: (that node, True), else (the last node nearest q_target, False)."""
+    nodes = tree.nearest_k(q_target, CONNECT_FROM)
+    if len(nodes) <= 1:  # (a car's tree gives only its nearest node: no distances to compare)
+        return _greedy(s, tree, nodes[0], q_target) if nodes else (-1, False)
     best, best_gap = -1, np.inf
-    for node in tree.nearest_k(q_target, CONNECT_FROM):
+    for node in nodes:
         last, reached = _greedy(s, tree, node, q_target)
         if reached:
             return last, True
