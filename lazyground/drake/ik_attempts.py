@@ -41,6 +41,7 @@ class Prepared:
     answers: np.ndarray | None = None  # (restarts, plant positions)
     ok: np.ndarray | None = None  # (restarts,) the answer meets the pose
     k: int | None = None  # the restart whose answer is within the limits and free (the grasp)
+    unchecked: bool = False  # solved, its grasp not checked yet (BatchAttempts.check)
     pre: dict = field(default_factory=dict)  # restart k -> (pre-pose answers (scales, positions), ok (scales,))
     seconds: float = 0.0  # its share of the batch's time
 
@@ -80,6 +81,8 @@ class BatchAttempts:
             self.queue.clear()  # the round robin moved on differently (a region given up): solve afresh
         if not self.queue:
             self.queue.extend(self.prepare(self.source.plan(before, look_ahead), rng))
+        if self.queue[0].unchecked:
+            self.check(self.queue)
         return self.queue.popleft()
 
     def prepare(self, plan: list[tuple[int, int]], rng: np.random.Generator) -> list[Prepared]:
@@ -93,11 +96,8 @@ class BatchAttempts:
         """
         s = self.source.settings
         t0 = time.perf_counter()
-        items = []
-        for j, after in plan:
-            region = self.source.regions[j]
-            v = region.sample(rng)
-            items.append(Prepared(j, after, v, self.source._frames[region.id], self.source._target_matrix(region, v)))
+        items = [Prepared(j, after, v, self.source._frames[self.source.regions[j].id], X)
+                 for (j, after), v, X in zip(plan, *self._targets([j for j, _ in plan], rng))]
         for frame in dict.fromkeys(it.frame for it in items):
             group = [it for it in items if it.frame == frame]
             for it, reason in zip(group, self.source.screen(frame, np.array([it.X_WT for it in group]))):
@@ -110,6 +110,24 @@ class BatchAttempts:
             if group:
                 self._solve_group(frame, group, rng)
         return items
+
+    def _targets(self, regions: list[int], rng: np.random.Generator) -> tuple[list, list]:
+        """Draws v and target poses X_WT for attempts on ``regions`` (in order), as one ``region.sample(rng)``
+        each would draw them (the same stream), computed region by region."""
+        source = self.source
+        dims = {len(source.regions[j].lower) for j in regions}
+        if len(dims) != 1:  # regions of different dimensions: one draw at a time
+            V = [source.regions[j].sample(rng) for j in regions]
+            return V, [source._target_matrix(source.regions[j], v) for j, v in zip(regions, V)]
+        U = rng.random((len(regions), dims.pop()))
+        V, X = [None] * len(regions), [None] * len(regions)
+        at = np.asarray(regions)
+        for j in dict.fromkeys(regions):
+            rows = np.flatnonzero(at == j)
+            Vj = source.regions[j].from_unit(U[rows])
+            for i, v, x in zip(rows, Vj, source.target_matrices(source.regions[j], Vj)):
+                V[i], X[i] = v, x
+        return V, X
 
     def _solve_group(self, frame: str, group: list[Prepared], rng: np.random.Generator) -> None:
         s, problem = self.source.settings, self.problems[frame]
@@ -128,19 +146,35 @@ class BatchAttempts:
             it.seconds += share
             for c in (self.source.counters, self.source.region_counters[it.j]):
                 c.add(s.restarts, int(it.ok.sum()), share)
-        # The grasp checks of every attempt here, then the pre-poses of the free grasps in one batch: solving
-        # the pre-poses of every first answer ahead wasted them on the ~85 % that collide (fetch_boxes_3).
-        for it in group:
+            it.unchecked = True
+
+    def check(self, items) -> None:
+        """Grasp checks of the unchecked attempts among ``items`` (in order), until the draw has half as many
+        free grasps again as it still wants; then the pre-poses of those free grasps in one batch.
+
+        Solving the pre-poses of every first answer ahead wasted them on the ~85 % that collide
+        (fetch_boxes_3); checking every grasp of a look-ahead wasted the checks the draw never used.
+        Neither draws from the rng: the samples are those of checking every attempt at once.
+        """
+        want = math.ceil(1.5 * max(self.source._wanted, 1))
+        free = []
+        for it in items:
+            if len(free) >= want:
+                break
+            if not it.unchecked:
+                continue
             t = time.perf_counter()
-            it.k, _, reason = self.source.grasp(it, lambda k, it=it: it.answers[k] if it.ok[k] else None, math.inf)
-            it.reason = reason
+            it.k, _, it.reason = self.source.grasp(it, lambda k, it=it: it.answers[k] if it.ok[k] else None, math.inf)
+            it.unchecked = False
             it.seconds += time.perf_counter() - t
-        t1 = time.perf_counter()
-        free = [(it, it.k) for it in group if it.k is not None and any(self.source.regions[it.j].approach)]
-        if free:
-            self.solve_pre_poses(free)
-            share = (time.perf_counter() - t1) / len(free)
-            for it, _ in free:
+            if it.k is not None and any(self.source.regions[it.j].approach):
+                free.append((it, it.k))
+        for frame in dict.fromkeys(it.frame for it, _ in free):
+            todo = [(it, k) for it, k in free if it.frame == frame]
+            t1 = time.perf_counter()
+            self.solve_pre_poses(todo)
+            share = (time.perf_counter() - t1) / len(todo)
+            for it, _ in todo:
                 it.seconds += share
 
     def _starts(self, frame: str, group: list[Prepared], rng: np.random.Generator) -> np.ndarray:

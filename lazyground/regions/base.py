@@ -85,15 +85,20 @@ class GoalRegion:
 
     def sample(self, rng: np.random.Generator) -> np.ndarray:
         """A uniform draw in the bounds (angles wrap where listed)."""
+        return self.from_unit(rng.random(len(self.lower)))
+
+    def from_unit(self, u: np.ndarray) -> np.ndarray:
+        """The points of the bounds for uniform draws ``u`` in [0, 1) (a vector, or one per row):
+        :meth:`sample` is ``from_unit(rng.random(dim))``, so rows of one ``rng.random((n, dim))`` are n samples."""
         lo, hi = np.asarray(self.lower, float), np.asarray(self.upper, float)
         span = hi - lo
         for i in self.wrap:
             if span[i] < 0:  # a wrapped interval such as [3.0, -3.0]
                 span[i] += 2 * np.pi
-        v = lo + rng.random(len(lo)) * span
+        v = lo + np.asarray(u, float) * span
         if self.wrap:
             idx = list(self.wrap)
-            v[idx] = wrap_angle(v[idx])
+            v[..., idx] = wrap_angle(v[..., idx])
         return v
 
     def contains(self, v: np.ndarray, tol: float = 1e-6) -> bool:
