@@ -3,11 +3,12 @@
 With the ``batch`` solver the source plans its attempts in round-robin order ahead
 of the draw; :class:`BatchAttempts` draws their targets, screens them (reach, the
 hand alone in collision), solves every restart of every attempt in one
-damped-least-squares batch (:mod:`lazyground.drake.batch_ik`), checks each attempt's
-grasp (its first answer within the limits and free), then solves the pre-poses of
-the free grasps in a second, warm-started batch. Only the approach checks wait for
-the draw; prepared attempts a draw did not use wait in a queue for the next draw
-with the same generator.
+damped-least-squares batch (:mod:`lazyground.drake.batch_ik`). When the draw comes
+to them it checks their grasps (each attempt's first answer within the limits and
+free) in order, as far as the samples it still wants, then solves the pre-poses of
+those free grasps in a second, warm-started batch; the approach checks wait for the
+attempt itself. Prepared attempts a draw did not use wait in a queue for the next
+draw with the same generator.
 """
 
 from __future__ import annotations
