@@ -79,7 +79,7 @@ class IKSettings:
     reach_margin: float = 0.08  # m, distance to the nearest sampled wrist point that still counts
     hand_check: bool = True  # reject targets where the hand alone collides, whatever the arm (drake/hand_probe.py)
     warm_start: bool = False  # first restart from the region's last valid solution (one IK branch)
-    reach_starts: int = 256  # batch solver: starts drawn among this many reach-map arms nearest the target (0: uniform)
+    reach_starts: int = 256  # batch solver: starts drawn among about this many reach-map arms nearest the target (0: uniform)
 
 
 DEFAULT_IK_SETTINGS = IKSettings()
