@@ -35,7 +35,7 @@ from lazyground.drake.batch_ik import ITERATIONS as BATCH_ITERATIONS
 from lazyground.drake.hand_probe import hand_probe
 from lazyground.drake.ik_attempts import APPROACH_SCALES, BatchAttempts, Prepared, problem_for_frame
 from lazyground.drake.reach import reach_map
-from lazyground.geometry import Pose, rpy_to_matrices
+from lazyground.geometry import Pose, rpy_to_matrices, wrap_angle
 from lazyground.goals import RoundRobinGoalSource, register_goal_source
 from lazyground.planning.problem import GoalSample
 from lazyground.regions import PlacementRegion, PoseRegion, WorkspaceRegion
@@ -158,6 +158,9 @@ class IKGoalSource(RoundRobinGoalSource):
             T = np.eye(4)
             T[:3, 3] = r.approach
             self._factors[r.id] = (r.X_WR.matrix(), r.X_SE.matrix() @ X_ET, (np.linalg.inv(X_ET) @ T @ X_ET)[:3, 3])
+        # per region, stacked for drawing many targets at once (target_poses): X_WR, X_ST and the unit map
+        self._index = {r.id: j for j, r in enumerate(self.regions)}
+        self._stacked = [np.array(a) for a in zip(*(self._factors[r.id][:2] + r.unit_map() for r in self.regions))]
         self.world = world
         self.settings = settings
         self.counters = IKCounters()
@@ -202,16 +205,25 @@ class IKGoalSource(RoundRobinGoalSource):
 
     def _target_matrix(self, region: PoseRegion, v: np.ndarray) -> np.ndarray:
         """X_WT (4x4) of the robot frame for a draw ``v``: X_WR · X_RS(v) · X_ST, with X_ST from the region and robot."""
-        return self.target_matrices(region, np.asarray(v, float)[None])[0]
+        return self.target_poses(np.array([self._index[region.id]]), np.asarray(v, float)[None])[0]
 
-    def target_matrices(self, region: PoseRegion, V: np.ndarray) -> np.ndarray:
-        """:meth:`_target_matrix` of draws ``V`` (N, 6) at once, (N, 4, 4)."""
-        X_WR, X_ST, _ = self._factors[region.id]
+    def target_poses(self, regions: np.ndarray, V: np.ndarray) -> np.ndarray:
+        """:meth:`_target_matrix` of draws ``V`` (N, 6) of regions ``regions`` (N,) (indices) at once, (N, 4, 4)."""
+        X_WR, X_ST = self._stacked[0][regions], self._stacked[1][regions]
         X_RS = np.zeros((len(V), 4, 4))
         X_RS[:, :3, :3] = rpy_to_matrices(V[:, 3:6])
         X_RS[:, :3, 3] = V[:, :3]
         X_RS[:, 3, 3] = 1.0
         return X_WR @ X_RS @ X_ST
+
+    def draw_targets(self, regions: list[int], rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+        """Draws v (N, 6) and target poses X_WT (N, 4, 4) for attempts on ``regions`` (indices, in order): the
+        draws one ``self.regions[j].sample(rng)`` each would make, in one ``rng.random((N, 6))``."""
+        j = np.asarray(regions, int)
+        lo, span, wrapped = (a[j] for a in self._stacked[2:])
+        V = lo + rng.random(lo.shape) * span
+        V = np.where(wrapped, wrap_angle(V), V)
+        return V, self.target_poses(j, V)
 
     def _approach_shift(self, region: PoseRegion, scale: float) -> np.ndarray:
         """The pre-pose of a target X_WT is X_WT times this: ``scale`` x the approach, in the robot frame's axes."""

@@ -98,7 +98,7 @@ class BatchAttempts:
         s = self.source.settings
         t0 = time.perf_counter()
         items = [Prepared(j, after, v, self.source._frames[self.source.regions[j].id], X)
-                 for (j, after), v, X in zip(plan, *self._targets([j for j, _ in plan], rng))]
+                 for (j, after), v, X in zip(plan, *self.source.draw_targets([j for j, _ in plan], rng))]
         for frame in dict.fromkeys(it.frame for it in items):
             group = [it for it in items if it.frame == frame]
             for it, reason in zip(group, self.source.screen(frame, np.array([it.X_WT for it in group]))):
@@ -111,24 +111,6 @@ class BatchAttempts:
             if group:
                 self._solve_group(frame, group, rng)
         return items
-
-    def _targets(self, regions: list[int], rng: np.random.Generator) -> tuple[list, list]:
-        """Draws v and target poses X_WT for attempts on ``regions`` (in order), as one ``region.sample(rng)``
-        each would draw them (the same stream), computed region by region."""
-        source = self.source
-        dims = {len(source.regions[j].lower) for j in regions}
-        if len(dims) != 1:  # regions of different dimensions: one draw at a time
-            V = [source.regions[j].sample(rng) for j in regions]
-            return V, [source._target_matrix(source.regions[j], v) for j, v in zip(regions, V)]
-        U = rng.random((len(regions), dims.pop()))
-        V, X = [None] * len(regions), [None] * len(regions)
-        at = np.asarray(regions)
-        for j in dict.fromkeys(regions):
-            rows = np.flatnonzero(at == j)
-            Vj = source.regions[j].from_unit(U[rows])
-            for i, v, x in zip(rows, Vj, source.target_matrices(source.regions[j], Vj)):
-                V[i], X[i] = v, x
-        return V, X
 
     def _solve_group(self, frame: str, group: list[Prepared], rng: np.random.Generator) -> None:
         s, problem = self.source.settings, self.problems[frame]
