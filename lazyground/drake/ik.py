@@ -356,7 +356,7 @@ class IKGoalSource(RoundRobinGoalSource):
             yield from super().attempts(plan, rng, deadline)
             return
         for i, (j, after) in enumerate(plan):
-            item = self._batch.take(j, after, plan[i - 1][1] if i else self._next, rng, self._look_ahead(len(plan) - i))
+            item = self._batch.take(j, after, plan[i - 1][1] if i else self._next, rng, lambda i=i: self._look_ahead(len(plan) - i))
             a0 = time.perf_counter()
             sample, reason = self._finish(item, deadline)
             self._wanted -= sample is not None

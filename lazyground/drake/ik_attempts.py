@@ -17,6 +17,7 @@ import math
 import time
 from collections import deque
 from dataclasses import dataclass, field
+from typing import Callable
 
 import numpy as np
 
@@ -69,11 +70,12 @@ class BatchAttempts:
         self.queue: deque[Prepared] = deque()
         self.rng: np.random.Generator | None = None
 
-    def take(self, j: int, after: int, before: int, rng: np.random.Generator, look_ahead: int) -> Prepared:
+    def take(self, j: int, after: int, before: int, rng: np.random.Generator, look_ahead: Callable[[], int]) -> Prepared:
         """The prepared attempt on region ``j`` at round-robin counter ``before`` (``after`` once made).
 
         From the queue when it holds that attempt for this generator; otherwise the queue is
-        dropped and the next ``look_ahead`` attempts from ``before`` are prepared.
+        dropped and the next ``look_ahead()`` attempts from ``before`` are prepared (asked only then:
+        it sums every region's statistics).
         """
         if rng is not self.rng:  # answers drawn from another generator are not this draw's
             self.queue.clear()
@@ -81,7 +83,7 @@ class BatchAttempts:
         if self.queue and (self.queue[0].j, self.queue[0].after) != (j, after):
             self.queue.clear()  # the round robin moved on differently (a region given up): solve afresh
         if not self.queue:
-            self.queue.extend(self.prepare(self.source.plan(before, look_ahead), rng))
+            self.queue.extend(self.prepare(self.source.plan(before, look_ahead()), rng))
         if self.queue[0].unchecked:
             self.check(self.queue)
         return self.queue.popleft()
