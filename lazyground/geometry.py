@@ -26,6 +26,17 @@ def rpy_to_matrix(rpy) -> np.ndarray:
     )
 
 
+def rpy_to_matrices(rpy: np.ndarray) -> np.ndarray:
+    """Rotation matrices (N, 3, 3) of rows (N, 3) of extrinsic roll-pitch-yaw angles (:func:`rpy_to_matrix` for many)."""
+    c, s = np.cos(rpy).T, np.sin(rpy).T
+    (cr, cp, cy), (sr, sp, sy) = c, s
+    R = np.empty((len(rpy), 3, 3))
+    R[:, 0, 0], R[:, 0, 1], R[:, 0, 2] = cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr
+    R[:, 1, 0], R[:, 1, 1], R[:, 1, 2] = sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr
+    R[:, 2, 0], R[:, 2, 1], R[:, 2, 2] = -sp, cp * sr, cp * cr
+    return R
+
+
 def matrix_to_rpy(R: np.ndarray) -> np.ndarray:
     """Roll-pitch-yaw of a rotation matrix (pitch in [-pi/2, pi/2])."""
     pitch = math.atan2(-R[2, 0], math.hypot(R[0, 0], R[1, 0]))

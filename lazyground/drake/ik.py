@@ -35,7 +35,7 @@ from lazyground.drake.batch_ik import ITERATIONS as BATCH_ITERATIONS
 from lazyground.drake.hand_probe import hand_probe
 from lazyground.drake.ik_attempts import APPROACH_SCALES, BatchAttempts, Prepared, problem_for_frame
 from lazyground.drake.reach import reach_map
-from lazyground.geometry import Pose, rpy_to_matrix
+from lazyground.geometry import Pose, rpy_to_matrices, wrap_angle
 from lazyground.goals import RoundRobinGoalSource, register_goal_source
 from lazyground.planning.problem import GoalSample
 from lazyground.regions import PlacementRegion, PoseRegion, WorkspaceRegion
@@ -79,7 +79,7 @@ class IKSettings:
     reach_margin: float = 0.08  # m, distance to the nearest sampled wrist point that still counts
     hand_check: bool = True  # reject targets where the hand alone collides, whatever the arm (drake/hand_probe.py)
     warm_start: bool = False  # first restart from the region's last valid solution (one IK branch)
-    reach_starts: int = 256  # batch solver: starts drawn among this many reach-map arms nearest the target (0: uniform)
+    reach_starts: int = 256  # batch solver: starts drawn among about this many reach-map arms nearest the target (0: uniform)
 
 
 DEFAULT_IK_SETTINGS = IKSettings()
@@ -158,6 +158,9 @@ class IKGoalSource(RoundRobinGoalSource):
             T = np.eye(4)
             T[:3, 3] = r.approach
             self._factors[r.id] = (r.X_WR.matrix(), r.X_SE.matrix() @ X_ET, (np.linalg.inv(X_ET) @ T @ X_ET)[:3, 3])
+        # per region, stacked for drawing many targets at once (target_poses): X_WR, X_ST and the unit map
+        self._index = {r.id: j for j, r in enumerate(self.regions)}
+        self._stacked = [np.array(a) for a in zip(*(self._factors[r.id][:2] + r.unit_map() for r in self.regions))]
         self.world = world
         self.settings = settings
         self.counters = IKCounters()
@@ -202,11 +205,25 @@ class IKGoalSource(RoundRobinGoalSource):
 
     def _target_matrix(self, region: PoseRegion, v: np.ndarray) -> np.ndarray:
         """X_WT (4x4) of the robot frame for a draw ``v``: X_WR · X_RS(v) · X_ST, with X_ST from the region and robot."""
-        X_WR, X_ST, _ = self._factors[region.id]
-        X_RS = np.eye(4)
-        X_RS[:3, :3] = rpy_to_matrix(v[3:6])
-        X_RS[:3, 3] = v[:3]
+        return self.target_poses(np.array([self._index[region.id]]), np.asarray(v, float)[None])[0]
+
+    def target_poses(self, regions: np.ndarray, V: np.ndarray) -> np.ndarray:
+        """:meth:`_target_matrix` of draws ``V`` (N, 6) of regions ``regions`` (N,) (indices) at once, (N, 4, 4)."""
+        X_WR, X_ST = self._stacked[0][regions], self._stacked[1][regions]
+        X_RS = np.zeros((len(V), 4, 4))
+        X_RS[:, :3, :3] = rpy_to_matrices(V[:, 3:6])
+        X_RS[:, :3, 3] = V[:, :3]
+        X_RS[:, 3, 3] = 1.0
         return X_WR @ X_RS @ X_ST
+
+    def draw_targets(self, regions: list[int], rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+        """Draws v (N, 6) and target poses X_WT (N, 4, 4) for attempts on ``regions`` (indices, in order): the
+        draws one ``self.regions[j].sample(rng)`` each would make, in one ``rng.random((N, 6))``."""
+        j = np.asarray(regions, int)
+        lo, span, wrapped = (a[j] for a in self._stacked[2:])
+        V = lo + rng.random(lo.shape) * span
+        V = np.where(wrapped, wrap_angle(V), V)
+        return V, self.target_poses(j, V)
 
     def _approach_shift(self, region: PoseRegion, scale: float) -> np.ndarray:
         """The pre-pose of a target X_WT is X_WT times this: ``scale`` x the approach, in the robot frame's axes."""
@@ -263,7 +280,9 @@ class IKGoalSource(RoundRobinGoalSource):
         if self._batch is not None:
             if self._stop(deadline) <= time.perf_counter():  # the stop first: a zero budget is spent at once
                 return None, "time"
-            return self._finish(self._batch.prepare([(j, -1)], rng)[0], deadline)
+            items = self._batch.prepare([(j, -1)], rng)
+            self._batch.check(items)
+            return self._finish(items[0], deadline)
         region = self.regions[j]
         v = region.sample(rng)
         frame, X_WT = self.target_pose_for(region, v)
@@ -337,7 +356,7 @@ class IKGoalSource(RoundRobinGoalSource):
             yield from super().attempts(plan, rng, deadline)
             return
         for i, (j, after) in enumerate(plan):
-            item = self._batch.take(j, after, plan[i - 1][1] if i else self._next, rng, self._look_ahead(len(plan) - i))
+            item = self._batch.take(j, after, plan[i - 1][1] if i else self._next, rng, lambda i=i: self._look_ahead(len(plan) - i))
             a0 = time.perf_counter()
             sample, reason = self._finish(item, deadline)
             self._wanted -= sample is not None
@@ -345,15 +364,19 @@ class IKGoalSource(RoundRobinGoalSource):
 
     def _look_ahead(self, left: int) -> int:
         """How many attempts to solve at once: enough for the samples the draw still wants at the
-        success rate so far (prior 1 in 4), half as many again, within [LOOK_AHEAD_MIN, batch_attempts],
+        success rate so far (prior 1 in 8), half as many again, within [LOOK_AHEAD_MIN, batch_attempts],
         and never more than the ``left`` attempts the draw's budget still allows.
 
         Bigger batches cost less per solve (one iteration's numpy overhead is shared), but what a
         plan never draws is wasted: a fixed 64 left ~1/3 of the solves unused on fetch_cans_1, and
-        a look-ahead past the draw's budget was solved and grasp-checked for a draw that may never come.
+        a look-ahead past the draw's budget was solved for a draw that may never come. The prior
+        errs on the large side: an attempt solved in vain costs only its rows of the batch (grasp
+        checks and pre-poses wait for the draw, BatchAttempts.check), one too few a second batch of
+        ~15 iterations. With 1 in 4, fetch_boxes_3 (~1 in 12) solved its first draw in two batches
+        (CPU ms per goal sample 5.6 against 4.6 with 1 in 8, seeds 20-79; /tmp/notes/ik6.md).
         """
         valid, attempts = sum(st.valid for st in self.stats), sum(st.attempts for st in self.stats)
-        rate = (valid + 1) / (attempts + 4)
+        rate = (valid + 1) / (attempts + 8)
         need = math.ceil(1.5 * max(self._wanted, 1) / rate)
         return int(min(max(need, LOOK_AHEAD_MIN), max(self.settings.batch_attempts, 1), max(left, LOOK_AHEAD_MIN)))
 

@@ -3,11 +3,12 @@
 With the ``batch`` solver the source plans its attempts in round-robin order ahead
 of the draw; :class:`BatchAttempts` draws their targets, screens them (reach, the
 hand alone in collision), solves every restart of every attempt in one
-damped-least-squares batch (:mod:`lazyground.drake.batch_ik`), checks each attempt's
-grasp (its first answer within the limits and free), then solves the pre-poses of
-the free grasps in a second, warm-started batch. Only the approach checks wait for
-the draw; prepared attempts a draw did not use wait in a queue for the next draw
-with the same generator.
+damped-least-squares batch (:mod:`lazyground.drake.batch_ik`). When the draw comes
+to them it checks their grasps (each attempt's first answer within the limits and
+free) in order, as far as the samples it still wants, then solves the pre-poses of
+those free grasps in a second, warm-started batch; the approach checks wait for the
+attempt itself. Prepared attempts a draw did not use wait in a queue for the next
+draw with the same generator.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ import math
 import time
 from collections import deque
 from dataclasses import dataclass, field
+from typing import Callable
 
 import numpy as np
 
@@ -41,6 +43,7 @@ class Prepared:
     answers: np.ndarray | None = None  # (restarts, plant positions)
     ok: np.ndarray | None = None  # (restarts,) the answer meets the pose
     k: int | None = None  # the restart whose answer is within the limits and free (the grasp)
+    unchecked: bool = False  # solved, its grasp not checked yet (BatchAttempts.check)
     pre: dict = field(default_factory=dict)  # restart k -> (pre-pose answers (scales, positions), ok (scales,))
     seconds: float = 0.0  # its share of the batch's time
 
@@ -67,11 +70,12 @@ class BatchAttempts:
         self.queue: deque[Prepared] = deque()
         self.rng: np.random.Generator | None = None
 
-    def take(self, j: int, after: int, before: int, rng: np.random.Generator, look_ahead: int) -> Prepared:
+    def take(self, j: int, after: int, before: int, rng: np.random.Generator, look_ahead: Callable[[], int]) -> Prepared:
         """The prepared attempt on region ``j`` at round-robin counter ``before`` (``after`` once made).
 
         From the queue when it holds that attempt for this generator; otherwise the queue is
-        dropped and the next ``look_ahead`` attempts from ``before`` are prepared.
+        dropped and the next ``look_ahead()`` attempts from ``before`` are prepared (asked only then:
+        it sums every region's statistics).
         """
         if rng is not self.rng:  # answers drawn from another generator are not this draw's
             self.queue.clear()
@@ -79,7 +83,9 @@ class BatchAttempts:
         if self.queue and (self.queue[0].j, self.queue[0].after) != (j, after):
             self.queue.clear()  # the round robin moved on differently (a region given up): solve afresh
         if not self.queue:
-            self.queue.extend(self.prepare(self.source.plan(before, look_ahead), rng))
+            self.queue.extend(self.prepare(self.source.plan(before, look_ahead()), rng))
+        if self.queue[0].unchecked:
+            self.check(self.queue)
         return self.queue.popleft()
 
     def prepare(self, plan: list[tuple[int, int]], rng: np.random.Generator) -> list[Prepared]:
@@ -93,11 +99,8 @@ class BatchAttempts:
         """
         s = self.source.settings
         t0 = time.perf_counter()
-        items = []
-        for j, after in plan:
-            region = self.source.regions[j]
-            v = region.sample(rng)
-            items.append(Prepared(j, after, v, self.source._frames[region.id], self.source._target_matrix(region, v)))
+        items = [Prepared(j, after, v, self.source._frames[self.source.regions[j].id], X)
+                 for (j, after), v, X in zip(plan, *self.source.draw_targets([j for j, _ in plan], rng))]
         for frame in dict.fromkeys(it.frame for it in items):
             group = [it for it in items if it.frame == frame]
             for it, reason in zip(group, self.source.screen(frame, np.array([it.X_WT for it in group]))):
@@ -128,30 +131,47 @@ class BatchAttempts:
             it.seconds += share
             for c in (self.source.counters, self.source.region_counters[it.j]):
                 c.add(s.restarts, int(it.ok.sum()), share)
-        # The grasp checks of every attempt here, then the pre-poses of the free grasps in one batch: solving
-        # the pre-poses of every first answer ahead wasted them on the ~85 % that collide (fetch_boxes_3).
-        for it in group:
+            it.unchecked = True
+
+    def check(self, items) -> None:
+        """Grasp checks of the unchecked attempts among ``items`` (in order), until the draw has half as many
+        free grasps again as it still wants; then the pre-poses of those free grasps in one batch.
+
+        Solving the pre-poses of every first answer ahead wasted them on the ~85 % that collide
+        (fetch_boxes_3); checking every grasp of a look-ahead wasted the checks the draw never used.
+        Neither draws from the rng: the samples are those of checking every attempt at once.
+        """
+        want = math.ceil(1.5 * max(self.source._wanted, 1))
+        free = []
+        for it in items:
+            if len(free) >= want:
+                break
+            if not it.unchecked:
+                continue
             t = time.perf_counter()
-            it.k, _, reason = self.source.grasp(it, lambda k, it=it: it.answers[k] if it.ok[k] else None, math.inf)
-            it.reason = reason
+            it.k, _, it.reason = self.source.grasp(it, lambda k, it=it: it.answers[k] if it.ok[k] else None, math.inf)
+            it.unchecked = False
             it.seconds += time.perf_counter() - t
-        t1 = time.perf_counter()
-        free = [(it, it.k) for it in group if it.k is not None and any(self.source.regions[it.j].approach)]
-        if free:
-            self.solve_pre_poses(free)
-            share = (time.perf_counter() - t1) / len(free)
-            for it, _ in free:
+            if it.k is not None and any(self.source.regions[it.j].approach):
+                free.append((it, it.k))
+        for frame in dict.fromkeys(it.frame for it, _ in free):
+            todo = [(it, k) for it, k in free if it.frame == frame]
+            t1 = time.perf_counter()
+            self.solve_pre_poses(todo)
+            share = (time.perf_counter() - t1) / len(todo)
+            for it, _ in todo:
                 it.seconds += share
 
     def _starts(self, frame: str, group: list[Prepared], rng: np.random.Generator) -> np.ndarray:
         """``restarts`` starting configurations (full positions) per attempt, attempt by attempt.
 
-        With ``reach_starts`` = K, distinct random picks among the K reach-map configurations whose
-        wrist points lie nearest the target's: random arms, already near the pose, so a batch
+        With ``reach_starts`` = K, distinct random picks among the reach-map configurations whose
+        wrist points lie nearest the target's, about the K nearest (:meth:`ReachMap.near_configs`
+        picks among the K / 4 nearest of every fourth): random arms, already near the pose, so a batch
         converges in fewer iterations (fetch_boxes_3's screened grasp targets, K = 256: 96 % within
         10 iterations, 99.3 % within 15; uniform random starts 85 % and 98 %); K = 0: uniform ones.
         A small K costs spread: K = 16 put a region's samples on few branches (median distance to
-        the nearest other sample 0.67 rad; 256: 1.6; uniform: 2.3).
+        the nearest other sample 0.67 rad; 256: 1.6, and 1.75 picking among every fourth; uniform: 2.3).
         """
         s, world = self.source.settings, self.source.world
         n = s.restarts

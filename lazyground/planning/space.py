@@ -131,7 +131,7 @@ class ConfigSpace:
         return np.clip(q, self.lower, self.upper)
 
     def within_bounds(self, q: np.ndarray, tol: float = 1e-9) -> bool:
-        return bool(np.all(q >= self.lower - tol) and np.all(q <= self.upper + tol))
+        return bool((q >= self.lower - tol).all() and (q <= self.upper + tol).all())  # methods: np.all costs ~2x here
 
     def path_length(self, path: np.ndarray) -> float:
         return float(sum(self.distance(a, b) for a, b in zip(path[:-1], path[1:])))

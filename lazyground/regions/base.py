@@ -85,16 +85,25 @@ class GoalRegion:
 
     def sample(self, rng: np.random.Generator) -> np.ndarray:
         """A uniform draw in the bounds (angles wrap where listed)."""
+        return self.from_unit(rng.random(len(self.lower)))
+
+    def from_unit(self, u: np.ndarray) -> np.ndarray:
+        """The points of the bounds for uniform draws ``u`` in [0, 1) (a vector, or one per row):
+        :meth:`sample` is ``from_unit(rng.random(dim))``, so rows of one ``rng.random((n, dim))`` are n samples."""
+        lo, span, wrapped = self.unit_map()
+        v = lo + np.asarray(u, float) * span
+        return np.where(wrapped, wrap_angle(v), v)
+
+    def unit_map(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(lower, span, wrapped): :meth:`from_unit` is ``lower + u * span``, wrapped to [-pi, pi) where ``wrapped``."""
         lo, hi = np.asarray(self.lower, float), np.asarray(self.upper, float)
         span = hi - lo
         for i in self.wrap:
             if span[i] < 0:  # a wrapped interval such as [3.0, -3.0]
                 span[i] += 2 * np.pi
-        v = lo + rng.random(len(lo)) * span
-        if self.wrap:
-            idx = list(self.wrap)
-            v[idx] = wrap_angle(v[idx])
-        return v
+        wrapped = np.zeros(len(lo), bool)
+        wrapped[list(self.wrap)] = True
+        return lo, span, wrapped
 
     def contains(self, v: np.ndarray, tol: float = 1e-6) -> bool:
         """Whether a vector of the kind's coordinates lies in the bounds."""

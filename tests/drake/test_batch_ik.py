@@ -149,7 +149,7 @@ def test_a_plan_ends_where_its_batch_answers_say(cans1):
 
 
 def test_starts_near_the_target_are_distinct_reach_arms_whose_wrists_lie_near_it(cans1):
-    from lazyground.drake.reach import reach_map
+    from lazyground.drake.reach import START_STRIDE, reach_map
 
     _, world, regions = cans1
     source = IKGoalSource(regions, world, IKSettings(attempt_budget=None))
@@ -162,5 +162,6 @@ def test_starts_near_the_target_are_distinct_reach_arms_whose_wrists_lie_near_it
     for X_WT, arms in zip(X, configs):
         assert len({tuple(a) for a in arms}) == 3  # distinct restarts
         wrist = m.wrist_all(chain.forward(arms))  # the arms' own wrist points: near the target's
-        farthest_of_64 = np.sort(m.tree.query(m.wrist_all(X_WT[None]), k=64)[0][0])[-1]
-        assert np.all(np.linalg.norm(wrist - m.wrist_all(X_WT[None]), axis=1) <= farthest_of_64 + 1e-9)
+        # among the 64 / START_STRIDE nearest of the configurations starts are drawn from
+        farthest = np.sort(m.start_tree.query(m.wrist_all(X_WT[None]), k=64 // START_STRIDE)[0][0])[-1]
+        assert np.all(np.linalg.norm(wrist - m.wrist_all(X_WT[None]), axis=1) <= farthest + 1e-9)
