@@ -80,6 +80,22 @@ class DrakeChecker:
         self.checks += 1
         return free
 
+    def config_unpadded_free(self, q: np.ndarray) -> bool:
+        """Whether q is free of penetration: SceneGraph's boolean query alone (~25 µs), the padding not checked.
+
+        :meth:`config_free` implies it, so False is Drake's answer too. For tentative checks that a
+        padded check follows before anything is returned (the two-tree planner's lazy start tree).
+        Where the boolean query cannot stand in for the checker's (see _candidates_all_checked),
+        this is :meth:`config_free`.
+        """
+        if not self._penetration_first:
+            return self.config_free(q)
+        t0 = time.perf_counter()
+        free = not self._penetrates(self.coordinates.full(q))
+        self.check_time += time.perf_counter() - t0
+        self.checks += 1
+        return free
+
     def _free(self, q_full: np.ndarray) -> bool:
         """Drake's config check, answered by a cheaper boolean query first when that query can decide.
 

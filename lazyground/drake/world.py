@@ -83,6 +83,9 @@ class DrakeWorld:
     def config_free(self, q: np.ndarray) -> bool:
         return self.checker.config_free(q)
 
+    def config_unpadded_free(self, q: np.ndarray) -> bool:
+        return self.checker.config_unpadded_free(q)
+
     def configs_free(self, qs: np.ndarray) -> np.ndarray:
         return self.checker.configs_free(qs)
 

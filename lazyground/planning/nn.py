@@ -79,6 +79,8 @@ class NearestNeighbors:
             self._rebuild_main()
 
     def nearest(self, x: np.ndarray) -> int:
+        if self._main is None:  # no k-d tree yet: one scan (the answer the general path gives)
+            return int(np.argmin(self._sq[: self._size] - 2.0 * (self._points[: self._size] @ x))) if self._size else -1
         best, best_d2 = -1, np.inf
         if self._main is not None:
             d, best = self._main.query(x)

@@ -29,7 +29,12 @@ class PlanStatus(str, enum.Enum):
 
 
 class ValidityChecker(Protocol):
-    """Collision checks over configurations; times itself."""
+    """Collision checks over configurations; times itself.
+
+    A checker may also offer ``config_unpadded_free(q) -> bool``: a cheaper test that
+    config_free implies (no penetration, the padding not checked), which the two-tree
+    planner uses for its tentative start-tree checks (lazyground.planning.birrt).
+    """
 
     def config_free(self, q: np.ndarray) -> bool: ...
     def configs_free(self, qs: np.ndarray) -> np.ndarray: ...

@@ -70,9 +70,9 @@ class ConfigSpace:
     def embed(self, q: np.ndarray) -> np.ndarray:
         """Points whose Euclidean distance is the space's metric (rows or one vector)."""
         q = np.asarray(q, float)
+        if not len(self._ang):  # every coordinate linear: no gather needed (the same products)
+            return q * self.weights
         lin = q[..., self._lin] * self._w_lin
-        if not len(self._ang):
-            return lin
         a, w = q[..., self._ang], self._w_ang
         return np.concatenate([lin, w * np.cos(a), w * np.sin(a)], axis=-1)
 

@@ -74,6 +74,16 @@ class Tree:
         i = i if members is None else members[i]
         return i if i >= 0 and self.alive[i] else -1
 
+    def nearest_k(self, q: np.ndarray, k: int) -> list[int]:
+        """Up to k nearest live nodes, nearest first; only :meth:`nearest` in a space that re-ranks
+        its candidates by its own distance (a car) or for k = 1."""
+        if k == 1 or self.space.nn_candidates > 1:
+            i = self.nearest(q)
+            return [i] if i >= 0 else []
+        if not len(self.nn):
+            return []
+        return [int(j) for j in self.nn.nearest_k(self.space.embed(q), k) if self.alive[j]]
+
     def chain(self, i: int) -> list[int]:
         """Node indices from ``i`` up to its root."""
         out = []

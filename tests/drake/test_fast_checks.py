@@ -58,6 +58,19 @@ def test_the_cheap_config_check_is_drakes_answer(world):
     assert 0 < drake.sum() < len(qs)
 
 
+def test_the_unpadded_check_is_implied_by_drakes_and_misses_only_padding(world):
+    """config_unpadded_free is False only where Drake's check is False too, and True where the robot
+    merely comes within the padding (no penetration), so the planner must check the padding later."""
+    rng = np.random.default_rng(9)
+    qs = np.vstack([np.array([world.space.sample(rng) for _ in range(300)]), _near_obstacles(world, rng, 60)])
+    drake = np.array([world.checker.drake.CheckConfigCollisionFree(world.full(q)) for q in qs], bool)
+    unpadded = np.array([world.config_unpadded_free(q) for q in qs])
+    assert not np.any(drake & ~unpadded)  # never rejects what Drake accepts
+    assert np.any(~drake & ~unpadded)  # rejects real collisions
+    if world.padding > 0.001:  # fetch_boxes_3 pads 5 mm; parking_1 pads nothing
+        assert np.any(~drake & unpadded)  # within the padding: left to the padded check
+
+
 def test_the_edge_check_is_drakes_answer(world):
     rng = np.random.default_rng(8)
     edges, inside = [], 0

@@ -58,3 +58,24 @@ def test_k_nearest_match_brute_force_through_growth_and_removal(brute_limit):
             d = np.linalg.norm(pts[alive] - q, axis=1)
             assert len(got) == min(k, len(alive))  # removed points sort last (they sit far away)
             assert np.allclose(np.linalg.norm(pts[got] - q, axis=1), np.sort(d)[: len(got)]), (i, got)
+
+
+def test_tree_nearest_k_gives_the_k_nearest_live_nodes_nearest_first():
+    from lazyground.planning.space import ConfigSpace
+    from lazyground.planning.tree import Tree
+
+    rng = np.random.default_rng(3)
+    space = ConfigSpace(("x", "y"), np.zeros(2), np.ones(2))
+    tree = Tree(space)
+    tree.add_root(rng.random(2))
+    for i in range(1, 300):
+        tree.add(rng.random(2), int(rng.integers(0, i)))
+    tree.prune(7)  # a branch: node 7 and its descendants
+    nodes, alive = np.array(tree.nodes), np.flatnonzero(tree.alive)
+    assert len(alive) < 300
+    for _ in range(50):
+        q = rng.random(2)
+        d = np.linalg.norm(nodes[alive] - q, axis=1)
+        got = tree.nearest_k(q, 3)
+        assert list(got) == list(alive[np.argsort(d)[:3]])
+        assert tree.nearest_k(q, 1) == [tree.nearest(q)] == got[:1]
