@@ -17,9 +17,12 @@ pass's segments are checked at the fine resolution (``resolution / validation_fa
 every returned path) when chosen: each lies where the path just passes an obstacle, so
 the fine check fails for a few, which are pulled back. The random shortcuts' fine check is
 deferred to the segments of the final path that are new, because most accepted shortcuts
-are later cut again; so is that of the relaxed segments. Segments that are pieces of the input
-path were checked finely by the planner. When a new segment fails the fine check, the newest earlier version of the path
-whose new segments all pass is returned (the greedy pass's, at worst).
+are later cut again; so is that of the relaxed segments. Only the input path's own segments, end to end,
+count as checked (the planner checked them finely); a piece of one, or a run of collinear ones merged into one
+segment, is checked again, because its fine check points are not the planner's and a segment grazing an obstacle
+can pass at one set of points and fail at another (corpus big_box_table, seed 0: a 0.003 rad graze). When a
+segment fails the fine check, the newest earlier version of the path whose segments all pass is returned, or the
+input path when the failing segment goes back to the first version.
 """
 
 from __future__ import annotations
@@ -157,7 +160,7 @@ def shortcut_path(
     body, tail = (raw[:-1], raw[-1:]) if keep_last_segment and len(raw) > 2 else (raw, raw[:0])
     versions = [_drop_redundant(space, _Path(space, list(body), [0] * (len(body) - 1)))]
     deadline = t0 + settings.time_budget
-    fine = _FineCheck(space, checker, resolution / validation_factor)
+    fine = _FineCheck(space, checker, resolution / validation_factor, raw)
     edge = bisected_edge(space, checker, resolution)
     if settings.greedy and len(versions[0].q) > 2:
         versions[0] = _drop_redundant(space, _greedy(space, edge, fine.segment_free, versions[0]))
@@ -169,6 +172,8 @@ def shortcut_path(
     while (bad := fine.first_failure(versions[-1])) is not None:
         del versions[bad:]  # back to the newest version made before the failing segment
         backtracked = True
+        if not versions:  # a piece of the input path (version 0's) fails: the input path itself
+            return done(ShortcutStatus.BACKTRACKED, raw, iterations, 0)
     out = np.array(versions[-1].q)
     out = np.vstack([out, tail]) if len(tail) else out
     length = space.path_length(out)
@@ -217,17 +222,20 @@ def _relax(space: ConfigSpace, edge, versions: list, settings: ShortcutSettings,
 
 
 class _FineCheck:
-    """The fine check of a version's new segments, each distinct segment checked once."""
+    """The fine check of a version's segments, each distinct segment checked once; the input path's own
+    segments (``raw``, checked finely by the planner) count as passed."""
 
-    def __init__(self, space: ConfigSpace, checker: ValidityChecker, resolution: float):
-        self.space, self.checker, self.resolution, self.known = space, checker, resolution, {}
+    def __init__(self, space: ConfigSpace, checker: ValidityChecker, resolution: float, raw: np.ndarray):
+        self.space, self.checker, self.resolution = space, checker, resolution
+        self.known = {(a.tobytes(), b.tobytes()): True for a, b in zip(raw[:-1], raw[1:])}
 
     def first_failure(self, p: _Path) -> int | None:
-        """The version that made the first new segment failing the check, or None if all pass.
+        """The version that made the first segment failing the check (0: a piece of the input path), or None
+        if all pass.
 
         The segments not checked yet go to the checker in one batch (one call into Drake).
         """
-        segments = [((a.tobytes(), b.tobytes()), a, b, born) for a, b, born in zip(p.q[:-1], p.q[1:], p.new) if born]
+        segments = [((a.tobytes(), b.tobytes()), a, b, born) for a, b, born in zip(p.q[:-1], p.q[1:], p.new)]
         todo = {key: (a, b) for key, a, b, _ in segments if key not in self.known}
         if todo:
             chunks = [self.space.discretize(a, b, self.resolution) for a, b in todo.values()]

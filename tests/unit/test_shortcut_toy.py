@@ -105,3 +105,33 @@ def test_unwrap_takes_the_short_way_round():
     path = np.array([[0.0, 3.0], [1.0, -3.0], [2.0, -2.0]])
     out = unwrap_path(space, path)
     assert np.allclose(out[:, 1], [3.0, 2 * np.pi - 3.0, 2 * np.pi - 2.0])
+
+
+class _Graze:
+    """Free everywhere but a square of half-width h around x: an obstacle narrower than the fine resolution."""
+
+    def __init__(self, x, h=2e-4):
+        self.x, self.h = np.asarray(x, float), h
+
+    def configs_free(self, qs):
+        return ~np.all(np.abs(np.atleast_2d(qs) - self.x) <= self.h, axis=1)
+
+
+def test_a_merged_run_of_the_input_path_is_checked_again_at_its_own_points():
+    # The input path's segments passed the planner's fine check; one segment over a collinear run of them
+    # (or a piece of one) is checked at other points, and a graze between the two sets of points must not
+    # slip through (corpus big_box_table, seed 0, before the fix).
+    from lazyground.motion.shortcut import _FineCheck, _Path
+
+    a, b, c = np.array([1.0, 1.0]), np.array([2.0, 1.0]), np.array([3.013, 1.0])
+    raw = np.array([a, b, c])
+    merged = SPACE.discretize(a, c, FINE)
+    own = np.vstack([SPACE.discretize(a, b, FINE), SPACE.discretize(b, c, FINE)])
+    gaps = np.min(np.abs(merged[:, None, 0] - own[None, :, 0]), axis=1)
+    x = merged[np.argmax(gaps)]  # a point of the merged segment's check, far from every point of the input's
+    world = _Graze(x, h=min(2e-4, 0.5 * gaps.max()))
+    assert path_is_valid(SPACE, world, raw, FINE) == -1  # the input path passes its own check
+    assert path_is_valid(SPACE, world, np.array([a, c]), FINE) == 0  # the merged segment does not
+    fine = _FineCheck(SPACE, world, FINE, raw)
+    assert fine.first_failure(_Path(SPACE, [a, c], [0])) == 0  # traced to the input path: shortcut returns it
+    assert fine.first_failure(_Path(SPACE, [a, b, c], [0, 0])) is None
