@@ -35,10 +35,11 @@ from lazyground.drake.batch_ik import ITERATIONS as BATCH_ITERATIONS
 from lazyground.drake.hand_probe import hand_probe
 from lazyground.drake.ik_attempts import APPROACH_SCALES, BatchAttempts, Prepared, problem_for_frame
 from lazyground.drake.reach import reach_map
-from lazyground.geometry import Pose, rpy_to_matrices, wrap_angle
+from lazyground.geometry import Pose, rpy_to_matrices
 from lazyground.goals import RoundRobinGoalSource, register_goal_source
 from lazyground.planning.problem import GoalSample
 from lazyground.regions import PlacementRegion, PoseRegion, WorkspaceRegion
+from lazyground.regions.base import from_unit
 from lazyground.scene.typed_yaml import SceneError
 from lazyground.tolerance import ORIENTATION_TOLERANCE, POSITION_TOLERANCE, accepted_error
 
@@ -221,8 +222,7 @@ class IKGoalSource(RoundRobinGoalSource):
         draws one ``self.regions[j].sample(rng)`` each would make, in one ``rng.random((N, 6))``."""
         j = np.asarray(regions, int)
         lo, span, wrapped = (a[j] for a in self._stacked[2:])
-        V = lo + rng.random(lo.shape) * span
-        V = np.where(wrapped, wrap_angle(V), V)
+        V = from_unit(lo, span, wrapped, rng.random(lo.shape))
         return V, self.target_poses(j, V)
 
     def _approach_shift(self, region: PoseRegion, scale: float) -> np.ndarray:

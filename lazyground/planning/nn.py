@@ -81,15 +81,13 @@ class NearestNeighbors:
     def nearest(self, x: np.ndarray) -> int:
         if self._main is None:  # no k-d tree yet: one scan (the answer the general path gives)
             return int(np.argmin(self._sq[: self._size] - 2.0 * (self._points[: self._size] @ x))) if self._size else -1
-        best, best_d2 = -1, np.inf
-        if self._main is not None:
-            d, best = self._main.query(x)
-            best_d2 = d * d
+        d, best = self._main.query(x)  # (a recent tree exists only beside a main one)
+        best_d2 = d * d
         if self._recent is not None:
             d, j = self._recent.query(x)
             if d * d < best_d2:
                 best_d2, best = d * d, self._main_end + j
-        lo = self._recent_end if self._main is not None else 0
+        lo = self._recent_end
         if lo < self._size:
             g = self._sq[lo : self._size] - 2.0 * (self._points[lo : self._size] @ x)  # |p - x|^2 - |x|^2
             j = int(np.argmin(g))

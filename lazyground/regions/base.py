@@ -44,6 +44,14 @@ class RegionDrawing:
     X_WB: Pose  # the box centre in world
 
 
+def from_unit(lower: np.ndarray, span: np.ndarray, wrapped: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """Points of bounds (:meth:`GoalRegion.unit_map`, one per row or one for all) for uniform draws ``u`` in
+    [0, 1): ``lower + u * span``, wrapped to [-pi, pi) where ``wrapped``. :meth:`GoalRegion.sample` is this of
+    ``rng.random(dim)``, so rows of one ``rng.random((n, dim))`` are n samples."""
+    v = lower + np.asarray(u, float) * span
+    return np.where(wrapped, wrap_angle(v), v)
+
+
 @dataclass(frozen=True)
 class GoalRegion:
     """One goal region: bounds ``lower``/``upper`` over the kind's coordinates.
@@ -85,17 +93,10 @@ class GoalRegion:
 
     def sample(self, rng: np.random.Generator) -> np.ndarray:
         """A uniform draw in the bounds (angles wrap where listed)."""
-        return self.from_unit(rng.random(len(self.lower)))
-
-    def from_unit(self, u: np.ndarray) -> np.ndarray:
-        """The points of the bounds for uniform draws ``u`` in [0, 1) (a vector, or one per row):
-        :meth:`sample` is ``from_unit(rng.random(dim))``, so rows of one ``rng.random((n, dim))`` are n samples."""
-        lo, span, wrapped = self.unit_map()
-        v = lo + np.asarray(u, float) * span
-        return np.where(wrapped, wrap_angle(v), v)
+        return from_unit(*self.unit_map(), rng.random(len(self.lower)))
 
     def unit_map(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(lower, span, wrapped): :meth:`from_unit` is ``lower + u * span``, wrapped to [-pi, pi) where ``wrapped``."""
+        """(lower, span, wrapped): the bounds as :func:`from_unit` takes them."""
         lo, hi = np.asarray(self.lower, float), np.asarray(self.upper, float)
         span = hi - lo
         for i in self.wrap:
