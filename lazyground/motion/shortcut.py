@@ -324,10 +324,11 @@ def _try_vertices(edge, path: _Path, rng, born: int, min_gain: float) -> _Path |
 
 def _point_at(space: ConfigSpace, q: list, cum: np.ndarray, s: float) -> tuple[int, np.ndarray]:
     """The segment index k (q[k] -> q[k + 1]) holding arc length s, and the point there."""
-    k = int(np.clip(np.searchsorted(cum, s, side="right") - 1, 0, len(q) - 2))
-    span = cum[k + 1] - cum[k]
-    t = 0.0 if span <= 0 else (s - cum[k]) / span
-    return k, space.interpolate(q[k], q[k + 1], float(np.clip(t, 0.0, 1.0)))
+    # plain min/max on Python floats: np.clip on scalars cost ~2/3 of this function (it runs ~50-90 times a path)
+    k = min(max(int(cum.searchsorted(s, side="right")) - 1, 0), len(q) - 2)
+    lo, hi = float(cum[k]), float(cum[k + 1])
+    t = 0.0 if hi - lo <= 0 else (float(s) - lo) / (hi - lo)
+    return k, space.interpolate(q[k], q[k + 1], min(max(t, 0.0), 1.0))
 
 
 def _two_points(space: ConfigSpace, path: _Path, rng: np.random.Generator):

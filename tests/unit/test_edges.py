@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from lazyground.motion.edges import bisected_edge, bisection_levels
+from lazyground.motion.edges import PROBES, bisected_edge, bisection_levels, probe_batches
 from tests.unit.toy import SPACE, BoxWorld
 
 
@@ -13,6 +13,17 @@ def test_the_levels_hold_every_index_once_middle_first_ends_last():
         assert sorted(levels[-1].tolist()) == ([0] if n == 1 else [0, n - 1])
         if n > 2:
             assert levels[0].tolist() == [(n - 1) // 2]
+
+
+def test_the_batches_probe_levels_until_probes_then_take_the_rest_at_once():
+    for n in range(1, 200):
+        batches, levels = probe_batches(n), bisection_levels(n)
+        assert sorted(int(i) for batch in batches for i in batch) == list(range(n))
+        probed = np.cumsum([len(batch) for batch in batches])
+        assert all(p < PROBES for p in probed[:-2])  # every batch but the last starts below PROBES probed
+        assert all(np.array_equal(batch, level) for batch, level in zip(batches[:-1], levels))
+        if n > 2:
+            assert batches[0].tolist() == [(n - 1) // 2]  # the middle alone first
 
 
 class _Counting(BoxWorld):
