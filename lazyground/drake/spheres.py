@@ -42,7 +42,7 @@ from lazyground.drake.solids import cover, solid, solid_distance, solid_radius
 
 MARGIN = 1e-4  # metres beyond the padding a lower bound must clear
 SLACK = 0.015  # metres a cover's spheres may reach beyond their shape (finer: more spheres)
-ANCHOR_EVERY = 8  # rows of a batch per anchor (see SphereCertifier.certified_free)
+ANCHOR_EVERY = 12  # rows of a batch per anchor (see SphereCertifier.certified_free)
 FAR_PAIR = 0.05  # metres: self pairs this far apart at every anchor of a batch split their gap between their geometries
 
 
@@ -115,10 +115,7 @@ class SphereCertifier:
             order = np.argsort(side, kind="stable")
             owner, first = np.unique(side[order], return_index=True)
             self._self_sides.append((order, first, owner))
-        # per moving geometry, as ranges start:start + count: the obstacles Drake checks it against, its self pairs
-        checked = np.isfinite(env_threshold)
-        self._env_count, self._env_obstacle = checked.sum(axis=1), np.nonzero(checked)[1]
-        self._env_start = np.cumsum(self._env_count) - self._env_count
+        # per moving geometry, its self pairs: _pair_of[_pair_start[g]:_pair_start[g] + _pair_count[g]]
         sides = np.concatenate([self_pairs.mover, self_pairs.other])
         self._pair_of = np.tile(np.arange(len(self_pairs.mover)), 2)[np.argsort(sides, kind="stable")]
         self._pair_count = np.bincount(sides, minlength=len(node))
@@ -169,18 +166,19 @@ class SphereCertifier:
         return free
 
     def _columns(self, clear: np.ndarray, lever: np.ndarray):
-        """The anchors' clearance and levers per column of :meth:`certified_free` (moving geometries, then
-        the self pairs ``near``), ``near``, and per self pair whether it is split between its geometries."""
+        """The anchors' clearance and levers per column of :meth:`certified_free` (per moving geometry: the
+        environment, then half the gap of its self pairs far at every anchor; then the self pairs ``near``),
+        ``near``, and per self pair whether it is far (split between its geometries)."""
         G = len(self._count)
         near = np.flatnonzero((clear[:, G:] < FAR_PAIR).any(axis=0))
         folded = np.ones(len(self._self.mover), bool)
         folded[near] = False
-        env = clear[:, :G].copy()
+        half = np.full_like(clear[:, :G], np.inf)
         gap = np.where(folded, clear[:, G:] / 2, np.inf)
         for order, first, owner in self._self_sides:  # each side's pairs in a run: one reduction per geometry
-            env[:, owner] = np.minimum(env[:, owner], np.minimum.reduceat(gap[:, order], first, axis=1))
-        columns = np.hstack([env, clear[:, G + near]])
-        return columns, np.concatenate([lever, self._pair_levers(lever, near)], axis=1), near, folded
+            half[:, owner] = np.minimum(half[:, owner], np.minimum.reduceat(gap[:, order], first, axis=1))
+        columns = np.hstack([clear[:, :G], half, clear[:, G + near]])
+        return columns, np.concatenate([lever, lever, self._pair_levers(lever, near)], axis=1), near, folded
 
     def _recheck(self, q: np.ndarray, failing: np.ndarray, near: np.ndarray, folded: np.ndarray) -> np.ndarray:
         """Whether the pairs of each row's ``failing`` columns (:meth:`certified_free`) clear their thresholds there."""
@@ -189,17 +187,16 @@ class SphereCertifier:
         G = len(self._count)
         clear = np.full((len(q), G + len(self._self.mover)), np.inf)
         b, g = np.nonzero(failing[:, :G])
-        row, k = _ranges(self._env_start[g], self._env_count[g])  # the geometry's obstacles
-        b, g, o = b[row], g[row], self._env_obstacle[k]
-        d = np.maximum(np.abs(centre[b, g] - self._aabb_centre[o]) - self._aabb_half[o], 0.0)
-        reach = np.einsum("ni,ni->n", d, d) <= self._env_reach2[g, o]  # within reach of the obstacle's world box
-        b, g, o = b[reach], g[reach], o[reach]
+        d = np.abs(centre[b, g][:, None] - self._aabb_centre) - self._aabb_half  # (failing, obstacles, 3)
+        np.maximum(d, 0.0, out=d)
+        i, o = np.nonzero(np.einsum("noi,noi->no", d, d) <= self._env_reach2[g])  # within reach of the world box
+        b, g = b[i], g[i]
         self._finer(R, p, centre, clear, b, g, o, self._env_threshold[g, o], g, moving=False)
-        bf, gf = np.nonzero(failing[:, :G])
-        row, k = _ranges(self._pair_start[gf], self._pair_count[gf])  # the geometry's self pairs
-        bf, k = bf[row], self._pair_of[k]
-        bn, c = np.nonzero(failing[:, G:])
-        b, k = np.concatenate([bf[folded[k]], bn]), np.concatenate([k[folded[k]], near[c]])
+        b, g = np.nonzero(failing[:, G:2 * G])
+        row, k = _ranges(self._pair_start[g], self._pair_count[g])  # the geometry's self pairs
+        b, k = b[row], self._pair_of[k]
+        bn, c = np.nonzero(failing[:, 2 * G:])
+        b, k = np.concatenate([b[folded[k]], bn]), np.concatenate([k[folded[k]], near[c]])
         g, o = self._self.mover[k], self._self.other[k]
         v = centre[b, g] - centre[b, o]
         reach = self._solids.radius[g] + self._solids.radius[o] + self._self.threshold[k]

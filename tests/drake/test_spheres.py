@@ -50,6 +50,20 @@ def _dense_paths(world, rng, n: int, steps: int = 120) -> np.ndarray:
     return world.full((a[:, None] + t * (b - a)[:, None]).reshape(-1, a.shape[1]))
 
 
+def _rows_through_contact(world, rng, n: int) -> np.ndarray:
+    """Rows 0.01 rad apart (twice the fine re-check's step), in order, along n segments in random
+    directions through configurations within ~1e-4 rad of contact (the free ends of the bisections)."""
+    near = _near_contact(world, rng, n)
+    near = near[-2 * len(near) // 18: -len(near) // 18]  # 18 blocks: 16 halvings, then the free and colliding ends
+    planned = list(world.coordinates.planned)
+    u = rng.normal(size=(len(near), len(planned)))
+    u /= np.linalg.norm(u, axis=1, keepdims=True)
+    t = (np.arange(160) - 80) * 0.01
+    rows = np.repeat(near[:, None], len(t), axis=1)
+    rows[:, :, planned] += t[None, :, None] * u[:, None]
+    return rows.reshape(-1, near.shape[1])
+
+
 def _assert_sound(world, q_full: np.ndarray) -> np.ndarray:
     """The certifier proves only Drake-free configurations; the checker answers as Drake. Returns the certified mask."""
     certified = world.checker.certifier.certified_free(q_full)
@@ -70,6 +84,8 @@ def test_never_certifies_a_colliding_configuration(scene):
     certified = _assert_sound(world, np.vstack([random, near]))
     dense = _dense_paths(world, rng, 20)
     assert 0 < _assert_sound(world, dense).sum() < len(dense)  # rows certified through their anchors' clearance too
+    through = _rows_through_contact(world, rng, 15)
+    assert 0 < _assert_sound(world, through).sum() < len(through)
     drake = _drake_free(world, random)
     assert certified[: len(random)].sum() > 0.3 * drake.sum()  # it proves a good share, so soundness means something
     # near contact: within 0.5 mm of the boundary the certifier must leave the call to Drake
@@ -111,15 +127,7 @@ def test_dense_rows_near_self_collision_stay_sound(tmp_path):
     path = tmp_path / "alone.yaml"
     path.write_text(f"name: alone\nrobot: {FETCH}\nobstacles: []\n")
     world = DrakeWorld(load_scene(str(path)), visual=False)
-    rng = np.random.default_rng(11)
-    near = _near_contact(world, rng, 40)[-80:-40]  # the last bisection's midpoints: within ~1e-4 rad of contact
-    planned = list(world.coordinates.planned)
-    u = rng.normal(size=(len(near), len(planned)))
-    u /= np.linalg.norm(u, axis=1, keepdims=True)
-    t = (np.arange(160) - 80) * 0.01
-    rows = np.repeat(near[:, None], len(t), axis=1)
-    rows[:, :, planned] += t[None, :, None] * u[:, None]
-    rows = rows.reshape(-1, near.shape[1])
+    rows = _rows_through_contact(world, np.random.default_rng(11), 40)
     drake = _drake_free(world, rows)
     assert 0 < drake.sum() < len(rows)  # the segments cross the boundary
     certified = _assert_sound(world, rows)
