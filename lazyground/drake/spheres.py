@@ -133,12 +133,13 @@ class SphereCertifier:
         """Per plant position vector (rows of ``q_full``): True only if Drake's checker calls it free.
 
         Every ``ANCHOR_EVERY``-th row (an anchor) is bounded pair by pair, with its geometries'
-        levers (:meth:`levers`). Every other row is bounded column by column of the clearance:
-        a moving geometry against the environment, a self pair near at some anchor (its two
-        geometries relative to each other), the other self pairs split between their geometries.
-        A column is clear at a row when, from one of its two anchors, it cannot have moved as far
-        as its clearance there; the columns that are not are bounded at the row itself, pair by pair.
-        Consecutive rows of a densely checked path are mostly clear from their anchors.
+        levers (:meth:`levers`). Every other row is bounded column by column: per moving geometry,
+        the environment; per moving geometry, half the gap of its self pairs ``FAR_PAIR`` apart at
+        every anchor (each side moving on its own); each other self pair, its two geometries
+        relative to each other. A column is clear at a row when, from one of the row's two anchors,
+        it cannot have moved as far as its clearance there; the columns that are not are bounded at
+        the row itself, pair by pair. Consecutive rows of a densely checked path are mostly clear
+        from their anchors.
         """
         q = np.atleast_2d(np.asarray(q_full, float))
         if len(q) < 2 * ANCHOR_EVERY:
