@@ -277,7 +277,8 @@ class SphereCertifier:
         apart, inf for the others; (b, pair) of the others)."""
         g, o = self._self.mover, self._self.other
         v = centre[:, g] - centre[:, o]
-        gap = np.sqrt(np.einsum("bki,bki->bk", v, v)) - self._solids.radius[g] - self._solids.radius[o] - self._self.threshold
+        gap = np.sqrt(np.einsum("bki,bki->bk", v, v)) - self._solids.radius[g] - self._solids.radius[o]
+        gap -= self._self.threshold
         near = gap <= 0.0
         b, k = np.nonzero(near)
         gap[near] = np.inf
@@ -292,7 +293,8 @@ class SphereCertifier:
         gap = self._distance(centre[b, g], R_WG, o_W, solids, o) - self._solids.radius[g] - threshold
         near = gap <= 0.0
         _lower(clear, b[~near], column[~near], gap[~near])
-        b, g, o, threshold, column, R_WG, o_W = b[near], g[near], o[near], threshold[near], column[near], R_WG[near], o_W[near]
+        b, g, o, threshold, column = b[near], g[near], o[near], threshold[near], column[near]
+        R_WG, o_W = R_WG[near], o_W[near]
         row, sphere = _ranges(self._start[g], self._count[g])
         bs, ns = b[row], self._sphere_node[sphere]
         c = np.einsum("nij,nj->ni", R[bs, ns], self._centers[sphere]) + p[bs, ns]

@@ -14,6 +14,7 @@ from pydrake.geometry import Box, Capsule, Cylinder, Ellipsoid, Sphere  # noqa: 
 from lazyground.bench.moveit_corpus import CORPUS  # noqa: E402
 from lazyground.drake.chain import body_tree  # noqa: E402
 from lazyground.drake.solids import cover, solid, solid_distance  # noqa: E402
+from lazyground.drake.spheres import _growth  # noqa: E402
 from lazyground.drake.world import Attachment, DrakeWorld  # noqa: E402
 from lazyground.geometry import Pose  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
@@ -121,9 +122,9 @@ def test_a_car_is_left_to_drake(scene):
 
 
 def test_dense_rows_near_self_collision_stay_sound(tmp_path):
-    """A Fetch alone (every collision a self collision): rows 0.01 rad apart (twice the fine re-check's step) along segments through
-    near-contact configurations, as a path's fine re-check asks; anchors cover rows through the
-    self pairs' relative bounds, and no Drake-colliding row is certified."""
+    """A Fetch alone (every collision a self collision): rows 0.01 rad apart (twice the fine re-check's step)
+    along segments through near-contact configurations, as a path's fine re-check asks; anchors cover rows
+    through the self pairs' relative bounds, and no Drake-colliding row is certified."""
     path = tmp_path / "alone.yaml"
     path.write_text(f"name: alone\nrobot: {FETCH}\nobstacles: []\n")
     world = DrakeWorld(load_scene(str(path)), visual=False)
@@ -155,7 +156,7 @@ def test_no_point_moves_farther_than_its_levers_allow():
     dq = np.abs(q2 - q)[:, cert.tree.index]
     s = dq[:, cert._revolute].sum(axis=1)
     assert (s <= 1.0).mean() > 0.5  # most pairs within the bound's range (beyond it the bound is inf)
-    bound = np.einsum("bj,bcj->bc", dq, cert.levers(q)) * np.where(s <= 1.0, 1.0 + s, np.inf)[:, None]
+    bound = np.einsum("bj,bcj->bc", dq, cert.levers(q)) * _growth(s)[:, None]
     a, b = _cover_centres(cert, q), _cover_centres(cert, q2)
     owner = np.repeat(np.arange(len(cert._count)), cert._count)
     G = len(cert._count)
