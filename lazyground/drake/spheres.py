@@ -104,8 +104,8 @@ class SphereCertifier:
         self._env_clear_offset = np.where(np.isfinite(reach), reach, -np.inf).max(axis=1, initial=0.0)
         self._revolute = tree.kinds != PRISMATIC
         self._path = _joints_up(tree, node)
-        # a self pair moves only by the joints below the deepest joint above both its bodies (joints are
-        # numbered down the tree): per side, its flat index in (geometry, first joint counted)
+        # a self pair moves only by the joints below the deepest joint above both its bodies: joints are
+        # numbered down the tree, so those numbered from ``cut`` on
         m = len(tree.kinds)
         cut = np.array([max(np.flatnonzero(self._path[g] & self._path[o]), default=-1) + 1
                         for g, o in zip(self_pairs.mover, self_pairs.other)], int)
@@ -215,7 +215,7 @@ class SphereCertifier:
         """Per plant position vector, clearance column (:meth:`clearance`) and moving joint (B, columns, joints):
         from q, no point of a column's geometry moves (a self pair's two geometries: relative to each
         other) farther than (|dq| @ levers[c]) * :func:`_growth` (s) on the straight line to q + dq,
-        s the sum of |dq| over the revolute joints.
+        dq over the moving joints (``tree.index``), s the sum of |dq| over the revolute ones.
 
         A point's speed is at most sum_j |dq_j| rho_j, rho_j its distance from joint j's axis (1 for a
         prismatic joint), and rho_j grows by at most the distance moved so far (M): M' <= a + s M with
