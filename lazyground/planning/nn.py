@@ -80,8 +80,8 @@ class NearestNeighbors:
 
     def nearest(self, x: np.ndarray) -> int:
         if self._main is None:  # no k-d tree yet: one scan (the answer the general path gives)
-            n = self._size
-            return int((self._sq[:n] - 2.0 * (self._points[:n] @ x)).argmin()) if n else -1
+            n = self._size  # |p|^2 - 2 p.x as |p|^2 + p.(-2 x): the same numbers (scaling by 2 is exact), one pass fewer
+            return int((self._sq[:n] + np.dot(self._points[:n], -2.0 * x)).argmin()) if n else -1
         d, best = self._main.query(x)  # (a recent tree exists only beside a main one)
         best_d2 = d * d
         if self._recent is not None:
