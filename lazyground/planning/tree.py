@@ -48,9 +48,7 @@ class Tree:
         x = self.space.embed(q)
         i = self.nn.add(x)
         if self._per_label:
-            if label not in self._label_nn:  # (not setdefault: that would build an index on every add)
-                self._label_nn[label] = (NearestNeighbors(self.space.embed_dim, capacity=64), [])
-            nn, members = self._label_nn[label]
+            nn, members = self._label_nn.setdefault(label, (NearestNeighbors(self.space.embed_dim, capacity=64), []))
             self._local.append(nn.add(x))
             members.append(i)
         return i
