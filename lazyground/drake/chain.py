@@ -172,8 +172,9 @@ class BodyTree:
     slot: np.ndarray  # (n,) per body
     F: np.ndarray  # (n, 4, 4) per body
 
-    def forward(self, q_full: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Rotations R_WB (B, n, 3, 3) and positions p_WB (B, n, 3) of every body at B plant position vectors."""
+    def forward(self, q_full: np.ndarray, joints: bool = False) -> tuple[np.ndarray, ...]:
+        """Rotations R_WB (B, n, 3, 3) and positions p_WB (B, n, 3) of every body at B plant position vectors;
+        with ``joints``, then each moving joint's frame too: its axis (z) (B, m, 3) and origin (B, m, 3)."""
         q = np.atleast_2d(q_full)
         B, m = q.shape[0], len(self.kinds)
         R, p = [np.broadcast_to(np.eye(3), (B, 3, 3))], [np.zeros((B, 3))]  # per slot, contiguous
@@ -196,7 +197,11 @@ class BodyTree:
             Rj = R[j].reshape(-1, 3)
             R_out[:, k] = (Rj @ self.F[k, :3, :3]).reshape(B, 3, 3)
             p_out[:, k] = p[j] + (Rj @ self.F[k, :3, 3]).reshape(B, 3)
-        return R_out, p_out
+        if not joints:
+            return R_out, p_out
+        if not m:
+            return R_out, p_out, np.zeros((B, 0, 3)), np.zeros((B, 0, 3))
+        return R_out, p_out, np.stack([Rj[:, :, 2] for Rj in R[1:]], axis=1), np.stack(p[1:], axis=1)
 
     @property
     def fixed(self) -> np.ndarray:

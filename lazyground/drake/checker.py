@@ -59,6 +59,9 @@ class DrakeChecker:
         self.check_time = 0.0
         self.checks = 0
         self._context = self.drake.model_context()  # the main thread's context (the one single checks use)
+        # SceneGraph's query object for that context: the same object on every call (its queries read the
+        # context's current poses), fetched once here: ~1 us a check (#19)
+        self._query = self._context.GetQueryObject()
         self._penetration_first = _candidates_all_checked(self.drake)
         # proves batches free in numpy before Drake is asked (None: this world cannot be bounded; lazyground.drake.spheres)
         self.certifier = sphere_certifier(self.drake) if certify else None
@@ -111,12 +114,12 @@ class DrakeChecker:
             return bool(self.drake.CheckConfigCollisionFree(q_full))
         if self._penetrates(q_full):
             return False
-        return not self._context.GetQueryObject().ComputeSignedDistancePairwiseClosestPoints(self.drake.GetLargestPadding())
+        return not self._query.ComputeSignedDistancePairwiseClosestPoints(self.drake.GetLargestPadding())
 
     def _penetrates(self, q_full: np.ndarray) -> bool:
         """SceneGraph's boolean collision query at q_full (left posed in the main thread's context)."""
         self.drake.UpdatePositions(q_full)
-        return self._context.GetQueryObject().HasCollisions()
+        return self._query.HasCollisions()
 
     def configs_free(self, qs: np.ndarray) -> np.ndarray:
         qs = np.atleast_2d(qs)

@@ -7,6 +7,7 @@ them back into the plant's position vector, the others held at the start.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from pydrake.multibody.tree import PlanarJoint, RevoluteJoint
@@ -34,7 +35,7 @@ class Coordinates:
     def start(self) -> np.ndarray:
         return self.q_full[list(self.planned)].copy()
 
-    @property
+    @cached_property  # (full runs before every collision check)
     def plans_all(self) -> bool:
         return self.planned == tuple(range(len(self.q_full)))
 

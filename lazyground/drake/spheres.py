@@ -42,7 +42,8 @@ from lazyground.drake.solids import cover, solid, solid_distance, solid_radius
 
 MARGIN = 1e-4  # metres beyond the padding a lower bound must clear
 SLACK = 0.015  # metres a cover's spheres may reach beyond their shape (finer: more spheres)
-ANCHOR_EVERY = 3  # rows of a batch per anchor (see SphereCertifier.certified_free)
+ANCHOR_EVERY = 12  # rows of a batch per anchor (see SphereCertifier.certified_free)
+FAR_PAIR = 0.05  # metres: self pairs this far apart at every anchor of a batch split their gap between their geometries
 
 
 @dataclass(frozen=True)
@@ -86,13 +87,10 @@ class SphereCertifier:
         obstacles: the never-moving geometry, in the world frame.
         env_threshold: (moving geometries, obstacles) the distance to clear; -inf: a pair Drake does not check.
         self_pairs: moving geometry (its spheres) against another moving geometry's solid.
-        motion_weights: (moving geometries, plant positions): no point of geometry g moves
-            farther than |q' - q| @ motion_weights[g] between q and q'.
     """
 
     def __init__(self, tree: BodyTree, node: np.ndarray, solids: _Solids, centers: np.ndarray, radii: np.ndarray,
-                 start: np.ndarray, obstacles: _Solids, env_threshold: np.ndarray, self_pairs: _Pairs,
-                 motion_weights: np.ndarray):
+                 start: np.ndarray, obstacles: _Solids, env_threshold: np.ndarray, self_pairs: _Pairs):
         self.tree, self._node, self._solids, self._obstacles = tree, node, solids, obstacles
         self._centers, self._radii, self._start = centers, radii, start
         self._count = np.diff(start)
@@ -104,12 +102,24 @@ class SphereCertifier:
         self._env_reach2 = np.where(np.isfinite(reach), np.maximum(reach, 0.0) ** 2, -1.0)
         self._env_unchecked = np.where(np.isfinite(reach), 0.0, np.inf)
         self._env_clear_offset = np.where(np.isfinite(reach), reach, -np.inf).max(axis=1, initial=0.0)
-        self.motion_weights = motion_weights
+        self._revolute = tree.kinds != PRISMATIC
+        self._path = _joints_up(tree, node)
+        # a self pair moves only by the joints below the deepest joint above both its bodies: joints are
+        # numbered down the tree, so those numbered from ``cut`` on
+        m = len(tree.kinds)
+        cut = np.array([max(np.flatnonzero(self._path[g] & self._path[o]), default=-1) + 1
+                        for g, o in zip(self_pairs.mover, self_pairs.other)], int)
+        self._pair_below = (np.arange(m) >= cut[:, None]).astype(float)  # (pairs, joints)
         self._self_sides = []  # per side of the self pairs: (pair order by geometry, first of each run, its geometry)
         for side in (self_pairs.mover, self_pairs.other):
             order = np.argsort(side, kind="stable")
             owner, first = np.unique(side[order], return_index=True)
             self._self_sides.append((order, first, owner))
+        # per moving geometry, its self pairs: _pair_of[_pair_start[g]:_pair_start[g] + _pair_count[g]]
+        sides = np.concatenate([self_pairs.mover, self_pairs.other])
+        self._pair_of = np.tile(np.arange(len(self_pairs.mover)), 2)[np.argsort(sides, kind="stable")]
+        self._pair_count = np.bincount(sides, minlength=len(node))
+        self._pair_start = np.cumsum(self._pair_count) - self._pair_count
 
     @property
     def spheres(self) -> int:
@@ -122,40 +132,126 @@ class SphereCertifier:
     def certified_free(self, q_full: np.ndarray) -> np.ndarray:
         """Per plant position vector (rows of ``q_full``): True only if Drake's checker calls it free.
 
-        Every ``ANCHOR_EVERY``-th row (an anchor) is bounded pair by pair. A row between two
-        anchors is free when, from one of them, none of its moving geometries can have moved
-        (:attr:`motion_weights`) as far as that geometry's clearance there; the other rows are
-        bounded themselves. Consecutive rows of a densely checked path are mostly such neighbours.
+        Every ``ANCHOR_EVERY``-th row (an anchor) is bounded pair by pair, with its geometries'
+        levers (:meth:`levers`). Every other row is bounded column by column: per moving geometry,
+        the environment; per moving geometry, half the gap of its self pairs ``FAR_PAIR`` apart at
+        every anchor (each side moving on its own); each other self pair, its two geometries
+        relative to each other. A column is clear at a row when, from one of the row's two anchors,
+        it cannot have moved as far as its clearance there; the columns that are not are bounded at
+        the row itself, pair by pair. Consecutive rows of a densely checked path are mostly clear
+        from their anchors.
         """
         q = np.atleast_2d(np.asarray(q_full, float))
-        if len(q) < 2 * ANCHOR_EVERY or not np.all(np.isfinite(self.motion_weights)):
+        if len(q) < 2 * ANCHOR_EVERY:
             return self.clearance(q).min(axis=1) > 0.0
         anchors = np.arange(0, len(q), ANCHOR_EVERY)
-        clear = self.clearance(q[anchors])
-        run = np.arange(len(q)) // ANCHOR_EVERY  # each row's anchor, and the next one
-        nxt = np.minimum(run + 1, len(anchors) - 1)
-        moved = lambda a: np.abs(q - q[anchors[a]]) @ self.motion_weights.T  # noqa: E731  (rows, geometries)
-        free = np.all(moved(run) < clear[run], axis=1) | np.all(moved(nxt) < clear[nxt], axis=1)
+        clear, lever = self._bounds(q[anchors])
+        columns, lever, near, folded = self._columns(clear, lever)
+        n, A = len(q), len(anchors)
+        # the rows by anchor (A, ANCHOR_EVERY, joints), the last run padded with the last row
+        rows = np.vstack([q, np.repeat(q[-1:], A * ANCHOR_EVERY - n, axis=0)])[:, self.tree.index]
+        rows = rows.reshape(A, ANCHOR_EVERY, -1)
+        ok = np.zeros((A, ANCHOR_EVERY, columns.shape[1]), bool)
+        for side in (np.arange(A), np.minimum(np.arange(1, A + 1), A - 1)):
+            dq = np.abs(rows - rows[side, :1])
+            moved = np.matmul(dq, lever[side].transpose(0, 2, 1))
+            moved *= _growth(dq[:, :, self._revolute].sum(axis=2))[:, :, None]
+            ok |= moved < columns[side, None]
+        ok = ok.reshape(A * ANCHOR_EVERY, -1)[:n]
+        free = ok.all(axis=1)
         free[anchors] = clear.min(axis=1) > 0.0
         rest = np.flatnonzero(~free)
         rest = rest[rest % ANCHOR_EVERY != 0]
         if len(rest):
-            free[rest] = self.clearance(q[rest]).min(axis=1) > 0.0
+            free[rest] = self._recheck(q[rest], ~ok[rest], near, folded)
         return free
 
-    def clearance(self, q_full: np.ndarray) -> np.ndarray:
-        """Per plant position vector and moving geometry (B, geometries): a lower bound of how far the
-        geometry can move before a checked pair of it comes within its threshold (all > 0: Drake
-        calls the configuration free); a self pair gives each side half, both moving."""
-        q = np.atleast_2d(np.asarray(q_full, float))
+    def _columns(self, clear: np.ndarray, lever: np.ndarray):
+        """The anchors' clearance and levers per column of :meth:`certified_free` (per moving geometry: the
+        environment, then half the gap of its self pairs far at every anchor; then the self pairs ``near``),
+        ``near``, and per self pair whether it is far (split between its geometries)."""
+        G = len(self._count)
+        near = np.flatnonzero((clear[:, G:] < FAR_PAIR).any(axis=0))
+        folded = np.ones(len(self._self.mover), bool)
+        folded[near] = False
+        half = np.full_like(clear[:, :G], np.inf)
+        gap = np.where(folded, clear[:, G:] / 2, np.inf)
+        for order, first, owner in self._self_sides:  # each side's pairs in a run: one reduction per geometry
+            half[:, owner] = np.minimum(half[:, owner], np.minimum.reduceat(gap[:, order], first, axis=1))
+        columns = np.hstack([clear[:, :G], half, clear[:, G + near]])
+        return columns, np.concatenate([lever, lever, self._pair_levers(lever, near)], axis=1), near, folded
+
+    def _recheck(self, q: np.ndarray, failing: np.ndarray, near: np.ndarray, folded: np.ndarray) -> np.ndarray:
+        """Whether the pairs of each row's ``failing`` columns (:meth:`certified_free`) clear their thresholds there."""
         R, p = self.tree.forward(q)
+        centre = np.einsum("bgij,gj->bgi", R[:, self._node], self._solids.o) + p[:, self._node]
+        G = len(self._count)
+        clear = np.full((len(q), G + len(self._self.mover)), np.inf)
+        b, g = np.nonzero(failing[:, :G])
+        d = np.abs(centre[b, g][:, None] - self._aabb_centre) - self._aabb_half  # (failing, obstacles, 3)
+        np.maximum(d, 0.0, out=d)
+        i, o = np.nonzero(np.einsum("noi,noi->no", d, d) <= self._env_reach2[g])  # within reach of the world box
+        b, g = b[i], g[i]
+        self._finer(R, p, centre, clear, b, g, o, self._env_threshold[g, o], g, moving=False)
+        b, g = np.nonzero(failing[:, G:2 * G])
+        row, k = _ranges(self._pair_start[g], self._pair_count[g])  # the geometry's self pairs
+        b, k = b[row], self._pair_of[k]
+        bn, c = np.nonzero(failing[:, 2 * G:])
+        b, k = np.concatenate([b[folded[k]], bn]), np.concatenate([k[folded[k]], near[c]])
+        g, o = self._self.mover[k], self._self.other[k]
+        v = centre[b, g] - centre[b, o]
+        reach = self._solids.radius[g] + self._solids.radius[o] + self._self.threshold[k]
+        reach = np.einsum("ni,ni->n", v, v) <= reach ** 2  # bounding spheres within reach of each other
+        b, g, o, k = b[reach], g[reach], o[reach], k[reach]
+        self._finer(R, p, centre, clear, b, g, o, self._self.threshold[k], G + k, moving=True)
+        return clear.min(axis=1) > 0.0
+
+    def _pair_levers(self, lever: np.ndarray, k: np.ndarray) -> np.ndarray:
+        """Geometry levers (B, geometries, joints) -> those of self pairs ``k`` (B, pairs, joints): the sum
+        of their two geometries' over the joints below both bodies (moving both together changes no distance)."""
+        return (lever[:, self._self.mover[k]] + lever[:, self._self.other[k]]) * self._pair_below[k]
+
+    def levers(self, q_full: np.ndarray) -> np.ndarray:
+        """Per plant position vector, clearance column (:meth:`clearance`) and moving joint (B, columns, joints):
+        from q, no point of a column's geometry moves (a self pair's two geometries: relative to each
+        other) farther than (|dq| @ levers[c]) * :func:`_growth` (s) on the straight line to q + dq,
+        dq over the moving joints (``tree.index``), s the sum of |dq| over the revolute ones.
+
+        A point's speed is at most sum_j |dq_j| rho_j, rho_j its distance from joint j's axis (1 for a
+        prismatic joint), and rho_j grows by at most the distance moved so far (M): M' <= a + s M with
+        a = sum_j |dq_j| rho_j(q), so M <= a (e^s - 1) / s. A self pair counts only the joints below
+        both its bodies: moving both together changes no distance."""
+        lever = self._bounds(q_full)[1]
+        return np.concatenate([lever, self._pair_levers(lever, np.arange(len(self._self.mover)))], axis=1)
+
+    def clearance(self, q_full: np.ndarray) -> np.ndarray:
+        """Lower bounds (B, geometries + self pairs) per plant position vector: per moving geometry, how
+        far it can move before a checked pair of it and the never-moving geometry comes within its
+        threshold; per self pair, how far its two geometries can move relative to each other before
+        they do. All > 0: Drake calls the configuration free."""
+        return self._bounds(q_full, levers=False)[0]
+
+    def _bounds(self, q_full: np.ndarray, levers: bool = True):
+        """(:meth:`clearance`, and with ``levers`` each moving geometry's lever per joint (B, geometries,
+        joints): the farthest distance of its bounding sphere from the joint's axis (1 for a prismatic
+        joint, 0 for a joint not above it))."""
+        q = np.atleast_2d(np.asarray(q_full, float))
+        R, p, axis, origin = self.tree.forward(q, joints=True)
         # every moving geometry's solid centre in the world, (B, geometries, 3)
         centre = np.einsum("bgij,gj->bgi", R[:, self._node], self._solids.o) + p[:, self._node]
-        clear, near = self._near_obstacles(centre)
-        self._finer(R, p, centre, clear, *near, moving=False)
-        if len(self._self.mover):
-            self._finer(R, p, centre, clear, *self._near_each_other(centre, clear), moving=True)
-        return clear
+        env, (b, g, o, threshold) = self._near_obstacles(centre)
+        pair_gap, (b_pair, k) = self._near_each_other(centre)
+        clear = np.hstack([env, pair_gap])
+        self._finer(R, p, centre, clear, b, g, o, threshold, g, moving=False)
+        if len(k):
+            g, o = self._self.mover[k], self._self.other[k]
+            self._finer(R, p, centre, clear, b_pair, g, o, self._self.threshold[k], len(self._count) + k, moving=True)
+        if not levers:
+            return clear, None
+        v = centre[:, :, None] - origin[:, None]  # (B, geometries, joints, 3)
+        along = np.einsum("bgjk,bjk->bgj", v, axis)
+        rho = np.sqrt(np.maximum(np.einsum("bgjk,bgjk->bgj", v, v) - along ** 2, 0.0)) + self._solids.radius[:, None]
+        return clear, np.where(self._revolute, rho, 1.0) * self._path
 
     def _near_obstacles(self, centre: np.ndarray):
         """(per configuration and geometry: the clearance of the pairs far from the obstacles' world boxes,
@@ -176,45 +272,34 @@ class SphereCertifier:
         # the nearest far obstacle, less the largest radius + threshold of the geometry's pairs: a lower bound
         return np.sqrt(gap2.min(axis=2)) - self._env_clear_offset, (b, g, o, self._env_threshold[g, o])
 
-    def _near_each_other(self, centre: np.ndarray, clear: np.ndarray):
-        """(b, g, o, threshold) of the moving pairs whose bounding spheres are within reach; the others
-        lower ``clear`` of both their sides by half their gap."""
-        g, o, threshold = self._self.mover, self._self.other, self._self.threshold
+    def _near_each_other(self, centre: np.ndarray):
+        """(per configuration and self pair (B, pairs): the gap of the pairs whose bounding spheres are
+        apart, inf for the others; (b, pair) of the others)."""
+        g, o = self._self.mover, self._self.other
         v = centre[:, g] - centre[:, o]
-        gap = np.sqrt(np.einsum("bki,bki->bk", v, v)) - self._solids.radius[g] - self._solids.radius[o] - threshold
+        gap = np.sqrt(np.einsum("bki,bki->bk", v, v)) - self._solids.radius[g] - self._solids.radius[o]
+        gap -= self._self.threshold
         near = gap <= 0.0
         b, k = np.nonzero(near)
         gap[near] = np.inf
-        gap /= 2
-        for order, first, owner in self._self_sides:  # each side's pairs in a run: one reduction per geometry
-            clear[:, owner] = np.minimum(clear[:, owner], np.minimum.reduceat(gap[:, order], first, axis=1))
-        return b, g[k], o[k], threshold[k]
+        return gap, (b, k)
 
-    def _finer(self, R, p, centre, clear, b, g, o, threshold, moving: bool) -> None:
-        """Lowers ``clear`` by the pairs (b, g, o): the moving geometry's bounding sphere against the other
-        solid, then, where that comes within ``threshold``, sphere by sphere."""
+    def _finer(self, R, p, centre, clear, b, g, o, threshold, column, moving: bool) -> None:
+        """Lowers ``clear[b, column]`` by the pairs (b, g, o): the moving geometry's bounding sphere against
+        the other solid, then, where that comes within ``threshold``, sphere by sphere."""
         if not len(b):
             return
         R_WG, o_W, solids = self._other_pose(R, p, b, o, moving)
         gap = self._distance(centre[b, g], R_WG, o_W, solids, o) - self._solids.radius[g] - threshold
         near = gap <= 0.0
-        self._lower(clear, b[~near], g[~near], o[~near], gap[~near], moving)
-        b, g, o, threshold, R_WG, o_W = b[near], g[near], o[near], threshold[near], R_WG[near], o_W[near]
+        _lower(clear, b[~near], column[~near], gap[~near])
+        b, g, o, threshold, column = b[near], g[near], o[near], threshold[near], column[near]
+        R_WG, o_W = R_WG[near], o_W[near]
         row, sphere = _ranges(self._start[g], self._count[g])
         bs, ns = b[row], self._sphere_node[sphere]
         c = np.einsum("nij,nj->ni", R[bs, ns], self._centers[sphere]) + p[bs, ns]
         gap = self._distance(c, R_WG[row], o_W[row], solids, o[row]) - self._radii[sphere] - threshold[row]
-        self._lower(clear, bs, g[row], o[row], gap, moving)
-
-    @staticmethod
-    def _lower(clear, b, g, o, gap, moving: bool) -> None:
-        """clear[b, g] = min(clear[b, g], gap); for a self pair half the gap, on both sides."""
-        flat, n = clear.reshape(-1), clear.shape[1]  # a view: numpy's ufunc.at is fast on one flat index
-        if moving:
-            np.minimum.at(flat, b * n + g, gap / 2)
-            np.minimum.at(flat, b * n + o, gap / 2)
-        else:
-            np.minimum.at(flat, b * n + g, gap)
+        _lower(clear, bs, column[row], gap)
 
     def _other_pose(self, R, p, b, o, moving: bool):
         """World pose (R_WG, centre) of the other side of pairs at configurations b, and its solids."""
@@ -228,6 +313,16 @@ class SphereCertifier:
         """Signed distance from world points to solids ``o`` posed at (R_WG, o_W), one per point."""
         x = np.einsum("nji,nj->ni", R_WG, points - o_W)
         return solid_distance(x, solids.half[o], solids.rounding[o], solids.cylinder[o])
+
+
+def _lower(clear: np.ndarray, b: np.ndarray, column: np.ndarray, gap: np.ndarray) -> None:
+    """clear[b, column] = min(clear[b, column], gap), repeated indices included."""
+    np.minimum.at(clear.reshape(-1), b * clear.shape[1] + column, gap)  # a view: ufunc.at is fast on one flat index
+
+
+def _growth(s: np.ndarray) -> np.ndarray:
+    """(e^s - 1) / s <= 1 + s for 0 <= s <= 1 (see SphereCertifier.levers); inf beyond."""
+    return np.where(s <= 1.0, 1.0 + s, np.inf)
 
 
 def _ranges(starts: np.ndarray, counts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -280,32 +375,18 @@ def sphere_certifier(checker, margin: float = MARGIN, slack: float = SLACK) -> S
     centers = np.vstack([c @ X_BG[g][:3, :3].T + X_BG[g][:3, 3] for g, (c, _) in zip(moving, covers)]).reshape(-1, 3)
     radii = np.concatenate([r for _, r in covers] + [np.zeros(0)])
     nodes = np.array([node[body[g].index()] for g in moving], int)
-    return SphereCertifier(tree, nodes, solids, centers, radii, start, obstacles, env, self_pairs,
-                           _motion_weights(tree, nodes, solids, plant))
+    return SphereCertifier(tree, nodes, solids, centers, radii, start, obstacles, env, self_pairs)
 
 
-def _motion_weights(tree: BodyTree, nodes: np.ndarray, solids: _Solids, plant) -> np.ndarray:
-    """(moving geometries, plant positions): how far (m) a point of each geometry can move per unit of each position.
-
-    A prismatic joint moves points by its own travel; a revolute joint by the angle times
-    their distance from its axis, at most their distance from its frame's origin, bounded by
-    the triangle inequality up the tree (fixed offsets, plus the travel of prismatic joints
-    on the way): a bound for every configuration, so no point of geometry g moves farther than
-    |q' - q| @ weights[g] along the straight line from q to q' (inf: a prismatic joint without limits).
-    """
-    lo, hi = plant.GetPositionLowerLimits(), plant.GetPositionUpperLimits()
-    travel = np.where(tree.kinds == PRISMATIC, np.maximum(np.abs(lo[tree.index]), np.abs(hi[tree.index])), 0.0)
-    weights = np.zeros((len(nodes), plant.num_positions()))
+def _joints_up(tree: BodyTree, nodes: np.ndarray) -> np.ndarray:
+    """(nodes, moving joints): whether the joint lies between each node's body and the world."""
+    path = np.zeros((len(nodes), len(tree.kinds)), bool)
     for g, k in enumerate(nodes):
-        F = tree.F[k]
-        reach = np.linalg.norm(F[:3, :3] @ solids.o[g] + F[:3, 3]) + solids.radius[g]  # from its slot's origin
         slot = tree.slot[k]
         while slot > 0:
-            j = slot - 1
-            weights[g, tree.index[j]] = 1.0 if tree.kinds[j] == PRISMATIC else reach
-            reach += np.linalg.norm(tree.K[j, :3, 3]) + travel[j]
-            slot = tree.parent[j]
-    return weights
+            path[g, slot - 1] = True
+            slot = tree.parent[slot - 1]
+    return path
 
 
 def _checked_pairs(checker, inspector, body, moving, still, spheres, margin):

@@ -125,10 +125,9 @@ def _step(s: Search, tree: Tree, parent: int, q_new: np.ndarray) -> int:
     q_parent = tree.nodes[parent]
     if tree is not s.trees[0]:
         return tree.add(q_new, parent) if edge_free(s.space, s.checker, q_parent, q_new, s.settings.resolution) else -1
-    probes = [q_new] + [s.space.interpolate(q_parent, q_new, t) for t in LAZY_PROBES]
     free = getattr(s.checker, "config_unpadded_free", s.checker.config_free)
-    if not all(free(q) for q in probes):
-        return -1
+    if not free(q_new) or not all(free(s.space.interpolate(q_parent, q_new, t)) for t in LAZY_PROBES):
+        return -1  # (most steps end blocked: the probes are computed only past a free end)
     return tree.add(q_new, parent, checked=False)
 
 

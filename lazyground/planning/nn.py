@@ -80,7 +80,8 @@ class NearestNeighbors:
 
     def nearest(self, x: np.ndarray) -> int:
         if self._main is None:  # no k-d tree yet: one scan (the answer the general path gives)
-            return int(np.argmin(self._sq[: self._size] - 2.0 * (self._points[: self._size] @ x))) if self._size else -1
+            n = self._size  # |p|^2 - 2 p.x as |p|^2 + p.(-2 x): the same numbers (scaling by 2 is exact), one pass fewer
+            return int((self._sq[:n] + np.dot(self._points[:n], -2.0 * x)).argmin()) if n else -1
         d, best = self._main.query(x)  # (a recent tree exists only beside a main one)
         best_d2 = d * d
         if self._recent is not None:
@@ -110,7 +111,9 @@ class NearestNeighbors:
         lo = self._recent_end if self._main is not None else 0
         if lo < self._size:
             g = self._sq[lo : self._size] - 2.0 * (self._points[lo : self._size] @ x) + x @ x
-            j = np.argpartition(g, k - 1)[:k] if len(g) > k else np.arange(len(g))
+            j = g.argpartition(k - 1)[:k] if len(g) > k else np.arange(len(g))  # (methods: numpy's functions cost ~1 us more)
+            if not idx:  # no k-d tree yet: the scan alone (what merging would give)
+                return lo + j[g[j].argsort(kind="stable")]
             idx.append(lo + j)
             d2.append(g[j])
         idx, d2 = np.concatenate(idx), np.concatenate(d2)

@@ -8,6 +8,7 @@ answers nearest-neighbour queries exactly.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -34,6 +35,7 @@ class ConfigSpace:
     _w2_ang: np.ndarray = field(init=False, repr=False)
     _w_lin: np.ndarray = field(init=False, repr=False)
     _w_ang: np.ndarray = field(init=False, repr=False)
+    _span: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self):
         n = len(self.names)
@@ -55,6 +57,7 @@ class ConfigSpace:
         object.__setattr__(self, "_w2_ang", weights[wrap] ** 2)
         object.__setattr__(self, "_w_lin", weights[~wrap])
         object.__setattr__(self, "_w_ang", weights[wrap])
+        object.__setattr__(self, "_span", upper - lower)
 
     @property
     def dim(self) -> int:
@@ -65,7 +68,7 @@ class ConfigSpace:
         return len(self._lin) + 2 * len(self._ang)
 
     def sample(self, rng: np.random.Generator) -> np.ndarray:
-        return self.lower + rng.random(self.dim) * (self.upper - self.lower)
+        return self.lower + rng.random(len(self._span)) * self._span
 
     def embed(self, q: np.ndarray) -> np.ndarray:
         """Points whose Euclidean distance is the space's metric (rows or one vector)."""
@@ -94,7 +97,7 @@ class ConfigSpace:
     def _length(self, d: np.ndarray) -> float:
         """The metric length of a difference vector (angles wrapped or not: the chord ignores turns)."""
         if not len(self._ang):
-            return float(np.sqrt(np.dot(self._w2, d * d)))
+            return math.sqrt(np.dot(self._w2, d * d))  # (the same rounding as np.sqrt)
         lin = d[self._lin]
         return float(np.sqrt(np.dot(self._w2_lin, lin * lin) + np.dot(self._w2_ang, 2.0 * (1.0 - np.cos(d[self._ang])))))
 

@@ -82,7 +82,7 @@ class Tree:
             return [i] if i >= 0 else []
         if not len(self.nn):
             return []
-        return [int(j) for j in self.nn.nearest_k(self.space.embed(q), k) if self.alive[j]]
+        return [j for j in self.nn.nearest_k(self.space.embed(q), k).tolist() if self.alive[j]]
 
     def chain(self, i: int) -> list[int]:
         """Node indices from ``i`` up to its root."""

@@ -14,6 +14,7 @@ from pydrake.geometry import Box, Capsule, Cylinder, Ellipsoid, Sphere  # noqa: 
 from lazyground.bench.moveit_corpus import CORPUS  # noqa: E402
 from lazyground.drake.chain import body_tree  # noqa: E402
 from lazyground.drake.solids import cover, solid, solid_distance  # noqa: E402
+from lazyground.drake.spheres import _growth  # noqa: E402
 from lazyground.drake.world import Attachment, DrakeWorld  # noqa: E402
 from lazyground.geometry import Pose  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
@@ -50,6 +51,20 @@ def _dense_paths(world, rng, n: int, steps: int = 120) -> np.ndarray:
     return world.full((a[:, None] + t * (b - a)[:, None]).reshape(-1, a.shape[1]))
 
 
+def _rows_through_contact(world, rng, n: int) -> np.ndarray:
+    """Rows 0.01 rad apart (twice the fine re-check's step), in order, along n segments in random
+    directions through configurations within ~1e-4 rad of contact (the free ends of the bisections)."""
+    near = _near_contact(world, rng, n)
+    near = near[-2 * len(near) // 18: -len(near) // 18]  # 18 blocks: 16 halvings, then the free and colliding ends
+    planned = list(world.coordinates.planned)
+    u = rng.normal(size=(len(near), len(planned)))
+    u /= np.linalg.norm(u, axis=1, keepdims=True)
+    t = (np.arange(160) - 80) * 0.01
+    rows = np.repeat(near[:, None], len(t), axis=1)
+    rows[:, :, planned] += t[None, :, None] * u[:, None]
+    return rows.reshape(-1, near.shape[1])
+
+
 def _assert_sound(world, q_full: np.ndarray) -> np.ndarray:
     """The certifier proves only Drake-free configurations; the checker answers as Drake. Returns the certified mask."""
     certified = world.checker.certifier.certified_free(q_full)
@@ -70,6 +85,8 @@ def test_never_certifies_a_colliding_configuration(scene):
     certified = _assert_sound(world, np.vstack([random, near]))
     dense = _dense_paths(world, rng, 20)
     assert 0 < _assert_sound(world, dense).sum() < len(dense)  # rows certified through their anchors' clearance too
+    through = _rows_through_contact(world, rng, 15)
+    assert 0 < _assert_sound(world, through).sum() < len(through)
     drake = _drake_free(world, random)
     assert certified[: len(random)].sum() > 0.3 * drake.sum()  # it proves a good share, so soundness means something
     # near contact: within 0.5 mm of the boundary the certifier must leave the call to Drake
@@ -104,22 +121,60 @@ def test_a_car_is_left_to_drake(scene):
     assert np.array_equal(world.configs_free(qs), _drake_free(world, world.full(qs)))
 
 
-def test_no_point_moves_farther_than_the_motion_bound():
+def test_dense_rows_near_self_collision_stay_sound(tmp_path):
+    """A Fetch alone (every collision a self collision): rows 0.01 rad apart (twice the fine re-check's step)
+    along segments through near-contact configurations, as a path's fine re-check asks; anchors cover rows
+    through the self pairs' relative bounds, and no Drake-colliding row is certified."""
+    path = tmp_path / "alone.yaml"
+    path.write_text(f"name: alone\nrobot: {FETCH}\nobstacles: []\n")
+    world = DrakeWorld(load_scene(str(path)), visual=False)
+    rows = _rows_through_contact(world, np.random.default_rng(11), 40)
+    drake = _drake_free(world, rows)
+    assert 0 < drake.sum() < len(rows)  # the segments cross the boundary
+    certified = _assert_sound(world, rows)
+    assert certified.sum() > 0.3 * drake.sum()
+
+
+def _cover_centres(cert, qs: np.ndarray) -> np.ndarray:
+    """Every cover sphere's centre in the world (B, spheres, 3): points of the geometry's bounding sphere."""
+    R, p = cert.tree.forward(qs)
+    n = cert._sphere_node
+    return np.einsum("bsij,sj->bsi", R[:, n], cert._centers) + p[:, n]
+
+
+def test_no_point_moves_farther_than_its_levers_allow():
+    """Per geometry, sphere centres move no farther than the levers at q allow; per self pair, the distance
+    between the two geometries' sphere centres changes no more than the pair's relative bound, which counts
+    only the joints below both bodies."""
     world = DrakeWorld(load_scene("yaml_scenes/fetch_cans_1.yaml"), visual=False)
     cert = world.checker.certifier
     rng = np.random.default_rng(2)
-    q = world.full(np.array([world.space.sample(rng) for _ in range(400)]))
-    q2 = q + rng.normal(0.0, 0.2, q.shape) * (cert.motion_weights.max(axis=0) > 0)
-    bound = np.abs(q2 - q) @ cert.motion_weights.T  # (rows, geometries)
-
-    def spheres(qs):  # every cover sphere's centre in the world: points within the geometry's bounding sphere
-        R, p = cert.tree.forward(qs)
-        n = cert._sphere_node
-        return np.einsum("bsij,sj->bsi", R[:, n], cert._centers) + p[:, n]
-
-    moved = np.linalg.norm(spheres(q2) - spheres(q), axis=-1)
+    q = world.full(np.array([world.space.sample(rng) for _ in range(300)]))
+    moving = np.zeros(q.shape[1], bool)
+    moving[cert.tree.index] = True
+    q2 = q + rng.normal(0.0, 0.1, q.shape) * moving
+    dq = np.abs(q2 - q)[:, cert.tree.index]
+    s = dq[:, cert._revolute].sum(axis=1)
+    assert (s <= 1.0).mean() > 0.5  # most pairs within the bound's range (beyond it the bound is inf)
+    bound = np.einsum("bj,bcj->bc", dq, cert.levers(q)) * _growth(s)[:, None]
+    a, b = _cover_centres(cert, q), _cover_centres(cert, q2)
     owner = np.repeat(np.arange(len(cert._count)), cert._count)
+    G = len(cert._count)
+    moved = np.linalg.norm(b - a, axis=-1)
     assert np.all(moved <= bound[:, owner] + 1e-12)
+    ok = s <= 1.0
+    assert np.max(moved[ok] / bound[ok][:, owner]) > 0.3  # the bound is not vacuous
+    first = np.concatenate([[0], np.cumsum(cert._count)])
+    tight, gained = 0.0, 0
+    for k, (g, o) in enumerate(zip(cert._self.mover, cert._self.other)):
+        ig, io = np.arange(first[g], first[g + 1]), np.arange(first[o], first[o + 1])
+        dist = lambda c: np.linalg.norm(c[:, ig, None] - c[:, None, io], axis=-1)  # noqa: E731
+        change = np.abs(dist(b) - dist(a)).max(axis=(1, 2))
+        assert np.all(change <= bound[:, G + k] + 1e-12), (g, o)
+        tight = max(tight, float(np.max(change[ok] / bound[ok, G + k])))
+        gained += bool(np.all(bound[ok, G + k] < bound[ok, g] + bound[ok, o] - 1e-9))
+    assert tight > 0.3
+    assert gained > len(cert._self.mover) / 2  # most pairs share joints above them that the relative bound leaves out
 
 
 def test_the_body_tree_matches_the_plant():
