@@ -32,7 +32,7 @@ from __future__ import annotations
 import enum
 import functools
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -166,7 +166,8 @@ def shortcut_path(
     edge = bisected_edge(space, checker, resolution)
     versions, iterations, backtracked = _shorten(space, edge, fine, start, settings, rng, deadline, lazy=True)
     if versions is None:  # a segment of the unchecked greedy pass failed the fine check: again, checking each as chosen
-        versions, more, backtracked = _shorten(space, edge, fine, start, settings, rng, deadline, lazy=False)
+        rest = replace(settings, max_iterations=settings.max_iterations - iterations)  # attempts in all stay within it
+        versions, more, backtracked = _shorten(space, edge, fine, start, rest, rng, deadline, lazy=False)
         iterations += more
     if not versions:  # a piece of the input path (version 0's) fails: the input path itself
         return done(ShortcutStatus.BACKTRACKED, raw, iterations, 0)

@@ -80,6 +80,9 @@ def test_a_wall_thinner_than_the_planner_resolution_is_caught_by_the_fine_check(
     # every seed's first, lazy greedy pass goes straight through the wall and fails the final fine check:
     # the shortening is redone with the greedy's fine checks and goes around (never the raw path)
     assert all(o.length < o.raw_length for o in outs)
+    # the attempts of both runs together stay within max_iterations
+    capped = ShortcutSettings(max_iterations=30, patience=1000, time_budget=1e9)
+    assert all(shorten(thin, path, seed, capped).iterations == 30 for seed in range(3))
 
 
 def test_the_lazy_greedy_pass_gives_the_checked_ones_path_with_fewer_checks():
