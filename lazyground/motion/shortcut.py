@@ -163,7 +163,7 @@ def shortcut_path(
     start = _drop_redundant(space, _Path(space, list(body), [0] * (len(body) - 1)))
     deadline = t0 + settings.time_budget
     fine = _FineCheck(space, checker, resolution / validation_factor, raw)
-    edge = bisected_edge(space, checker, resolution)
+    edge = _remembered(bisected_edge(space, checker, resolution))  # a redo's greedy pass asks the same edges again
     versions, iterations, backtracked = _shorten(space, edge, fine, start, settings, rng, deadline, lazy=True)
     if versions is None:  # a segment of the unchecked greedy pass failed the fine check: again, checking each as chosen
         rest = replace(settings, max_iterations=settings.max_iterations - iterations)  # attempts in all stay within it
@@ -177,6 +177,19 @@ def shortcut_path(
     if length >= raw_length:
         return done(ShortcutStatus.UNCHANGED, raw, iterations, 0)
     return done(ShortcutStatus.BACKTRACKED if backtracked else ShortcutStatus.SHORTENED, out, iterations, len(versions) - 1)
+
+
+def _remembered(edge):
+    """``edge`` with its answers kept per (a, b)."""
+    known = {}
+
+    def remembered(a: np.ndarray, b: np.ndarray) -> bool:
+        key = (a.tobytes(), b.tobytes())
+        if key not in known:
+            known[key] = edge(a, b)
+        return known[key]
+
+    return remembered
 
 
 def _shorten(space: ConfigSpace, edge, fine: "_FineCheck", start: _Path, settings: ShortcutSettings,

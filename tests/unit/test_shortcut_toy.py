@@ -6,7 +6,7 @@ import pytest
 from lazyground.motion.curve import blended_curve, unwrap_path
 from lazyground.motion.validate import first_colliding_join
 from lazyground.motion.edges import bisected_edge
-from lazyground.motion.shortcut import ShortcutSettings, ShortcutStatus, _FineCheck, _Path, _shorten, shortcut_path
+from lazyground.motion.shortcut import ShortcutSettings, ShortcutStatus, _FineCheck, _Path, _remembered, _shorten, shortcut_path
 from lazyground.planning import PlannerSettings, path_is_valid, solve
 from lazyground.planning.space import ConfigSpace
 from tests.unit.toy import REACHABLE, SPACE, START, WALLS, BoxWorld, CountingWorld, goal_source
@@ -106,6 +106,16 @@ def test_the_lazy_greedy_pass_gives_the_checked_ones_path_with_fewer_checks():
         assert asked[True] <= asked[False]
         saved += asked[True] < asked[False]
     assert saved >= 2
+
+
+def test_an_edge_is_checked_once_in_a_shortening():
+    # a redone shortening's greedy pass asks the first run's edges again: the answers are kept
+    world = CountingWorld(WALLS)
+    edge = _remembered(bisected_edge(SPACE, world, SETTINGS.resolution))
+    a, b = np.array([1.0, 1.0]), np.array([3.0, 6.0])
+    first = edge(a, b)
+    asked = world.asked
+    assert edge(a.copy(), b.copy()) == first and world.asked == asked > 0
 
 def test_blended_curve_runs_from_start_to_goal_near_the_corners():
     path = np.array([[1.0, 1.0], [3.0, 8.5], [6.0, 8.5], [8.0, 9.0]])
