@@ -35,18 +35,21 @@ def bisection_levels(n: int) -> tuple[np.ndarray, ...]:
     return tuple(levels)
 
 
+@functools.lru_cache(maxsize=512)
+def probe_batches(n: int) -> tuple[np.ndarray, ...]:
+    """The batches an edge of n configurations is checked in: bisection levels until PROBES configurations
+    are probed, then all the rest in one (a free edge costs about what Drake's check does)."""
+    levels = bisection_levels(n)
+    sizes = np.cumsum([0] + [len(level) for level in levels])
+    k = int(np.searchsorted(sizes, PROBES))  # the first k levels are the fewest that probe PROBES or more
+    return levels[:k] + ((np.concatenate(levels[k:]),) if k < len(levels) else ())
+
+
 def bisected_edge(space: ConfigSpace, checker: ValidityChecker, resolution: float):
     """``edge(a, b) -> bool``: a -> b free at ``resolution``, checked in bisection order with early exit."""
 
     def edge(a: np.ndarray, b: np.ndarray) -> bool:
         qs = space.discretize(a, b, resolution)
-        levels, probed = bisection_levels(len(qs)), 0
-        for k, level in enumerate(levels):
-            if probed >= PROBES:  # the rest in one batch: a free edge costs about what Drake's check does
-                return bool(np.all(checker.configs_free(qs[np.concatenate(levels[k:])])))
-            if not np.all(checker.configs_free(qs[level])):
-                return False
-            probed += len(level)
-        return True
+        return all(np.all(checker.configs_free(qs[batch])) for batch in probe_batches(len(qs)))
 
     return edge

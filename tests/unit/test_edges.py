@@ -2,8 +2,8 @@
 
 import numpy as np
 
-from lazyground.motion.edges import bisected_edge, bisection_levels
-from tests.unit.toy import SPACE, BoxWorld
+from lazyground.motion.edges import PROBES, bisected_edge, bisection_levels, probe_batches
+from tests.unit.toy import SPACE, CountingWorld
 
 
 def test_the_levels_hold_every_index_once_middle_first_ends_last():
@@ -15,18 +15,19 @@ def test_the_levels_hold_every_index_once_middle_first_ends_last():
             assert levels[0].tolist() == [(n - 1) // 2]
 
 
-class _Counting(BoxWorld):
-    def __init__(self, boxes):
-        super().__init__(boxes)
-        self.asked = 0
-
-    def configs_free(self, qs):
-        self.asked += len(np.atleast_2d(qs))
-        return super().configs_free(qs)
+def test_the_batches_probe_levels_until_probes_then_take_the_rest_at_once():
+    for n in range(1, 200):
+        batches, levels = probe_batches(n), bisection_levels(n)
+        assert sorted(int(i) for batch in batches for i in batch) == list(range(n))
+        probed = np.cumsum([len(batch) for batch in batches])
+        assert all(p < PROBES for p in probed[:-2])  # every batch but the last starts below PROBES probed
+        assert all(np.array_equal(batch, level) for batch, level in zip(batches[:-1], levels))
+        if n > 2:
+            assert batches[0].tolist() == [(n - 1) // 2]  # the middle alone first
 
 
 def test_it_answers_as_the_sequential_check_and_stops_early_on_a_collision():
-    world = _Counting([(4.9, 4.0, 5.1, 6.0)])  # a post in the middle of the edges across it
+    world = CountingWorld([(4.9, 4.0, 5.1, 6.0)])  # a post in the middle of the edges across it
     edge = bisected_edge(SPACE, world, 0.05)
     rng = np.random.default_rng(0)
     for _ in range(200):

@@ -5,10 +5,11 @@ import pytest
 
 from lazyground.motion.curve import blended_curve, unwrap_path
 from lazyground.motion.validate import first_colliding_join
-from lazyground.motion.shortcut import ShortcutSettings, ShortcutStatus, shortcut_path
+from lazyground.motion.edges import bisected_edge
+from lazyground.motion.shortcut import ShortcutSettings, ShortcutStatus, _FineCheck, _Path, _remembered, _shorten, shortcut_path
 from lazyground.planning import PlannerSettings, path_is_valid, solve
 from lazyground.planning.space import ConfigSpace
-from tests.unit.toy import REACHABLE, SPACE, START, WALLS, BoxWorld, goal_source
+from tests.unit.toy import REACHABLE, SPACE, START, WALLS, BoxWorld, CountingWorld, goal_source
 
 SETTINGS = PlannerSettings(step_size=0.5, time_limit=30.0, goal_bias=0.1)
 BUDGET = ShortcutSettings(max_iterations=200, time_budget=1e9)  # iterations decide, never the clock
@@ -76,7 +77,45 @@ def test_a_wall_thinner_than_the_planner_resolution_is_caught_by_the_fine_check(
     for out in outs:
         assert path_is_valid(SPACE, thin, out.path, FINE / 4) == -1
     assert any(o.status is ShortcutStatus.BACKTRACKED for o in outs)
+    # every seed's first, lazy greedy pass goes straight through the wall and fails the final fine check:
+    # the shortening is redone with the greedy's fine checks and goes around (never the raw path)
+    assert all(o.length < o.raw_length for o in outs)
+    # the attempts of both runs together stay within max_iterations
+    capped = ShortcutSettings(max_iterations=30, patience=1000, time_budget=1e9)
+    assert all(shorten(thin, path, seed, capped).iterations == 30 for seed in range(3))
 
+
+def test_the_lazy_greedy_pass_gives_the_checked_ones_path_with_fewer_checks():
+    # Its segments are checked finely only if they are still in the final path; when none fails, the
+    # path is the one the greedy pass checking each segment as it goes gives (the rest is the same). With
+    # small moves allowed, the relaxation moves the greedy's corners on some seeds (2 and 4 here), and its
+    # segments' fine checks were wasted.
+    settings = ShortcutSettings(max_iterations=200, time_budget=1e9, min_gain=1e-4)
+    saved = 0
+    for seed in range(6):
+        _, path = planned(seed)
+        start = _Path(SPACE, list(path), [0] * (len(path) - 1))
+        out, asked = {}, {}
+        for lazy in (True, False):
+            world = CountingWorld(WALLS)
+            fine = _FineCheck(SPACE, world, FINE, path)
+            edge = bisected_edge(SPACE, world, SETTINGS.resolution)
+            versions, _, _ = _shorten(SPACE, edge, fine, start, settings, np.random.default_rng(seed), 1e18, lazy)
+            out[lazy], asked[lazy] = np.array(versions[-1].q), world.asked
+        assert np.array_equal(out[True], out[False])
+        assert asked[True] <= asked[False]
+        saved += asked[True] < asked[False]
+    assert saved >= 2
+
+
+def test_an_edge_is_checked_once_in_a_shortening():
+    # a redone shortening's greedy pass asks the first run's edges again: the answers are kept
+    world = CountingWorld(WALLS)
+    edge = _remembered(bisected_edge(SPACE, world, SETTINGS.resolution))
+    a, b = np.array([1.0, 1.0]), np.array([3.0, 6.0])
+    first = edge(a, b)
+    asked = world.asked
+    assert edge(a.copy(), b.copy()) == first and world.asked == asked > 0
 
 def test_blended_curve_runs_from_start_to_goal_near_the_corners():
     path = np.array([[1.0, 1.0], [3.0, 8.5], [6.0, 8.5], [8.0, 9.0]])

@@ -53,6 +53,18 @@ class BoxWorld:
         return ", ".join(f"robot collides with box {i}" for i in hits) or "no colliding pair found"
 
 
+class CountingWorld(BoxWorld):
+    """A BoxWorld that counts the configurations it is asked about in batches."""
+
+    def __init__(self, boxes):
+        super().__init__(boxes)
+        self.asked = 0
+
+    def configs_free(self, qs):
+        self.asked += len(np.atleast_2d(qs))
+        return super().configs_free(qs)
+
+
 SPACE = ConfigSpace(("x", "y"), np.zeros(2), np.full(2, 10.0))
 
 # A wall at x in [4, 5] with a gap at y in [8, 9]; a box around (8, 2) encloses a pocket.
