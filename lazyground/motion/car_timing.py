@@ -35,8 +35,9 @@ def car_piece_timer(car: CarSpace, pieces: list[np.ndarray], limits: Limits):
     def time_piece(k: int, level: int):
         curves = drives(car, pieces[k], WINDOWS[level])
         used = Counter(d.window for d in curves) or Counter([0.0])
-        label = "drive " + ", ".join(f"{w:g} m" + (f" x{n}" if n > 1 else "")
-                                     for w, n in sorted(used.items(), reverse=True))
+        # per gear segment, how its curves were driven: curvature averaged over w metres, or the exact curves
+        label = ", ".join((f"curvature averaged over {w:g} m" if w > 0 else "exact curves") + (f" x{n}" if n > 1 else "")
+                          for w, n in sorted(used.items(), reverse=True))
         return [time_drive(d, limits) for d in curves], label
 
     return time_piece, len(WINDOWS)
