@@ -148,7 +148,8 @@ def cmd_plan(args) -> int:
         overrides = cli_values(args) | motion_options.overrides_from_args(args)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
-    problem = output_problem(scene, args.html, args.plot, args.animate)
+    problem = output_problem(scene, args.html, args.plot, args.animate,
+                             {"--trajectory": args.trajectory, "--ros-trajectory": args.ros_trajectory})
     if problem:
         raise UsageError(problem)
     visual = bool(args.html or args.meshcat or args.plot or args.animate)

@@ -9,12 +9,14 @@ from lazyground.scene.typed_yaml import SceneError
 from lazyground.viz.trace import planar_indices
 
 
-def output_problem(scene: Scene, html: str | None = None, plot: str | None = None, animate: str | None = None) -> str | None:
+def output_problem(scene: Scene, html: str | None = None, plot: str | None = None, animate: str | None = None,
+                   files: dict[str, str | None] | None = None) -> str | None:
     """What is wrong with the requested output files for this scene, or None.
 
-    ``--plot``/``--animate`` draw a planar robot from above; every file needs an existing folder.
+    ``--plot``/``--animate`` draw a planar robot from above; every file needs an existing folder
+    (``files``: more output files by flag, e.g. ``--trajectory``).
     """
-    for flag, value in (("--html", html), ("--plot", plot), ("--animate", animate)):
+    for flag, value in (("--html", html), ("--plot", plot), ("--animate", animate), *(files or {}).items()):
         if value is None:
             continue
         folder = Path(value).expanduser().resolve().parent

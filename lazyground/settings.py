@@ -92,7 +92,7 @@ class Setting:
         if self.choices:
             return ", ".join(self.choices)
         if self.low is not None and self.high is not None:
-            return f"[{self.low:g}, {self.high:g}]"
+            return f"{'(' if self.low_open else '['}{self.low:g}, {self.high:g}]"
         if self.low is not None:
             return f"> {self.low:g}" if self.low_open else f">= {self.low:g}"
         return "any"
