@@ -155,7 +155,8 @@ class SphereCertifier:
         for side in (np.arange(A), np.minimum(np.arange(1, A + 1), A - 1)):
             dq = np.abs(rows - rows[side, :1])
             moved = np.matmul(dq, lever[side].transpose(0, 2, 1))
-            moved *= _growth(dq[:, :, self._revolute].sum(axis=2))[:, :, None]
+            # a column that cannot move (no lever) stays at 0 however far the joints go: a(e^s - 1)/s with a = 0
+            np.multiply(moved, _growth(dq[:, :, self._revolute].sum(axis=2))[:, :, None], out=moved, where=moved > 0)
             ok |= moved < columns[side, None]
         ok = ok.reshape(A * ANCHOR_EVERY, -1)[:n]
         free = ok.all(axis=1)
