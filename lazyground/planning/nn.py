@@ -80,8 +80,7 @@ class NearestNeighbors:
 
     def nearest(self, x: np.ndarray) -> int:
         if self._main is None:  # no k-d tree yet: one scan (the answer the general path gives)
-            n = self._size  # |p|^2 - 2 p.x as |p|^2 + p.(-2 x): the same numbers (scaling by 2 is exact), one pass fewer
-            return int((self._sq[:n] + np.dot(self._points[:n], -2.0 * x)).argmin()) if n else -1
+            return int(self._scan(0, x).argmin()) if self._size else -1
         d, best = self._main.query(x)  # (a recent tree exists only beside a main one)
         best_d2 = d * d
         if self._recent is not None:
@@ -90,8 +89,8 @@ class NearestNeighbors:
                 best_d2, best = d * d, self._main_end + j
         lo = self._recent_end
         if lo < self._size:
-            g = self._sq[lo : self._size] - 2.0 * (self._points[lo : self._size] @ x)  # |p - x|^2 - |x|^2
-            j = int(np.argmin(g))
+            g = self._scan(lo, x)
+            j = int(g.argmin())
             if g[j] + x @ x < best_d2:
                 best = lo + j
         return int(best)
@@ -110,7 +109,7 @@ class NearestNeighbors:
                 d2.append(np.atleast_1d(d)[keep] ** 2)
         lo = self._recent_end if self._main is not None else 0
         if lo < self._size:
-            g = self._sq[lo : self._size] - 2.0 * (self._points[lo : self._size] @ x) + x @ x
+            g = self._scan(lo, x) + x @ x
             j = g.argpartition(k - 1)[:k] if len(g) > k else np.arange(len(g))  # (methods: numpy's functions cost ~1 us more)
             if not idx:  # no k-d tree yet: the scan alone (what merging would give)
                 return lo + j[g[j].argsort(kind="stable")]
@@ -119,6 +118,11 @@ class NearestNeighbors:
         idx, d2 = np.concatenate(idx), np.concatenate(d2)
         order = np.argsort(d2, kind="stable")[:k]
         return idx[order]
+
+    def _scan(self, lo: int, x: np.ndarray) -> np.ndarray:
+        """|p - x|^2 - |x|^2 of the points from ``lo`` on, as |p|^2 + p.(-2 x): the numbers of |p|^2 - 2 p.x
+        (scaling by 2 is exact), one pass fewer over them."""
+        return self._sq[lo : self._size] + self._points[lo : self._size] @ (-2.0 * x)
 
     def _rebuild_main(self) -> None:
         self._main_end = self._recent_end = self._size
