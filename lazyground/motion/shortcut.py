@@ -179,12 +179,17 @@ def shortcut_path(
     return done(ShortcutStatus.BACKTRACKED if backtracked else ShortcutStatus.SHORTENED, out, iterations, len(versions) - 1)
 
 
+def _segment_key(a: np.ndarray, b: np.ndarray) -> tuple[bytes, bytes]:
+    """The key under which a segment's check is remembered (its exact end points)."""
+    return a.tobytes(), b.tobytes()
+
+
 def _remembered(edge):
     """``edge`` with its answers kept per (a, b)."""
     known = {}
 
     def remembered(a: np.ndarray, b: np.ndarray) -> bool:
-        key = (a.tobytes(), b.tobytes())
+        key = _segment_key(a, b)
         if key not in known:
             known[key] = edge(a, b)
         return known[key]
@@ -270,7 +275,7 @@ class _FineCheck:
 
     def __init__(self, space: ConfigSpace, checker: ValidityChecker, resolution: float, raw: np.ndarray):
         self.space, self.checker, self.resolution = space, checker, resolution
-        self.known = {(a.tobytes(), b.tobytes()): True for a, b in zip(raw[:-1], raw[1:])}
+        self.known = {_segment_key(a, b): True for a, b in zip(raw[:-1], raw[1:])}
 
     def first_failure(self, p: _Path) -> int | None:
         """The version that made the first segment failing the check (0: a piece of the input path), or None
@@ -278,7 +283,7 @@ class _FineCheck:
 
         The segments not checked yet go to the checker in one batch (one call into Drake).
         """
-        segments = [((a.tobytes(), b.tobytes()), a, b, born) for a, b, born in zip(p.q[:-1], p.q[1:], p.new)]
+        segments = [(_segment_key(a, b), a, b, born) for a, b, born in zip(p.q[:-1], p.q[1:], p.new)]
         todo = {key: (a, b) for key, a, b, _ in segments if key not in self.known}
         if todo:
             chunks = [self.space.discretize(a, b, self.resolution) for a, b in todo.values()]
@@ -290,7 +295,7 @@ class _FineCheck:
 
     def segment_free(self, a: np.ndarray, b: np.ndarray) -> bool:
         """Whether a -> b passes the check (remembered)."""
-        key = (a.tobytes(), b.tobytes())
+        key = _segment_key(a, b)
         if key not in self.known:
             self.known[key] = bool(np.all(self.checker.configs_free(self.space.discretize(a, b, self.resolution))))
         return self.known[key]
