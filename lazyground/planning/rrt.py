@@ -62,8 +62,11 @@ def solve(
             return found
     except KeyboardInterrupt:
         return search.result(PlanStatus.INTERRUPTED, "interrupted")
-    if not search.samples:
+    if not search.samples and search.goals.exhausted():
         return search.no_goal()
+    if not search.samples:  # the limit came before goal sampling had tried every region: not proof there is no goal
+        return search.result(PlanStatus.TIMEOUT, f"no valid goal configuration found within {settings.time_limit:g} s "
+                                                  f"({search.iterations} iterations): {search.region_summary()}")
     return search.result(PlanStatus.TIMEOUT, f"no path within {settings.time_limit:g} s ({search.iterations} iterations)")
 
 
