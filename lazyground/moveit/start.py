@@ -17,7 +17,7 @@ from pathlib import Path
 import yaml
 
 from lazyground.robots.defaults import RobotDefaults
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.scene.typed_yaml import SceneError, load_yaml
 
 LIMIT_TOLERANCE = 1e-6
 
@@ -100,7 +100,7 @@ def request_start(path: str | Path) -> dict[str, float]:
 
     try:
         text = Path(path).read_text(encoding="utf-8")
-        data = yaml.safe_load(text)
+        data = load_yaml(text)
     except (OSError, UnicodeDecodeError, yaml.YAMLError) as exc:
         raise SceneError(f"{path}: cannot read the motion-plan request: {str(exc).splitlines()[0]}") from None
     kind = kind_of_mapping(data) if isinstance(data, dict) else kind_of_text(text)

@@ -11,7 +11,7 @@ import yaml
 
 from lazyground.bundled import bundled_scene, data_dir, scene_names
 from lazyground.scene.schema import Scene, SceneObject
-from lazyground.scene.typed_yaml import SceneError, load_dataclass
+from lazyground.scene.typed_yaml import SceneError, load_dataclass, load_yaml
 
 MAX_SCENE_BYTES = 5 * 1024 * 1024
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -43,7 +43,7 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
     ``robot_overrides`` replaces robot keys before the robot's defaults are filled in (the CLI's
     ``--package``/``--srdf``: absolute paths)."""
     try:
-        data = yaml.safe_load(text)
+        data = load_yaml(text)
     except RecursionError:  # PyYAML composes nested collections recursively
         raise SceneError(f"{source}: YAML nesting too deep") from None
     except yaml.YAMLError as exc:

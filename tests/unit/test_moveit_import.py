@@ -145,6 +145,9 @@ def test_user_rules_win_and_parse(tmp_path):
     path.write_text("- a\n")
     with pytest.raises(SceneError, match="mapping"):
         load_rules_file(path)
+    path.write_text("'^tray': table\n'^tray': obstacle\n")  # audit8: the second rule replaced the first silently
+    with pytest.raises(SceneError, match=r"duplicate key '\^tray' \(first at line 1\)"):
+        load_rules_file(path)
 
 
 @pytest.mark.parametrize("text, words", [
