@@ -19,6 +19,14 @@ LOT = str(REPO / "yaml_scenes" / "parking_1.yaml")
     ([LOT, "park", "--trajectory", "/no/such/folder/t.csv"], "error: --trajectory /no/such/folder/t.csv: folder /no/such/folder does not exist"),
     ([LOT, "park", "--ros-trajectory", "{tmp}"], "error: --ros-trajectory {tmp}: is a folder"),
     ([LOT, "park", "--speed", "0"], "error: --speed must be in (0, 1], got 0"),
+    # audit8: these wrote the wrong kind of file (--html x.png, --ros-trajectory t.csv, --plot out: out.png while
+    # saying "wrote out") or failed with an internal error (exit 3) after planning
+    ([LOT, "park", "--html", "{tmp}/x.png"], "error: --html {tmp}/x.png: unknown suffix '.png'; --html writes .html, .htm"),
+    ([LOT, "park", "--ros-trajectory", "{tmp}/t.csv"], "error: --ros-trajectory {tmp}/t.csv: unknown suffix '.csv'; --ros-trajectory writes .yaml"),
+    ([LOT, "park", "--plot", "{tmp}/out"], "error: --plot {tmp}/out: no suffix; --plot writes "),
+    ([LOT, "park", "--plot", "{tmp}/out.txt"], "error: --plot {tmp}/out.txt: unknown suffix '.txt'"),
+    ([LOT, "park", "--animate", "{tmp}/out.bmp"], "error: --animate {tmp}/out.bmp: unknown suffix '.bmp'; --animate writes "),
+    ([LOT, "park", "--html", "/proc/lazyground.html"], "error: --html /proc/lazyground.html: cannot write: "),
 ])
 def test_bad_outputs_fail_before_planning(argv, message, tmp_path, capsys):
     argv = [a.replace("{tmp}", str(tmp_path)) for a in argv]
@@ -26,3 +34,22 @@ def test_bad_outputs_fail_before_planning(argv, message, tmp_path, capsys):
     out, err = capsys.readouterr()
     assert out == ""  # nothing planned: the plan summary goes to stdout
     assert len(err.strip().splitlines()) == 1 and err.startswith(message.replace("{tmp}", str(tmp_path))), err
+
+
+def test_the_write_check_leaves_no_file_behind(tmp_path):
+    from lazyground.outputs import output_problem
+    from lazyground.scene import load_scene
+
+    assert output_problem(load_scene(LOT), html=str(tmp_path / "x.html"), plot=str(tmp_path / "x.png")) is None
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_output_that_fails_while_written_is_bad_input():
+    # audit8: a full disk (--html /dev/full) was "internal error: OSError: [Errno 28] ...", exit 3
+    from lazyground.cli import UsageError, _writing
+
+    def full():
+        raise OSError(28, "No space left on device")
+
+    with pytest.raises(UsageError, match=r"^--html out.html: cannot write: No space left on device$"):
+        _writing("--html out.html", full)
