@@ -112,6 +112,7 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
         raise BenchUsageError("--runs must be >= 1")
     if args.time_limit is not None:
         _checked("time-limit", "time_limit", [args.time_limit])
+    _checked("seed", "seed", [args.seed])
     keys, missing = [], []
     for name in scene_names:
         key = resolve_scene(name)
@@ -120,6 +121,8 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
         notes.append(f"missing scenes (neither files nor bundled scenes: {', '.join(bundled_names())}): {', '.join(missing)}")
     if not keys:
         raise BenchUsageError(f"no scene to run: {notes[0]}")
+    for key in keys:  # bad input is one line now, not an error row in every run
+        _check_request(key, args.request or preset.get("requests", {}).get(Path(key).stem))
     algorithms = _checked("algorithms", "algorithm", _csv_list(args.algorithms, preset.get("algorithms", (Algorithm.RRT,))))
     configs = [(ALGORITHMS[a], s, b) for a in algorithms for b in biases for s in strategies]
     kinematics = getattr(args, "kinematics", None)  # absent from Namespaces built by hand (tests)
@@ -144,6 +147,28 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
             for planner, strategy, bias in configs:
                 specs.append(RunSpec(key, planner, strategy, bias, args.seed + i, limit, request, kinematics))
     return specs, notes, preset.get("title", "Computation time (s)")
+
+
+def _check_request(key: str, request: str | None) -> None:
+    """A generated arm with at least one joint; a scene with a request (given or its first expectation's)
+    that grounds in it."""
+    dof = arms.parse_arm_key(key)
+    if dof is not None:
+        if dof < 1:
+            raise BenchUsageError(f"--scenes {key}: an arm needs at least one joint")
+        return
+    import grounding
+    from grounding.model import GroundingError
+    from lazyground.scene import load_scene
+
+    scene = load_scene(key)
+    request = request or (scene.expect[0].request if scene.expect else None)
+    if request is None:
+        raise BenchUsageError(f"scene {scene.name} has no expect: request; give --request")
+    try:
+        grounding.ground(request, scene)
+    except GroundingError as exc:
+        raise BenchUsageError(f"request {request!r} on scene {scene.name}: {exc}") from None
 
 
 def _scene_time_limit(key: str) -> float:
@@ -172,8 +197,13 @@ def main(argv: list[str]) -> int:
 
 
 def _main(args) -> int:
+    if args.jobs < 1:
+        raise BenchUsageError(f"--jobs must be >= 1, got {args.jobs}")
     out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise BenchUsageError(f"--out {args.out}: cannot make the folder: {exc.strerror or exc}") from None
     if args.nn_scaling:
         from lazyground.bench import nn_scaling
 
