@@ -209,8 +209,16 @@ def _write_visuals(report, scene, args) -> None:
 
 
 def cmd_demo(args) -> int:
+    from lazyground.outputs import folder_problem
+    from lazyground.settings import BY_NAME
     from lazyground.viz.demo import run_demo
 
+    problem = BY_NAME["seed"].problem(args.seed)
+    if problem:
+        raise UsageError(f"--seed {problem}")
+    problem = folder_problem(Path(args.out))
+    if problem:
+        raise UsageError(f"--out {args.out}: {problem}")
     work_begins()
     return run_demo(Path(args.out), seed=args.seed)
 

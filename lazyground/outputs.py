@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import tempfile
 from pathlib import Path
 
 from lazyground.scene.schema import Scene
@@ -32,6 +33,18 @@ def output_problem(scene: Scene, html: str | None = None, plot: str | None = Non
         except SceneError as exc:
             flag = "--plot" if plot else "--animate"
             return f"{flag}: {exc} (use --html for a 3-D replay)"
+    return None
+
+
+def folder_problem(folder: Path) -> str | None:
+    """Why files cannot be written into ``folder`` (made if missing), or None."""
+    if folder.exists() and not folder.is_dir():
+        return "is a file, not a folder"
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        tempfile.TemporaryFile(dir=folder).close()
+    except OSError as exc:
+        return f"cannot write there: {exc.strerror or exc}"
     return None
 
 

@@ -199,11 +199,12 @@ def main(argv: list[str]) -> int:
 def _main(args) -> int:
     if args.jobs < 1:
         raise BenchUsageError(f"--jobs must be >= 1, got {args.jobs}")
+    from lazyground.outputs import folder_problem
+
     out = Path(args.out)
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise BenchUsageError(f"--out {args.out}: cannot make the folder: {exc.strerror or exc}") from None
+    problem = folder_problem(out)
+    if problem:
+        raise BenchUsageError(f"--out {args.out}: {problem}")
     if args.nn_scaling:
         from lazyground.bench import nn_scaling
 

@@ -145,7 +145,8 @@ def test_bad_arguments_exit_2(tmp_path, capsys):
     (["--scenes", "arm:0"], "error: --scenes arm:0: an arm needs at least one joint"),
     (["--seed", "-1"], "error: --seed: must be >= 0, got -1"),
     (["--jobs", "0"], "error: --jobs must be >= 1, got 0"),
-    (["--out", "{tmp}/file"], "error: --out {tmp}/file: cannot make the folder: "),
+    (["--out", "{tmp}/file"], "error: --out {tmp}/file: is a file, not a folder"),
+    (["--out", "/proc/lazyground_bench"], "error: --out /proc/lazyground_bench: cannot write there: "),
 ])
 def test_bad_input_is_refused_before_any_run(argv, message, tmp_path, capsys):
     (tmp_path / "file").write_text("")

@@ -1,0 +1,35 @@
+"""audit8: bad input to `lazyground demo` and to `api.plan` is one line (exit 2) or a ValueError, never an internal error."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from lazyground import api
+from lazyground.cli import main
+
+
+@pytest.mark.parametrize("argv,message", [
+    # before: "internal error: ValueError: expected non-negative integer", "internal error: FileExistsError: ...",
+    # "internal error: FileNotFoundError: ..." (exit 3; the first after Drake had been imported)
+    (["--seed", "-1"], "error: --seed must be >= 0, got -1"),
+    (["--out", "{tmp}/file"], "error: --out {tmp}/file: is a file, not a folder"),
+    (["--out", "/proc/lazyground_demo"], "error: --out /proc/lazyground_demo: cannot write there: "),
+])
+def test_demo_refuses_bad_options_before_planning(argv, message, tmp_path, capsys):
+    (tmp_path / "file").write_text("")
+    argv = [a.replace("{tmp}", str(tmp_path)) for a in argv]
+    assert main(["demo", *(["--out", str(tmp_path / "out")] if "--out" not in argv else []), *argv]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.splitlines() == [err.strip()] and err.startswith(message.replace("{tmp}", str(tmp_path))), err
+
+
+@pytest.mark.parametrize("seed,message", [
+    (-1, "seed: must be >= 0, got -1"),  # before: numpy's "expected non-negative integer"
+    (1.5, "seed: expected an integer, got 1.5"),  # before: planned silently with seed 1
+    ("3", "seed: expected a number, got '3'"),  # before: planned with int("3")
+])
+def test_api_plan_checks_the_seed_before_planning(seed, message):
+    with pytest.raises(ValueError, match=f"^{re.escape(message)}$"):
+        api.plan("parking_1", "park", seed=seed)
