@@ -18,7 +18,10 @@ LOT = str(REPO / "yaml_scenes" / "parking_1.yaml")
     ([LOT, "park", "--plot", "{tmp}"], "error: --plot {tmp}: is a folder"),
     ([LOT, "park", "--trajectory", "/no/such/folder/t.csv"], "error: --trajectory /no/such/folder/t.csv: folder /no/such/folder does not exist"),
     ([LOT, "park", "--ros-trajectory", "{tmp}"], "error: --ros-trajectory {tmp}: is a folder"),
-    ([LOT, "park", "--speed", "0"], "error: --speed must be in (0, 1], got 0"),
+    ([LOT, "park", "--speed", "0"], "error: --speed must be in [0.01, 1], got 0"),
+    # audit8: these ran out of memory after planning ("internal error: MemoryError: Unable to allocate 238. GiB")
+    ([LOT, "park", "--speed", "1e-6"], "error: --speed must be in [0.01, 1], got 1e-06"),
+    ([LOT, "park", "--sample-rate", "1e9"], "error: --sample-rate must be in (0, 1000], got 1e+09"),
     # audit8: these wrote the wrong kind of file (--html x.png, --ros-trajectory t.csv, --plot out: out.png while
     # saying "wrote out") or failed with an internal error (exit 3) after planning
     ([LOT, "park", "--html", "{tmp}/x.png"], "error: --html {tmp}/x.png: unknown suffix '.png'; --html writes .html, .htm"),
