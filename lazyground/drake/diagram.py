@@ -113,7 +113,10 @@ def _add_environment(plant, scene: Scene, attached: Attachment | None, visual: b
     for name, geometry, pose, rgba in environment_items(scene, attached):
         X = rigid_transform(pose)
         shape = drake_shape(geometry)
-        plant.RegisterCollisionGeometry(world, X, shape, name, _friction())
+        try:
+            plant.RegisterCollisionGeometry(world, X, shape, name, _friction())
+        except RuntimeError as exc:  # a mesh file with no vertices Drake can read (not an OBJ) has no convex hull
+            raise SceneError(f"{scene.source}: {name}: cannot use its geometry: {str(exc).splitlines()[0]}") from None
         if visual:
             plant.RegisterVisualGeometry(world, X, shape, name, np.array(rgba))
     if visual:  # non-colliding objects (parking spots) are still drawn
