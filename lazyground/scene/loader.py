@@ -84,6 +84,8 @@ def load_scene(path: str | os.PathLike, robot_overrides: dict | None = None) -> 
     path = Path(path)
     if not path.is_file():
         path = bundled_scene(str(path)) or path  # a bare name: the bundled scene, from any directory
+    if path.is_dir():
+        raise SceneError(f"{path}: is a folder, not a scene file")
     if not path.is_file():
         hint = f" (bundled scenes: {', '.join(scene_names())})" if Path(path).name == str(path) else ""
         raise SceneError(f"{path}: no such scene file{hint}")
