@@ -44,8 +44,14 @@ class _UniqueKeyLoader(yaml.SafeLoader):
 
 
 def load_yaml(text: str):
-    """``yaml.safe_load`` that also refuses duplicate keys (a ``yaml.YAMLError`` naming the key and both lines)."""
-    return yaml.load(text, Loader=_UniqueKeyLoader)
+    """``yaml.safe_load`` that also refuses duplicate keys (a ``yaml.YAMLError`` naming the key and both lines).
+
+    Empty documents after a ``---`` are ignored (``ros2 topic echo`` ends a message with one); two
+    documents with content are a ``yaml.YAMLError``."""
+    docs = [d for d in yaml.load_all(text, Loader=_UniqueKeyLoader) if d is not None]
+    if len(docs) > 1:
+        raise yaml.composer.ComposerError(None, None, f"{len(docs)} YAML documents separated by '---'; give one", None)
+    return docs[0] if docs else None
 
 
 def _fail(path: str, problem: str) -> typing.NoReturn:

@@ -158,6 +158,11 @@ def test_user_rules_win_and_parse(tmp_path):
     ("[1, 2]\n", "not a MoveIt planning scene"),
     ("name: x\nrobot: {model: fetch}\n", "not a MoveIt planning scene (top-level keys: name, robot"),
     ("world: {collision_objects: []}\n", "no collision object could be imported"),
+    # audit8: RViz's text export was "not a MoveIt planning scene (a YAML str; ...)"
+    ("(noname)+\n* box_1\n0 0 0\n0 0 0 1\n1\nbox\n0.1 0.1 0.1\n0.5 0 0.5\n0 0 0 1\n0 0 0 0\n0\n.\n",
+     "this is MoveIt's text scene format (.scene: RViz's scene objects export), not a planning scene: give the scene as "
+     "a moveit_msgs/PlanningScene message in YAML"),
+    ("world: {collision_objects: []}\n---\nworld: {collision_objects: []}\n---\n", "2 YAML documents separated by '---'; give one"),
 ])
 def test_what_is_not_a_planning_scene_is_said_in_one_line(text, words, tmp_path):
     src = tmp_path / "in.yaml"
@@ -274,3 +279,12 @@ def test_srdf_option_is_written_into_the_robot_block(tmp_path):
     out = tmp_path / "out.yaml"
     assert main(["import-moveit", str(source), "-o", str(out), "--srdf", str(srdf)]) == 0
     assert yaml.safe_load(out.read_text())["robot"]["srdf"] == str(srdf.resolve())
+
+
+def test_a_topic_echo_ending_in_a_document_separator_imports(tmp_path):
+    # audit8: a message saved with `ros2 topic echo --once` ends in '---': "YAML syntax error at line 82: but found
+    # another document"
+    src = tmp_path / "echo.yaml"
+    src.write_text((CORPUS / "big_box_table.yaml").read_text() + "---\n")
+    _import(src, tmp_path, name="out")
+    assert (tmp_path / "out.yaml").is_file()
