@@ -105,7 +105,8 @@ def request_start(path: str | Path) -> dict[str, float]:
         raise SceneError(f"{path}: cannot read the motion-plan request: {str(exc).splitlines()[0]}") from None
     kind = kind_of_mapping(data) if isinstance(data, dict) else kind_of_text(text)
     if kind is not FileKind.MOTION_PLAN_REQUEST:
-        raise SceneError(f"{path}: --start-from expects a MoveIt motion-plan request (start_state.joint_state); this is {kind.value}")
+        what = "not one" if kind is FileKind.OTHER else kind.value
+        raise SceneError(f"{path}: --start-from expects a MoveIt motion-plan request (start_state.joint_state); this is {what}")
     state = (data.get("start_state") or {}).get("joint_state") if isinstance(data.get("start_state"), dict) else None
     if not state:
         raise SceneError(f"{path}: start_state.joint_state is missing")

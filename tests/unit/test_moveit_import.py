@@ -288,3 +288,16 @@ def test_a_topic_echo_ending_in_a_document_separator_imports(tmp_path):
     src.write_text((CORPUS / "big_box_table.yaml").read_text() + "---\n")
     _import(src, tmp_path, name="out")
     assert (tmp_path / "out.yaml").is_file()
+
+
+@pytest.mark.parametrize("text, this_is", [
+    ("name: x\nrobot: {model: fetch}\n", "this is not one"),  # audit8: was "this is not a MoveIt planning scene"
+    ("world: {collision_objects: []}\n", "this is a MoveIt planning scene"),
+])
+def test_start_from_says_what_the_file_is(text, this_is, tmp_path):
+    from lazyground.moveit.start import request_start
+
+    path = tmp_path / "r.yaml"
+    path.write_text(text)
+    with pytest.raises(SceneError, match=f"--start-from expects a MoveIt motion-plan request \\(start_state.joint_state\\); {this_is}$"):
+        request_start(path)
