@@ -7,7 +7,6 @@ and what an occupied parking spot holds from the type data
 
 from __future__ import annotations
 
-import logging
 from dataclasses import dataclass
 
 import numpy as np
@@ -22,8 +21,6 @@ from lazyground.geometry import Pose
 from lazyground.scene.schema import Geometry, Scene, SceneObject
 from lazyground.scene.typed_yaml import SceneError
 from lazyground.viz.style import OBSTACLE_SCENE_RGBA, OCCUPANT_RGBA, object_rgba
-
-logging.getLogger("drake").setLevel(logging.WARNING)  # silence "Allocating contexts ..." INFO lines
 
 
 @dataclass(frozen=True)
