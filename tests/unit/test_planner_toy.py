@@ -57,6 +57,12 @@ def test_reward_penalty_penalises_unreachable_samples_and_resamples():
     assert len(res.goal_samples) == 4 + 4 * res.resamplings
 
 
+def test_an_iteration_limit_is_named_as_such():
+    # audit8: max_iterations=5 said "no path within 10 s (5 iterations)" after a few milliseconds
+    world, res = run([UNREACHABLE], 0, PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=5))
+    assert res.status is PlanStatus.TIMEOUT and res.message == "no path within 5 iterations (max_iterations)"
+
+
 def test_same_seed_same_path():
     _, a = run([UNREACHABLE, REACHABLE], 11)
     _, b = run([UNREACHABLE, REACHABLE], 11)
