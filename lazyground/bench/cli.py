@@ -24,7 +24,7 @@ from pathlib import Path
 
 from lazyground.bench import arms
 from lazyground.bundled import bundled_scene, scene_names as bundled_names
-from lazyground.bench.runner import ALGORITHMS, RunSpec, execute, row_key, Progress
+from lazyground.bench.runner import ALGORITHMS, FIELDS, RunSpec, execute, row_key, Progress
 from lazyground.settings import BY_NAME, Algorithm, Kinematics, Strategy
 
 ALL_STRATEGIES = (Strategy.CONSECUTIVE, Strategy.RANDOM, Strategy.REWARD_PENALTY)  # the tables' column order
@@ -220,7 +220,7 @@ def _main(args) -> int:
 
     csv_path = out / "results.csv"
     if args.resume and csv_path.is_file():
-        done = {row_key(r) for r in read_csv(csv_path)}
+        done = {row_key(r) for r in _resumable(csv_path)}
         specs = [s for s in specs if s.key() not in done]
         print(f"resume: {len(done)} runs in {csv_path}, {len(specs)} to go", file=sys.stderr)
     cluster = args.cluster
@@ -258,6 +258,24 @@ def _main(args) -> int:
         print(f"interrupted: kept {progress.done} finished run(s) in {csv_path}", file=sys.stderr)
         return EXIT_INTERRUPTED
     return EXIT_OK
+
+
+def _resumable(path: Path) -> list[dict]:
+    """The rows of a results.csv to resume; one with other columns (another version's, or not ours) is refused:
+    new rows appended under its header would land in the wrong columns."""
+    import csv
+
+    from lazyground.bench.tables import read_csv
+
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            header = next(csv.reader(f), [])
+    except (OSError, UnicodeDecodeError, csv.Error) as exc:
+        raise BenchUsageError(f"--resume: cannot read {path}: {exc}") from None
+    if header and header != list(FIELDS):
+        raise BenchUsageError(f"--resume: {path} has other columns than this version of lazyground bench writes; "
+                              "give another --out, or leave out --resume to start it again")
+    return read_csv(path)
 
 
 def write_outputs(rows: list[dict], out: Path, title: str, notes: list[str], total_s: float, dof_sweep: bool = False) -> None:

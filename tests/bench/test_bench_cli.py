@@ -157,6 +157,27 @@ def test_bad_input_is_refused_before_any_run(argv, message, tmp_path, capsys):
     assert not (tmp_path / "out" / "results.csv").exists()
 
 
+@pytest.mark.parametrize("content,message", [
+    # audit8: "internal error: UnicodeDecodeError" / "internal error: KeyError: 'scene'"; an older results.csv (fewer
+    # columns) was resumed silently, the new rows appended under its header in the wrong columns
+    (bytes(range(128, 256)), "error: --resume: cannot read "),
+    (b"a,b\n1,2\n", "error: --resume: {csv} has other columns than this version of lazyground bench writes"),
+    (None, "error: --resume: {csv} has other columns than this version of lazyground bench writes"),
+])
+def test_resume_refuses_a_results_csv_it_did_not_write(content, message, tmp_path, capsys):
+    from lazyground.bench.runner import FIELDS
+
+    csv_path = tmp_path / "results.csv"
+    older = ",".join(FIELDS[:-2]) + "\n" + ",".join(["parking_1", "lazyground", "reward-penalty", "0.05", "0", "solved"]
+                                                   + ["1.0"] * (len(FIELDS) - 8)) + "\n"
+    csv_path.write_bytes(content if content is not None else older.encode())
+    before = csv_path.read_bytes()
+    assert main(["bench", "--scenes", "parking_1", "--runs", "1", "--resume", "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert err.splitlines() == [err.strip()] and err.startswith(message.replace("{csv}", str(csv_path))), err
+    assert csv_path.read_bytes() == before
+
+
 def test_an_error_row_does_not_break_the_tables():
     # audit8: one run ending in an error (no times) made the time split raise after every run had finished
     from lazyground.bench.tables import time_split_table
