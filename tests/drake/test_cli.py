@@ -73,6 +73,8 @@ def test_car_kinematics_need_a_car(capsys):
     assert main(["plan", fetch, "pick up a can", "--kinematics", "reeds-shepp"]) == 2
     err = capsys.readouterr().err.strip()
     assert "kinematics" in err and len(err.splitlines()) == 1
+    # audit8: the path read "models//.../models/fetch/fetch.urdf/robot.yaml" (the model's absolute path inside a template)
+    assert err.endswith("/models/fetch/robot.yaml); this robot has none") and "//" not in err, err
 
 
 def test_plan_bidirectional(capsys):
