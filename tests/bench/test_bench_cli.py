@@ -149,11 +149,10 @@ def test_bad_arguments_exit_2(tmp_path, capsys):
     (["--out", "/proc/lazyground_bench"], "error: --out /proc/lazyground_bench: cannot write there: "),
 ])
 def test_bad_input_is_refused_before_any_run(argv, message, tmp_path, capsys):
+    from tests.unit.test_cli_outputs import refused
+
     (tmp_path / "file").write_text("")
-    argv = [a.replace("{tmp}", str(tmp_path)) for a in argv]
-    assert main(["bench", "--scenes", "parking_1", "--runs", "1", "--out", str(tmp_path / "out"), *argv]) == 2
-    out, err = capsys.readouterr()
-    assert err.splitlines() == [err.strip()] and err.startswith(message.replace("{tmp}", str(tmp_path))), err
+    refused(["bench", "--scenes", "parking_1", "--runs", "1", "--out", "{tmp}/out", *argv], message, tmp_path, capsys)
     assert not (tmp_path / "out" / "results.csv").exists()
 
 

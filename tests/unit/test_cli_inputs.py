@@ -7,7 +7,7 @@ import re
 import pytest
 
 from lazyground import api
-from lazyground.cli import main
+from tests.unit.test_cli_outputs import refused
 
 
 @pytest.mark.parametrize("argv,message", [
@@ -19,10 +19,8 @@ from lazyground.cli import main
 ])
 def test_demo_refuses_bad_options_before_planning(argv, message, tmp_path, capsys):
     (tmp_path / "file").write_text("")
-    argv = [a.replace("{tmp}", str(tmp_path)) for a in argv]
-    assert main(["demo", *(["--out", str(tmp_path / "out")] if "--out" not in argv else []), *argv]) == 2
-    out, err = capsys.readouterr()
-    assert out == "" and err.splitlines() == [err.strip()] and err.startswith(message.replace("{tmp}", str(tmp_path))), err
+    out = ["--out", "{tmp}/out"] if "--out" not in argv else []
+    assert refused(["demo", *out, *argv], message, tmp_path, capsys) == ""
 
 
 @pytest.mark.parametrize("seed,message", [

@@ -32,11 +32,17 @@ LOT = str(REPO / "yaml_scenes" / "parking_1.yaml")
     ([LOT, "park", "--html", "/proc/lazyground.html"], "error: --html /proc/lazyground.html: cannot write: "),
 ])
 def test_bad_outputs_fail_before_planning(argv, message, tmp_path, capsys):
+    assert refused(["plan", *argv], message, tmp_path, capsys) == ""  # nothing planned: the plan summary goes to stdout
+
+
+def refused(argv: list[str], message: str, tmp_path, capsys) -> str:
+    """``main(argv)`` ("{tmp}" standing for ``tmp_path``) exits 2 with one stderr line starting with ``message``;
+    returns what it printed on stdout."""
     argv = [a.replace("{tmp}", str(tmp_path)) for a in argv]
-    assert main(["plan", *argv]) == 2
+    assert main(argv) == 2
     out, err = capsys.readouterr()
-    assert out == ""  # nothing planned: the plan summary goes to stdout
-    assert len(err.strip().splitlines()) == 1 and err.startswith(message.replace("{tmp}", str(tmp_path))), err
+    assert err.splitlines() == [err.strip()] and err.startswith(message.replace("{tmp}", str(tmp_path))), err
+    return out
 
 
 def test_the_write_check_leaves_no_file_behind(tmp_path):
