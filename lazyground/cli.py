@@ -149,6 +149,10 @@ def cmd_plan(args) -> int:
         overrides = cli_values(args) | motion_options.overrides_from_args(args)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
+    try:  # the scene's settings with the options, together (e.g. an edge_resolution too fine for the step)
+        api.planner_settings(scene, **{k: v for k, v in overrides.items() if k != "seed"})  # the seed is no setting
+    except ValueError as exc:
+        raise UsageError(f"{scene.source or scene.name}: {exc}") from None
     problem = output_problem(scene, args.html, args.plot, args.animate,
                              {"--trajectory": args.trajectory, "--ros-trajectory": args.ros_trajectory})
     if problem:

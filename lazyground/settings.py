@@ -212,9 +212,18 @@ def coerce(name: str, value):
 
 # --- PlannerSettings: generated from the API layer ---------------------------------------------
 
+MAX_FINE_CHECKS_PER_STEP = 100_000  # configurations the fine re-check tests along an edge of step_size (default 100)
+
+
 def _post_init(self) -> None:
     for s in declared(Layer.API):  # frozen: convert in place once, so every later read is typed
         object.__setattr__(self, s.name, s.coerce(getattr(self, s.name)))
+    fine = self.step_size * self.validation_factor / _resolution(self)
+    if fine > MAX_FINE_CHECKS_PER_STEP:  # 2e10 configurations per edge (edge_resolution 1e-9) ran out of memory
+        finest = self.step_size * self.validation_factor / MAX_FINE_CHECKS_PER_STEP
+        raise ValueError(f"edge_resolution: {_resolution(self):g} is too fine for step_size {self.step_size:g}: the re-check "
+                         f"of one edge would test {fine:.3g} configurations (at most {MAX_FINE_CHECKS_PER_STEP:,}); "
+                         f"give edge_resolution >= {finest:.3g}")
 
 
 def _resolution(self) -> float:

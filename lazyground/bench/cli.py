@@ -25,7 +25,7 @@ from pathlib import Path
 from lazyground.bench import arms
 from lazyground.bundled import bundled_scene, scene_names as bundled_names
 from lazyground.bench.runner import ALGORITHMS, FIELDS, RunSpec, execute, row_key, Progress
-from lazyground.settings import BY_NAME, Algorithm, Kinematics, Strategy
+from lazyground.settings import BY_NAME, Algorithm, Kinematics, Strategy, from_scene
 
 ALL_STRATEGIES = (Strategy.CONSECUTIVE, Strategy.RANDOM, Strategy.REWARD_PENALTY)  # the tables' column order
 TABLES = {
@@ -162,6 +162,10 @@ def _check_request(key: str, request: str | None) -> None:
     from lazyground.scene import load_scene
 
     scene = load_scene(key)
+    try:
+        from_scene(scene.planner)
+    except ValueError as exc:
+        raise BenchUsageError(f"scene {scene.name}: {exc}") from None
     request = request or (scene.expect[0].request if scene.expect else None)
     if request is None:
         raise BenchUsageError(f"scene {scene.name} has no expect: request; give --request")

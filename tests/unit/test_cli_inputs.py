@@ -8,6 +8,7 @@ import pytest
 
 from lazyground import api
 from tests.unit.test_cli_outputs import refused
+from tests.unit.test_grounding import REPO
 
 
 @pytest.mark.parametrize("argv,message", [
@@ -31,3 +32,17 @@ def test_demo_refuses_bad_options_before_planning(argv, message, tmp_path, capsy
 def test_api_plan_checks_the_seed_before_planning(seed, message):
     with pytest.raises(ValueError, match=f"^{re.escape(message)}$"):
         api.plan("parking_1", "park", seed=seed)
+
+
+def test_an_edge_resolution_too_fine_for_the_step_is_refused_before_planning(tmp_path, capsys):
+    # audit8: planner: {edge_resolution: 1e-9} on parking_1 (step 2) asked for 2e10 configurations per edge: the
+    # process grew until the kernel killed it (exit 137, nothing printed)
+    from lazyground.settings import PlannerSettings
+
+    with pytest.raises(ValueError, match=r"^edge_resolution: 1e-09 is too fine for step_size 2: the re-check of one edge "
+                                         r"would test 2e\+10 configurations \(at most 100,000\); give edge_resolution >= 0\.0002$"):
+        PlannerSettings(step_size=2.0, edge_resolution=1e-9)
+    PlannerSettings(step_size=2.0, edge_resolution=2e-4)  # the finest allowed
+    scene = tmp_path / "lot.yaml"
+    scene.write_text(REPO.joinpath("yaml_scenes/parking_1.yaml").read_text().replace("edge_resolution: 0.1", "edge_resolution: 1.0e-9"))
+    refused(["plan", str(scene), "park"], f"error: {scene}: edge_resolution: 1e-09 is too fine for step_size 2", tmp_path, capsys)
