@@ -137,9 +137,10 @@ class SphereCertifier:
         the environment; per moving geometry, half the gap of its self pairs ``FAR_PAIR`` apart at
         every anchor (each side moving on its own); each other self pair, its two geometries
         relative to each other. A column is clear at a row when, from one of the row's two anchors,
-        it cannot have moved as far as its clearance there; the columns that are not are bounded at
-        the row itself, pair by pair. Consecutive rows of a densely checked path are mostly clear
-        from their anchors.
+        it cannot have moved as far as its clearance there (the half-gap columns all from the same
+        anchor: a far pair's two geometries must be bounded from one configuration); the columns that
+        are not are bounded at the row itself, pair by pair. Consecutive rows of a densely checked
+        path are mostly clear from their anchors.
         """
         q = np.atleast_2d(np.asarray(q_full, float))
         if len(q) < 2 * ANCHOR_EVERY:
@@ -151,13 +152,20 @@ class SphereCertifier:
         # the rows by anchor (A, ANCHOR_EVERY, joints), the last run padded with the last row
         rows = np.vstack([q, np.repeat(q[-1:], A * ANCHOR_EVERY - n, axis=0)])[:, self.tree.index]
         rows = rows.reshape(A, ANCHOR_EVERY, -1)
-        ok = np.zeros((A, ANCHOR_EVERY, columns.shape[1]), bool)
+        by_side = []
         for side in (np.arange(A), np.minimum(np.arange(1, A + 1), A - 1)):
             dq = np.abs(rows - rows[side, :1])
             moved = np.matmul(dq, lever[side].transpose(0, 2, 1))
             # a column that cannot move (no lever) stays at 0 however far the joints go: a(e^s - 1)/s with a = 0
             np.multiply(moved, _growth(dq[:, :, self._revolute].sum(axis=2))[:, :, None], out=moved, where=moved > 0)
-            ok |= moved < columns[side, None]
+            by_side.append(moved < columns[side, None])
+        ok = by_side[0] | by_side[1]
+        # a far pair's gap is split between its two geometries, each bounded from an anchor: both from the same
+        # one (g within half the gap at anchor 0 and o within half of it at anchor 1 bound nothing). Per row, the
+        # half columns count as clear from one anchor only, the one that clears more of them
+        G = len(self._count)
+        a, b = by_side[0][:, :, G:2 * G], by_side[1][:, :, G:2 * G]
+        ok[:, :, G:2 * G] = np.where((a.sum(axis=2) >= b.sum(axis=2))[:, :, None], a, b)
         ok = ok.reshape(A * ANCHOR_EVERY, -1)[:n]
         free = ok.all(axis=1)
         free[anchors] = clear.min(axis=1) > 0.0
