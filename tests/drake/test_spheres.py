@@ -266,9 +266,37 @@ def test_a_far_pair_is_not_proven_from_two_anchors_at_once():
 
     def recheck(q, failing, near, folded):
         rechecked.append(np.flatnonzero(failing.any(axis=0)))
-        return np.zeros(len(q), bool)
+        return np.zeros(len(q), bool), (np.zeros(0, int), np.zeros(0, int))
 
     cert._columns, cert._recheck = columns, recheck
     free = cert.certified_free(rows)
     assert not free[1:12].any()  # between the anchors: left to the row's own bound
     assert np.isin(rechecked[0], [G + g, G + o]).all() and len(rechecked[0])
+
+
+def test_every_pair_drake_finds_within_its_padding_is_left_open(tmp_path):
+    """certify's open pairs hold every checked pair Drake finds within its padding (so asking SceneGraph about
+    them alone gives Drake's answer), at rows through near-contact configurations with and without obstacles."""
+    alone = tmp_path / "alone.yaml"
+    alone.write_text(f"name: alone\nrobot: {FETCH}\nobstacles: []\n")
+    for path in ("yaml_scenes/fetch_cans_1.yaml", str(alone)):
+        world = DrakeWorld(load_scene(path), visual=False)
+        cert, drake = world.checker.certifier, world.checker.drake
+        index = {}
+        for k, (a, b) in enumerate(cert.pair_geometries):
+            index[cert.geometry_ids[a], cert.geometry_ids[b]] = index[cert.geometry_ids[b], cert.geometry_ids[a]] = k
+        rows = _rows_through_contact(world, np.random.default_rng(3), 6)
+        free, row, pair = cert.certify(rows)
+        query, plant = world.checker._query, drake.plant()
+        inspector = drake.model().scene_graph().model_inspector()
+        body = lambda g: plant.GetBodyFromFrameId(inspector.GetFrameId(g))  # noqa: E731
+        found = 0
+        for i, q in enumerate(rows):
+            drake.UpdatePositions(q)
+            close = {index[p.id_A, p.id_B] for p in query.ComputeSignedDistancePairwiseClosestPoints(drake.GetLargestPadding())
+                     if not drake.IsCollisionFilteredBetween(body(p.id_A), body(p.id_B))
+                     and p.distance <= drake.GetPaddingBetween(body(p.id_A), body(p.id_B))}
+            assert not (free[i] and close)
+            assert close <= set(pair[row == i])
+            found += bool(close)
+        assert 0 < found < len(rows)
