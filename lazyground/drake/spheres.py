@@ -25,6 +25,10 @@ Drake's because the test is one-sided:
   moving geometry's bounding sphere against the other solid, then sphere by sphere.
 * Pairs of two never-moving geometries are decided once, by Drake, at
   construction; a world where one of them collides gets no certifier.
+* A configuration it cannot prove comes back with the pairs it left open
+  (:meth:`SphereCertifier.certify`); the checker asks SceneGraph about those
+  pairs only, which decides as Drake's checker would (every other pair it checks
+  is proven clear).
 
 A world with a joint or shape this cannot bound (a planar or floating joint, a
 moving environment body, a mesh it cannot read) gets no certifier
@@ -87,11 +91,14 @@ class SphereCertifier:
         obstacles: the never-moving geometry, in the world frame.
         env_threshold: (moving geometries, obstacles) the distance to clear; -inf: a pair Drake does not check.
         self_pairs: moving geometry (its spheres) against another moving geometry's solid.
+        geometry_ids: SceneGraph's ids of the moving geometries, then of the obstacles (:attr:`pair_geometries`).
     """
 
     def __init__(self, tree: BodyTree, node: np.ndarray, solids: _Solids, centers: np.ndarray, radii: np.ndarray,
-                 start: np.ndarray, obstacles: _Solids, env_threshold: np.ndarray, self_pairs: _Pairs):
+                 start: np.ndarray, obstacles: _Solids, env_threshold: np.ndarray, self_pairs: _Pairs,
+                 geometry_ids: list = ()):
         self.tree, self._node, self._solids, self._obstacles = tree, node, solids, obstacles
+        self.geometry_ids = list(geometry_ids)
         self._centers, self._radii, self._start = centers, radii, start
         self._count = np.diff(start)
         self._sphere_node = np.repeat(node, self._count)
@@ -130,42 +137,58 @@ class SphereCertifier:
         return int(np.isfinite(self._env_threshold).sum()) + len(self._self.mover)
 
     def certified_free(self, q_full: np.ndarray) -> np.ndarray:
-        """Per plant position vector (rows of ``q_full``): True only if Drake's checker calls it free.
+        """Per plant position vector (rows of ``q_full``): True only if Drake's checker calls it free
+        (see :meth:`certify`)."""
+        return self.certify(q_full)[0]
+
+    def certify(self, q_full: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(per plant position vector: True only if Drake's checker calls it free; (row, pair) of the
+        checked pairs not proven clear at each row that is not, pair an index into :attr:`pair_geometries`).
+        Drake's checker calls such a row free exactly when each of its open pairs is farther apart than
+        the pair's padding (every other pair it checks is proven to be).
 
         Every ``ANCHOR_EVERY``-th row (an anchor) is bounded pair by pair, with its geometries'
         levers (:meth:`levers`). Every other row is bounded column by column: per moving geometry,
         the environment; per moving geometry, half the gap of its self pairs ``FAR_PAIR`` apart at
         every anchor (each side moving on its own); each other self pair, its two geometries
         relative to each other. A column is clear at a row when, from one of the row's two anchors,
-        it cannot have moved as far as its clearance there; the columns that are not are bounded at
-        the row itself, pair by pair. Consecutive rows of a densely checked path are mostly clear
-        from their anchors.
+        it cannot have moved as far as its clearance there (the half-gap columns all from the same
+        anchor: a far pair's two geometries must be bounded from one configuration); the columns that
+        are not are bounded at the row itself, pair by pair. Consecutive rows of a densely checked
+        path are mostly clear from their anchors.
         """
         q = np.atleast_2d(np.asarray(q_full, float))
         if len(q) < 2 * ANCHOR_EVERY:
-            return self.clearance(q).min(axis=1) > 0.0
+            clear, _, (row, pair) = self._bounds(q, levers=False)
+            return clear.min(axis=1) > 0.0, row, pair
         anchors = np.arange(0, len(q), ANCHOR_EVERY)
-        clear, lever = self._bounds(q[anchors])
+        clear, lever, (stuck, open_pairs) = self._bounds(q[anchors])
         columns, lever, near, folded = self._columns(clear, lever)
         n, A = len(q), len(anchors)
         # the rows by anchor (A, ANCHOR_EVERY, joints), the last run padded with the last row
         rows = np.vstack([q, np.repeat(q[-1:], A * ANCHOR_EVERY - n, axis=0)])[:, self.tree.index]
         rows = rows.reshape(A, ANCHOR_EVERY, -1)
-        ok = np.zeros((A, ANCHOR_EVERY, columns.shape[1]), bool)
+        by_side = []
         for side in (np.arange(A), np.minimum(np.arange(1, A + 1), A - 1)):
             dq = np.abs(rows - rows[side, :1])
             moved = np.matmul(dq, lever[side].transpose(0, 2, 1))
             # a column that cannot move (no lever) stays at 0 however far the joints go: a(e^s - 1)/s with a = 0
             np.multiply(moved, _growth(dq[:, :, self._revolute].sum(axis=2))[:, :, None], out=moved, where=moved > 0)
-            ok |= moved < columns[side, None]
+            by_side.append(moved < columns[side, None])
+        ok = by_side[0] | by_side[1]
+        # a far pair's gap is split between its two geometries, each bounded from an anchor: both from the same
+        # one (g within half the gap at anchor 0 and o within half of it at anchor 1 bound nothing). Per row, the
+        # half columns count as clear from one anchor only, the one that clears more of them
+        G = len(self._count)
+        a, b = by_side[0][:, :, G:2 * G], by_side[1][:, :, G:2 * G]
+        ok[:, :, G:2 * G] = np.where((a.sum(axis=2) >= b.sum(axis=2))[:, :, None], a, b)
         ok = ok.reshape(A * ANCHOR_EVERY, -1)[:n]
         free = ok.all(axis=1)
         free[anchors] = clear.min(axis=1) > 0.0
         rest = np.flatnonzero(~free)
         rest = rest[rest % ANCHOR_EVERY != 0]
-        if len(rest):
-            free[rest] = self._recheck(q[rest], ~ok[rest], near, folded)
-        return free
+        free[rest], (row, pair) = self._recheck(q[rest], ~ok[rest], near, folded)
+        return free, np.concatenate([rest[row], anchors[stuck]]), np.concatenate([pair, open_pairs])
 
     def _columns(self, clear: np.ndarray, lever: np.ndarray):
         """The anchors' clearance and levers per column of :meth:`certified_free` (per moving geometry: the
@@ -182,18 +205,21 @@ class SphereCertifier:
         columns = np.hstack([clear[:, :G], half, clear[:, G + near]])
         return columns, np.concatenate([lever, lever, self._pair_levers(lever, near)], axis=1), near, folded
 
-    def _recheck(self, q: np.ndarray, failing: np.ndarray, near: np.ndarray, folded: np.ndarray) -> np.ndarray:
-        """Whether the pairs of each row's ``failing`` columns (:meth:`certified_free`) clear their thresholds there."""
+    def _recheck(self, q: np.ndarray, failing: np.ndarray, near: np.ndarray, folded: np.ndarray):
+        """(whether the pairs of each row's ``failing`` columns (:meth:`certify`) clear their thresholds there,
+        (row, pair) of those that do not)."""
+        if not len(q):
+            return np.zeros(0, bool), (np.zeros(0, int), np.zeros(0, int))
         R, p = self.tree.forward(q)
         centre = np.einsum("bgij,gj->bgi", R[:, self._node], self._solids.o) + p[:, self._node]
-        G = len(self._count)
+        G, O = self._env_threshold.shape
         clear = np.full((len(q), G + len(self._self.mover)), np.inf)
         b, g = np.nonzero(failing[:, :G])
         d = np.abs(centre[b, g][:, None] - self._aabb_centre) - self._aabb_half  # (failing, obstacles, 3)
         np.maximum(d, 0.0, out=d)
         i, o = np.nonzero(np.einsum("noi,noi->no", d, d) <= self._env_reach2[g])  # within reach of the world box
         b, g = b[i], g[i]
-        self._finer(R, p, centre, clear, b, g, o, self._env_threshold[g, o], g, moving=False)
+        env = self._finer(R, p, centre, clear, b, g, o, self._env_threshold[g, o], g, moving=False, pair=g * O + o)
         b, g = np.nonzero(failing[:, G:2 * G])
         row, k = _ranges(self._pair_start[g], self._pair_count[g])  # the geometry's self pairs
         b, k = b[row], self._pair_of[k]
@@ -204,8 +230,17 @@ class SphereCertifier:
         reach = self._solids.radius[g] + self._solids.radius[o] + self._self.threshold[k]
         reach = np.einsum("ni,ni->n", v, v) <= reach ** 2  # bounding spheres within reach of each other
         b, g, o, k = b[reach], g[reach], o[reach], k[reach]
-        self._finer(R, p, centre, clear, b, g, o, self._self.threshold[k], G + k, moving=True)
-        return clear.min(axis=1) > 0.0
+        own = self._finer(R, p, centre, clear, b, g, o, self._self.threshold[k], G + k, moving=True, pair=G * O + k)
+        return clear.min(axis=1) > 0.0, self._open([env, own])
+
+    @property
+    def pair_geometries(self) -> np.ndarray:
+        """(pairs, 2): the pairs of :meth:`certify`, as indices into :attr:`geometry_ids`: (moving geometry,
+        obstacle) for every moving geometry and obstacle (obstacles numbered after the moving geometries;
+        pairs Drake does not check are never open), then the self pairs."""
+        G, O = self._env_threshold.shape
+        env = np.stack(np.meshgrid(np.arange(G), G + np.arange(O), indexing="ij"), axis=-1).reshape(-1, 2)
+        return np.vstack([env, np.column_stack([self._self.mover, self._self.other])])
 
     def _pair_levers(self, lever: np.ndarray, k: np.ndarray) -> np.ndarray:
         """Geometry levers (B, geometries, joints) -> those of self pairs ``k`` (B, pairs, joints): the sum
@@ -235,7 +270,7 @@ class SphereCertifier:
     def _bounds(self, q_full: np.ndarray, levers: bool = True):
         """(:meth:`clearance`, and with ``levers`` each moving geometry's lever per joint (B, geometries,
         joints): the farthest distance of its bounding sphere from the joint's axis (1 for a prismatic
-        joint, 0 for a joint not above it))."""
+        joint, 0 for a joint not above it), (row, pair) of the pairs not proven clear (:meth:`certify`))."""
         q = np.atleast_2d(np.asarray(q_full, float))
         R, p, axis, origin = self.tree.forward(q, joints=True)
         # every moving geometry's solid centre in the world, (B, geometries, 3)
@@ -243,16 +278,24 @@ class SphereCertifier:
         env, (b, g, o, threshold) = self._near_obstacles(centre)
         pair_gap, (b_pair, k) = self._near_each_other(centre)
         clear = np.hstack([env, pair_gap])
-        self._finer(R, p, centre, clear, b, g, o, threshold, g, moving=False)
+        G, O = self._env_threshold.shape
+        stuck = [self._finer(R, p, centre, clear, b, g, o, threshold, g, moving=False, pair=g * O + o)]
         if len(k):
             g, o = self._self.mover[k], self._self.other[k]
-            self._finer(R, p, centre, clear, b_pair, g, o, self._self.threshold[k], len(self._count) + k, moving=True)
+            stuck.append(self._finer(R, p, centre, clear, b_pair, g, o, self._self.threshold[k], G + k, moving=True,
+                                     pair=G * O + k))
         if not levers:
-            return clear, None
+            return clear, None, self._open(stuck)
         v = centre[:, :, None] - origin[:, None]  # (B, geometries, joints, 3)
         along = np.einsum("bgjk,bjk->bgj", v, axis)
         rho = np.sqrt(np.maximum(np.einsum("bgjk,bgjk->bgj", v, v) - along ** 2, 0.0)) + self._solids.radius[:, None]
-        return clear, np.where(self._revolute, rho, 1.0) * self._path
+        return clear, np.where(self._revolute, rho, 1.0) * self._path, self._open(stuck)
+
+    def _open(self, stuck: list) -> tuple[np.ndarray, np.ndarray]:
+        """(row, pair) from :meth:`_finer`'s pairs that do not clear, each pair once per row, by row."""
+        n = len(self._env_threshold.reshape(-1)) + len(self._self.mover)
+        key = np.unique(np.concatenate([b * n + pair for b, pair in stuck]))
+        return np.divmod(key, n)
 
     def _near_obstacles(self, centre: np.ndarray):
         """(per configuration and geometry: the clearance of the pairs far from the obstacles' world boxes,
@@ -285,11 +328,12 @@ class SphereCertifier:
         gap[near] = np.inf
         return gap, (b, k)
 
-    def _finer(self, R, p, centre, clear, b, g, o, threshold, column, moving: bool) -> None:
+    def _finer(self, R, p, centre, clear, b, g, o, threshold, column, moving: bool, pair: np.ndarray):
         """Lowers ``clear[b, column]`` by the pairs (b, g, o): the moving geometry's bounding sphere against
-        the other solid, then, where that comes within ``threshold``, sphere by sphere."""
+        the other solid, then, where that comes within ``threshold``, sphere by sphere. Returns (b, pair) of
+        the pairs (``pair``: each one's index) whose bound does not clear ``threshold`` (once per sphere)."""
         if not len(b):
-            return
+            return np.zeros(0, int), np.zeros(0, int)
         R_WG, o_W, solids = self._other_pose(R, p, b, o, moving)
         gap = self._distance(centre[b, g], R_WG, o_W, solids, o) - self._solids.radius[g] - threshold
         near = gap <= 0.0
@@ -301,6 +345,8 @@ class SphereCertifier:
         c = np.einsum("nij,nj->ni", R[bs, ns], self._centers[sphere]) + p[bs, ns]
         gap = self._distance(c, R_WG[row], o_W[row], solids, o[row]) - self._radii[sphere] - threshold[row]
         _lower(clear, bs, column[row], gap)
+        stuck = gap <= 0.0
+        return bs[stuck], pair[near][row[stuck]]
 
     def _other_pose(self, R, p, b, o, moving: bool):
         """World pose (R_WG, centre) of the other side of pairs at configurations b, and its solids."""
@@ -376,7 +422,7 @@ def sphere_certifier(checker, margin: float = MARGIN, slack: float = SLACK) -> S
     centers = np.vstack([c @ X_BG[g][:3, :3].T + X_BG[g][:3, 3] for g, (c, _) in zip(moving, covers)]).reshape(-1, 3)
     radii = np.concatenate([r for _, r in covers] + [np.zeros(0)])
     nodes = np.array([node[body[g].index()] for g in moving], int)
-    return SphereCertifier(tree, nodes, solids, centers, radii, start, obstacles, env, self_pairs)
+    return SphereCertifier(tree, nodes, solids, centers, radii, start, obstacles, env, self_pairs, moving + still)
 
 
 def _joints_up(tree: BodyTree, nodes: np.ndarray) -> np.ndarray:

@@ -243,3 +243,60 @@ def test_a_cover_encloses_its_shape_and_the_solid_distance_is_a_lower_bound(shap
     d_far = solid_distance(far - centre, half, np.full(500, rounding), np.full(500, cylinder))
     nearest = np.linalg.norm(far[:, None] - points[None], axis=-1).min(axis=1)  # an upper bound of the true distance
     assert np.all(d_far <= nearest + 1e-12)
+
+
+def test_a_far_pair_is_not_proven_from_two_anchors_at_once():
+    """A far self pair's gap is split between its two geometries; each half bounds a geometry's motion from
+    one anchor. Geometry g clear only from the first anchor and o only from the second prove nothing about
+    the pair (g near where it is at one anchor, o near where it is at the other): such rows are checked
+    again at the row itself, not certified."""
+    world = DrakeWorld(load_scene("yaml_scenes/fetch_cans_1.yaml"), visual=False)
+    cert = world.checker.certifier
+    G = len(cert._count)
+    g, o = int(cert._self.mover[0]), int(cert._self.other[0])
+    rows = world.full(np.zeros((24, world.space.dim)))
+    rows[:, cert.tree.index[-1]] = np.linspace(0.0, 0.01, 24)  # rows move a little from both anchors
+
+    def columns(clear, lever):  # anchors 0 and 12: every column clear by far, but g's half and o's half
+        columns = np.full((2, 2 * G), 10.0)
+        columns[1, G + g] = columns[0, G + o] = 0.0  # ... each clear from one anchor only
+        return columns, np.ones((2, 2 * G, len(cert.tree.kinds))), np.zeros(0, int), np.ones(len(cert._self.mover), bool)
+
+    rechecked = []
+
+    def recheck(q, failing, near, folded):
+        rechecked.append(np.flatnonzero(failing.any(axis=0)))
+        return np.zeros(len(q), bool), (np.zeros(0, int), np.zeros(0, int))
+
+    cert._columns, cert._recheck = columns, recheck
+    free = cert.certified_free(rows)
+    assert not free[1:12].any()  # between the anchors: left to the row's own bound
+    assert np.isin(rechecked[0], [G + g, G + o]).all() and len(rechecked[0])
+
+
+def test_every_pair_drake_finds_within_its_padding_is_left_open(tmp_path):
+    """certify's open pairs hold every checked pair Drake finds within its padding (so asking SceneGraph about
+    them alone gives Drake's answer), at rows through near-contact configurations with and without obstacles."""
+    alone = tmp_path / "alone.yaml"
+    alone.write_text(f"name: alone\nrobot: {FETCH}\nobstacles: []\n")
+    for path in ("yaml_scenes/fetch_cans_1.yaml", str(alone)):
+        world = DrakeWorld(load_scene(path), visual=False)
+        cert, drake = world.checker.certifier, world.checker.drake
+        index = {}
+        for k, (a, b) in enumerate(cert.pair_geometries):
+            index[cert.geometry_ids[a], cert.geometry_ids[b]] = index[cert.geometry_ids[b], cert.geometry_ids[a]] = k
+        rows = _rows_through_contact(world, np.random.default_rng(3), 6)
+        free, row, pair = cert.certify(rows)
+        query, plant = world.checker._query, drake.plant()
+        inspector = drake.model().scene_graph().model_inspector()
+        body = lambda g: plant.GetBodyFromFrameId(inspector.GetFrameId(g))  # noqa: E731
+        found = 0
+        for i, q in enumerate(rows):
+            drake.UpdatePositions(q)
+            close = {index[p.id_A, p.id_B] for p in query.ComputeSignedDistancePairwiseClosestPoints(drake.GetLargestPadding())
+                     if not drake.IsCollisionFilteredBetween(body(p.id_A), body(p.id_B))
+                     and p.distance <= drake.GetPaddingBetween(body(p.id_A), body(p.id_B))}
+            assert not (free[i] and close)
+            assert close <= set(pair[row == i])
+            found += bool(close)
+        assert 0 < found < len(rows)
