@@ -339,14 +339,12 @@ def _greedy(space: ConfigSpace, edge, fine_free, path: _Path, born: int = 0, pro
         if edge(cur, q[-1]) and fine_free(cur, q[-1]):
             out.append(q[-1])
             return _Path(space, out, flags + [born])
-        # q[k + 1] is visible (along the segment), the goal is not. The search asks only the edges' probes; the
-        # farthest point it finds is then checked in full (and finely), and when that fails (a probe missed a
-        # collision on the way, or a wall hides between the coarse checks) the search is done again with full checks.
-        lo = _farthest(space, q, cum, cur, k, probe or edge)
-        if probe and lo > cum[k + 1]:
-            end = _point_at(space, q, cum, lo)[1]
-            if not (edge(cur, end, "rest") and fine_free(cur, end)):
-                lo = _farthest(space, q, cum, cur, k, edge)
+        # q[k + 1] is visible (along the segment), the goal is not. The search asks only the edges' probes and
+        # checks the rest of the edge it settles on; a wall the fine check finds between the coarse checks redoes
+        # the search with full checks (then the pull-backs below)
+        lo = _farthest(space, q, cum, cur, k, probe or edge, (lambda a, b: edge(a, b, "rest")) if probe else None)
+        if probe and lo > cum[k + 1] and not fine_free(cur, _point_at(space, q, cum, lo)[1]):
+            lo = _farthest(space, q, cum, cur, k, edge)
         for _ in range(GREEDY_BACKOFFS):
             if lo <= cum[k + 1] or fine_free(cur, _point_at(space, q, cum, lo)[1]):
                 break
@@ -366,18 +364,24 @@ def _greedy(space: ConfigSpace, edge, fine_free, path: _Path, born: int = 0, pro
     return _Path(space, out, flags + [path.new[-1]])
 
 
-def _farthest(space: ConfigSpace, q: list, cum: np.ndarray, cur: np.ndarray, k: int, edge) -> float:
-    """The arc length of the farthest point of the path after q[k + 1] that ``edge`` says ``cur`` sees (binary search)."""
-    lo, hi = cum[k + 1], cum[-1]
-    for _ in range(GREEDY_SPLITS):
-        if hi - lo <= cum[-1] / 2**GREEDY_SPLITS:
-            break
-        mid = 0.5 * (lo + hi)
-        if edge(cur, _point_at(space, q, cum, mid)[1]):
-            lo = mid
-        else:
-            hi = mid
-    return lo
+def _farthest(space: ConfigSpace, q: list, cum: np.ndarray, cur: np.ndarray, k: int, edge, rest=None) -> float:
+    """The arc length of the farthest point of the path after q[k + 1] that ``edge`` says ``cur`` sees (binary search).
+
+    With ``rest`` (the check of the rest of an edge whose ``edge`` answer, its probes, passed), the point the
+    search settles on must pass it too; a point that fails bounds the search, which goes on from the point
+    before it (every point it passes through saw its probes pass).
+    """
+    seen, hi = [cum[k + 1]], cum[-1]
+    while True:
+        while hi - seen[-1] > cum[-1] / 2**GREEDY_SPLITS:
+            mid = 0.5 * (seen[-1] + hi)
+            if edge(cur, _point_at(space, q, cum, mid)[1]):
+                seen.append(mid)
+            else:
+                hi = mid
+        if rest is None or len(seen) == 1 or rest(cur, _point_at(space, q, cum, seen[-1])[1]):
+            return seen[-1]
+        hi = seen.pop()
 
 
 def _try_vertices(edge, path: _Path, rng, born: int, min_gain: float) -> _Path | None:
