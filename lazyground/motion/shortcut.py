@@ -321,7 +321,8 @@ def _greedy(space: ConfigSpace, edge, fine_free, path: _Path, born: int = 0, pro
     from it, then again from there.
 
     The farthest point is found by binary search over arc length (points inside segments
-    included) with ``edge``, the planner's check. It lies where the segment just passes an
+    included) with ``edge``, the planner's check; given ``probe`` (``edge``'s probes only), the search
+    asks the probes and only the point it settles on is checked in full. It lies where the segment just passes an
     obstacle, so it is then checked at the fine resolution (``fine_free``) and, failing that,
     pulled back towards the current point. Every segment it makes is therefore checked at the
     fine resolution (flag 0: none backtracks past it); the pieces of the input's segments it
