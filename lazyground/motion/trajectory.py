@@ -339,8 +339,10 @@ def _time_curve(curve: Curve, limits: Limits, dt: float, grid: int) -> _Timed:
     else:
         raise RuntimeError("TOPP-RA found no time parameterisation")
     timed = _Timed(curve, s_of_t, 1.0)
-    # probed four times finer than the output samples, so those respect the limits too
-    probe = np.linspace(0.0, timed.duration, max(400, int(4 * timed.duration / dt)))
+    # probed twice as finely as the output samples, so that those mostly respect the limits too (assemble slows
+    # down what still exceeds them). Against four times, seeds 0-19 on the three Fetch scenes: 3 more slow-downs
+    # in 60 trajectories (74 samplings against 71), durations within 4e-5, peaks within the limits, half the probing CPU.
+    probe = np.linspace(0.0, timed.duration, max(400, int(2 * timed.duration / dt)))
     _, qd, qdd = timed.evaluate(probe)
     over_v = np.max(np.abs(qd) / limits.velocity)
     over_a = np.max(np.abs(qdd) / limits.acceleration)
