@@ -21,6 +21,7 @@ from lazyground import tasks
 from lazyground.plan_report import PlanReport
 from lazyground.scene import Scene, load_scene
 from lazyground.settings import PlannerSettings
+from lazyground.settings import coerce as coerce_setting
 from lazyground.settings import from_scene as settings_from_scene
 from lazyground.tasks.reach import make_goal_source  # noqa: F401  (a public name of the API)
 from lazyground.tasks.worlds import Worlds
@@ -59,13 +60,14 @@ def plan(
         The PlanReport; ``report.outcome`` holds the task's typed steps.
 
     Raises:
-        ValueError: an unknown setting, or a value out of its range / choices.
+        ValueError: an unknown setting, a value out of its range / choices, or a seed that is not
+            an integer >= 0.
         SceneError: the scene file is invalid.
         GroundingError: the request does not ground in the scene.
     """
     if not isinstance(scene, Scene):
         scene = load_scene(scene)
-    seed = scene.planner.seed if seed is None else int(seed)
+    seed = scene.planner.seed if seed is None else coerce_setting("seed", seed)
     settings = planner_settings(scene, **overrides)
     t0 = time.perf_counter()
     g = grounding.ground(request, scene)

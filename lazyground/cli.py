@@ -1,7 +1,8 @@
 """The ``lazyground`` command: a thin ``main(argv) -> int`` over library calls.
 
 Exit codes: 0 solved / done, 1 a planning failure status (timeout, invalid
-start, no valid goal), 2 bad input (scene, request, arguments), 3 an internal
+start, no valid goal), 2 bad input (scene, request, arguments, an output file
+that cannot be written), 3 an internal
 error (a bug: ``--debug`` shows the traceback), 130 interrupted, 141 the reader
 of the output went away (``lazyground plan ... --json | head``: silent, as any
 Unix tool stopped by SIGPIPE).
@@ -148,6 +149,10 @@ def cmd_plan(args) -> int:
         overrides = cli_values(args) | motion_options.overrides_from_args(args)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
+    try:  # the scene's settings with the options, together (e.g. an edge_resolution too fine for the step)
+        api.planner_settings(scene, **{k: v for k, v in overrides.items() if k != "seed"})  # the seed is no setting
+    except ValueError as exc:
+        raise UsageError(f"{scene.source or scene.name}: {exc}") from None
     problem = output_problem(scene, args.html, args.plot, args.animate,
                              {"--trajectory": args.trajectory, "--ros-trajectory": args.ros_trajectory})
     if problem:
@@ -173,8 +178,17 @@ def cmd_plan(args) -> int:
     if res.solved:
         from lazyground.motion.export import write_outputs
 
-        write_outputs(report, args, sys.stderr if args.json else sys.stdout)
+        flags = [f"{flag} {path}" for flag, path in (("--trajectory", args.trajectory), ("--ros-trajectory", args.ros_trajectory)) if path]
+        _writing(" / ".join(flags), lambda: write_outputs(report, args, sys.stderr if args.json else sys.stdout))
     return EXIT_OK if res.solved else EXIT_FAILED
+
+
+def _writing(what: str, write):
+    """``write()``; an OSError (disk full, the file made read-only meanwhile) is bad input naming the output."""
+    try:
+        return write()
+    except OSError as exc:
+        raise UsageError(f"{what}: cannot write: {exc.strerror or exc}") from None
 
 
 def _write_visuals(report, scene, args) -> None:
@@ -183,24 +197,32 @@ def _write_visuals(report, scene, args) -> None:
         from lazyground.viz import plots
 
         if args.plot:
-            plots.plot_parking(report, scene, args.plot)
+            _writing(f"--plot {args.plot}", lambda: plots.plot_parking(report, scene, args.plot))
             print(f"wrote {args.plot}", file=out)
         if args.animate:
-            plots.animate_parking(report, scene, args.animate)
+            _writing(f"--animate {args.animate}", lambda: plots.animate_parking(report, scene, args.animate))
             print(f"wrote {args.animate}", file=out)
     if args.html or args.meshcat:
         from lazyground.viz import meshcat_view
 
         if args.html:
-            size = meshcat_view.write_html(report, scene, args.html)
+            size = _writing(f"--html {args.html}", lambda: meshcat_view.write_html(report, scene, args.html))
             print(f"wrote {args.html} ({size / 1e6:.1f} MB)", file=out)
         if args.meshcat:
             meshcat_view.show_live(report, scene, loop_once=args.loop_once, out=out)
 
 
 def cmd_demo(args) -> int:
+    from lazyground.outputs import folder_problem
+    from lazyground.settings import BY_NAME
     from lazyground.viz.demo import run_demo
 
+    problem = BY_NAME["seed"].problem(args.seed)
+    if problem:
+        raise UsageError(f"--seed {problem}")
+    problem = folder_problem(Path(args.out))
+    if problem:
+        raise UsageError(f"--out {args.out}: {problem}")
     work_begins()
     return run_demo(Path(args.out), seed=args.seed)
 

@@ -183,9 +183,12 @@ SETTINGS: tuple[Setting, ...] = (
     Setting("shortcut_iterations", int, 100, "shortcut attempts after the solve (0: keep the raw path; "
             "`--no-shortcut`)", _MOTION, low=0.0),
     Setting("shortcut_time", float, 1.0, "seconds the shortcutting may take", _MOTION, low=0.0),
+    # the bounds keep a trajectory within ~1,000 times the default's samples (a slower or denser one ran out of
+    # memory: --speed 1e-6 asked for 3e9 samples on parking_1, --sample-rate 1e9 for 3e10)
     Setting("speed", float, 1.0, "trajectory speed s: velocity limits x s, acceleration limits x s²", _MOTION,
-            low=0.0, high=1.0, low_open=True),
-    Setting("sample_rate", float, 100.0, "trajectory samples per second", _MOTION, low=0.0, low_open=True),
+            low=0.01, high=1.0),
+    Setting("sample_rate", float, 100.0, "trajectory samples per second", _MOTION, low=0.0, high=1000.0,
+            low_open=True),
 )
 BY_NAME: dict[str, Setting] = {s.name: s for s in SETTINGS}
 
@@ -209,9 +212,18 @@ def coerce(name: str, value):
 
 # --- PlannerSettings: generated from the API layer ---------------------------------------------
 
+MAX_FINE_CHECKS_PER_STEP = 100_000  # configurations the fine re-check tests along an edge of step_size (default 100)
+
+
 def _post_init(self) -> None:
     for s in declared(Layer.API):  # frozen: convert in place once, so every later read is typed
         object.__setattr__(self, s.name, s.coerce(getattr(self, s.name)))
+    fine = self.step_size * self.validation_factor / _resolution(self)
+    if fine > MAX_FINE_CHECKS_PER_STEP:  # 2e10 configurations per edge (edge_resolution 1e-9) ran out of memory
+        finest = self.step_size * self.validation_factor / MAX_FINE_CHECKS_PER_STEP
+        raise ValueError(f"edge_resolution: {_resolution(self):g} is too fine for step_size {self.step_size:g}: the re-check "
+                         f"of one edge would test {fine:.3g} configurations (at most {MAX_FINE_CHECKS_PER_STEP:,}); "
+                         f"give edge_resolution >= {finest:.3g}")
 
 
 def _resolution(self) -> float:

@@ -24,8 +24,8 @@ from pathlib import Path
 
 from lazyground.bench import arms
 from lazyground.bundled import bundled_scene, scene_names as bundled_names
-from lazyground.bench.runner import ALGORITHMS, RunSpec, execute, row_key, Progress
-from lazyground.settings import BY_NAME, Algorithm, Kinematics, Strategy
+from lazyground.bench.runner import ALGORITHMS, FIELDS, RunSpec, execute, row_key, Progress
+from lazyground.settings import BY_NAME, Algorithm, Kinematics, Strategy, from_scene
 
 ALL_STRATEGIES = (Strategy.CONSECUTIVE, Strategy.RANDOM, Strategy.REWARD_PENALTY)  # the tables' column order
 TABLES = {
@@ -112,6 +112,7 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
         raise BenchUsageError("--runs must be >= 1")
     if args.time_limit is not None:
         _checked("time-limit", "time_limit", [args.time_limit])
+    _checked("seed", "seed", [args.seed])
     keys, missing = [], []
     for name in scene_names:
         key = resolve_scene(name)
@@ -120,6 +121,8 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
         notes.append(f"missing scenes (neither files nor bundled scenes: {', '.join(bundled_names())}): {', '.join(missing)}")
     if not keys:
         raise BenchUsageError(f"no scene to run: {notes[0]}")
+    for key in keys:  # bad input is one line now, not an error row in every run
+        _check_request(key, args.request or preset.get("requests", {}).get(Path(key).stem))
     algorithms = _checked("algorithms", "algorithm", _csv_list(args.algorithms, preset.get("algorithms", (Algorithm.RRT,))))
     configs = [(ALGORITHMS[a], s, b) for a in algorithms for b in biases for s in strategies]
     kinematics = getattr(args, "kinematics", None)  # absent from Namespaces built by hand (tests)
@@ -144,6 +147,32 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
             for planner, strategy, bias in configs:
                 specs.append(RunSpec(key, planner, strategy, bias, args.seed + i, limit, request, kinematics))
     return specs, notes, preset.get("title", "Computation time (s)")
+
+
+def _check_request(key: str, request: str | None) -> None:
+    """A generated arm with at least one joint; a scene with a request (given or its first expectation's)
+    that grounds in it."""
+    dof = arms.parse_arm_key(key)
+    if dof is not None:
+        if dof < 1:
+            raise BenchUsageError(f"--scenes {key}: an arm needs at least one joint")
+        return
+    import grounding
+    from grounding.model import GroundingError
+    from lazyground.scene import load_scene
+
+    scene = load_scene(key)
+    try:
+        from_scene(scene.planner)
+    except ValueError as exc:
+        raise BenchUsageError(f"scene {scene.name}: {exc}") from None
+    request = request or (scene.expect[0].request if scene.expect else None)
+    if request is None:
+        raise BenchUsageError(f"scene {scene.name} has no expect: request; give --request")
+    try:
+        grounding.ground(request, scene)
+    except GroundingError as exc:
+        raise BenchUsageError(f"request {request!r} on scene {scene.name}: {exc}") from None
 
 
 def _scene_time_limit(key: str) -> float:
@@ -172,8 +201,14 @@ def main(argv: list[str]) -> int:
 
 
 def _main(args) -> int:
+    if args.jobs < 1:
+        raise BenchUsageError(f"--jobs must be >= 1, got {args.jobs}")
+    from lazyground.outputs import folder_problem
+
     out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    problem = folder_problem(out)
+    if problem:
+        raise BenchUsageError(f"--out {args.out}: {problem}")
     if args.nn_scaling:
         from lazyground.bench import nn_scaling
 
@@ -189,7 +224,7 @@ def _main(args) -> int:
 
     csv_path = out / "results.csv"
     if args.resume and csv_path.is_file():
-        done = {row_key(r) for r in read_csv(csv_path)}
+        done = {row_key(r) for r in _resumable(csv_path)}
         specs = [s for s in specs if s.key() not in done]
         print(f"resume: {len(done)} runs in {csv_path}, {len(specs)} to go", file=sys.stderr)
     cluster = args.cluster
@@ -227,6 +262,24 @@ def _main(args) -> int:
         print(f"interrupted: kept {progress.done} finished run(s) in {csv_path}", file=sys.stderr)
         return EXIT_INTERRUPTED
     return EXIT_OK
+
+
+def _resumable(path: Path) -> list[dict]:
+    """The rows of a results.csv to resume; one with other columns (another version's, or not ours) is refused:
+    new rows appended under its header would land in the wrong columns."""
+    import csv
+
+    from lazyground.bench.tables import read_csv
+
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            header = next(csv.reader(f), [])
+    except (OSError, UnicodeDecodeError, csv.Error) as exc:
+        raise BenchUsageError(f"--resume: cannot read {path}: {exc}") from None
+    if header and header != list(FIELDS):
+        raise BenchUsageError(f"--resume: {path} has other columns than this version of lazyground bench writes; "
+                              "give another --out, or leave out --resume to start it again")
+    return read_csv(path)
 
 
 def write_outputs(rows: list[dict], out: Path, title: str, notes: list[str], total_s: float, dof_sweep: bool = False) -> None:

@@ -146,7 +146,7 @@ def time_split_table(rows: list[dict]) -> str:
     mean seconds of grounding, goal sampling, collision checking and the rest, and the rest's share of the
     total time (the planner's own time); the median goal-sampling milliseconds per valid goal sample
     (failed attempts included) and valid samples per attempt over all runs; checks per run and time per check."""
-    rows = [r for r in rows if r["status"] != "interrupted"]
+    rows = [r for r in rows if r["status"] not in ("interrupted", "error")]  # an error row has no times
     if not rows:
         return "(no finished runs)\n"
     head = ["Scene", "Strategy", "Bias %", "runs", "solved", "time", "grounding", "goal sampling", "collision", "other",

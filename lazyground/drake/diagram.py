@@ -7,7 +7,6 @@ and what an occupied parking spot holds from the type data
 
 from __future__ import annotations
 
-import logging
 from dataclasses import dataclass
 
 import numpy as np
@@ -22,8 +21,6 @@ from lazyground.geometry import Pose
 from lazyground.scene.schema import Geometry, Scene, SceneObject
 from lazyground.scene.typed_yaml import SceneError
 from lazyground.viz.style import OBSTACLE_SCENE_RGBA, OCCUPANT_RGBA, object_rgba
-
-logging.getLogger("drake").setLevel(logging.WARNING)  # silence "Allocating contexts ..." INFO lines
 
 
 @dataclass(frozen=True)
@@ -113,7 +110,10 @@ def _add_environment(plant, scene: Scene, attached: Attachment | None, visual: b
     for name, geometry, pose, rgba in environment_items(scene, attached):
         X = rigid_transform(pose)
         shape = drake_shape(geometry)
-        plant.RegisterCollisionGeometry(world, X, shape, name, _friction())
+        try:
+            plant.RegisterCollisionGeometry(world, X, shape, name, _friction())
+        except RuntimeError as exc:  # a mesh file with no vertices Drake can read (not an OBJ) has no convex hull
+            raise SceneError(f"{scene.source}: {name}: cannot use its geometry: {str(exc).splitlines()[0]}") from None
         if visual:
             plant.RegisterVisualGeometry(world, X, shape, name, np.array(rgba))
     if visual:  # non-colliding objects (parking spots) are still drawn

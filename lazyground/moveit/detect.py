@@ -14,6 +14,7 @@ class FileKind(Enum):
     SRDF = "an SRDF (MoveIt semantic robot description)"
     SDF = "an SDF model"
     XML = "an XML file"
+    SCENE_TEXT = "MoveIt's text scene format (.scene: RViz's scene objects export)"
     OTHER = "not a MoveIt planning scene"
 
 
@@ -35,6 +36,9 @@ def kind_of_text(text: str) -> FileKind:
             semantic = {"group", "group_state", "disable_collisions", "end_effector", "virtual_joint"}
             return FileKind.SRDF if any(c.tag in semantic for c in root) and root.find("link") is None else FileKind.URDF
         return FileKind.XML
+    lines = [line.rstrip() for line in text.strip().splitlines()]
+    if len(lines) > 2 and lines[-1] == "." and any(line.startswith("* ") for line in lines):  # objects "* id", ends "."
+        return FileKind.SCENE_TEXT
     return FileKind.OTHER
 
 
@@ -58,6 +62,8 @@ def not_a_scene_message(kind: FileKind, data=None) -> str:
         FileKind.SRDF: "named poses come from models/<robot>/robot.yaml; give the planning scene as FILE",
         FileKind.SDF: "give the MoveIt planning scene (world.collision_objects) as FILE",
         FileKind.XML: "expected a MoveIt planning scene in YAML",
+        FileKind.SCENE_TEXT: "give the scene as a moveit_msgs/PlanningScene message in YAML (world.collision_objects, "
+                             "robot_state), e.g. echoed from the planning-scene topic",
     }.get(kind)
     if hint is None:
         top = f"top-level keys: {', '.join(sorted(map(str, data))[:6])}" if isinstance(data, dict) and data else \

@@ -16,7 +16,7 @@ import yaml
 from lazyground.moveit.convert import ImportOptions, ImportSummary, convert_moveit
 from lazyground.moveit.detect import FileKind, kind_of_text, not_a_scene_message
 from lazyground.scene.loader import load_scene
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.scene.typed_yaml import SceneError, load_yaml
 
 
 @dataclass(frozen=True)
@@ -44,7 +44,7 @@ def read_moveit_yaml(path: Path):
     if kind is not FileKind.OTHER:
         raise SceneError(f"{path}: {not_a_scene_message(kind)}")
     try:
-        return yaml.safe_load(text)
+        return load_yaml(text)
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         where = f" at line {mark.line + 1}" if mark else ""

@@ -17,7 +17,7 @@ from pathlib import Path
 import yaml
 
 from lazyground.robots.defaults import RobotDefaults
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.scene.typed_yaml import SceneError, load_yaml
 
 LIMIT_TOLERANCE = 1e-6
 
@@ -100,12 +100,13 @@ def request_start(path: str | Path) -> dict[str, float]:
 
     try:
         text = Path(path).read_text(encoding="utf-8")
-        data = yaml.safe_load(text)
+        data = load_yaml(text)
     except (OSError, UnicodeDecodeError, yaml.YAMLError) as exc:
         raise SceneError(f"{path}: cannot read the motion-plan request: {str(exc).splitlines()[0]}") from None
     kind = kind_of_mapping(data) if isinstance(data, dict) else kind_of_text(text)
     if kind is not FileKind.MOTION_PLAN_REQUEST:
-        raise SceneError(f"{path}: --start-from expects a MoveIt motion-plan request (start_state.joint_state); this is {kind.value}")
+        what = "not one" if kind is FileKind.OTHER else kind.value
+        raise SceneError(f"{path}: --start-from expects a MoveIt motion-plan request (start_state.joint_state); this is {what}")
     state = (data.get("start_state") or {}).get("joint_state") if isinstance(data.get("start_state"), dict) else None
     if not state:
         raise SceneError(f"{path}: start_state.joint_state is missing")

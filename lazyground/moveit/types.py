@@ -18,7 +18,7 @@ from pathlib import Path
 
 import yaml
 
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.scene.typed_yaml import SceneError, load_yaml
 
 OBSTACLE = "obstacle"
 PART_WORDS = frozenset({"leg", "legs", "wall", "walls", "bar", "bars", "post", "posts", "vert", "vertical", "panel", "back",
@@ -80,7 +80,7 @@ def load_rules_file(path: str | Path) -> list[UserRule]:
         SceneError: unreadable, not a mapping, or a bad rule.
     """
     try:
-        data = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
+        data = load_yaml(Path(path).read_text(encoding="utf-8"))
     except (OSError, UnicodeDecodeError, yaml.YAMLError) as exc:
         raise SceneError(f"{path}: cannot read type rules: {str(exc).splitlines()[0]}") from None
     if not isinstance(data, dict) or not all(isinstance(k, str) and isinstance(v, str) for k, v in data.items()):

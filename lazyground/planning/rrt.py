@@ -62,9 +62,13 @@ def solve(
             return found
     except KeyboardInterrupt:
         return search.result(PlanStatus.INTERRUPTED, "interrupted")
-    if not search.samples:
+    if not search.samples and search.goals.exhausted():
         return search.no_goal()
-    return search.result(PlanStatus.TIMEOUT, f"no path within {settings.time_limit:g} s ({search.iterations} iterations)")
+    within = (f"{settings.max_iterations} iterations (max_iterations)" if search.iterations >= settings.max_iterations
+              else f"{settings.time_limit:g} s ({search.iterations} iterations)")
+    if not search.samples:  # the limit came before goal sampling had tried every region: not proof there is no goal
+        return search.result(PlanStatus.TIMEOUT, f"no valid goal configuration found within {within}: {search.region_summary()}")
+    return search.result(PlanStatus.TIMEOUT, f"no path within {within}")
 
 
 def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:

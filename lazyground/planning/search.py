@@ -199,12 +199,16 @@ class Search:
             cusps=cusps,
         )
 
-    def no_goal(self) -> PlanResult:
+    def region_summary(self) -> str:
+        """Each goal region's valid samples and attempts, and why the attempts failed."""
         parts = []
         for region, st in zip(self.goals.regions, self.goals.stats):
             why = ", ".join(f"{k} x{v}" for k, v in sorted(st.failures.items())) or "not tried"
             parts.append(f"{region.id}: {st.valid}/{st.attempts} valid ({why})")
-        return self.result(PlanStatus.NO_VALID_GOAL, "no valid goal configuration in any goal region: " + "; ".join(parts))
+        return "; ".join(parts)
+
+    def no_goal(self) -> PlanResult:
+        return self.result(PlanStatus.NO_VALID_GOAL, "no valid goal configuration in any goal region: " + self.region_summary())
 
     def _offsets(self) -> list[int]:
         return list(np.cumsum([0] + [len(t) for t in self.trees[:-1]]))

@@ -26,6 +26,7 @@ def planning_space(scene, base: ConfigSpace, kinematics: str) -> ConfigSpace:
     model = resolve_model(scene.robot.model, Path(scene.source).parent if scene.source else None)
     car = defaults_for_model(model).kinematics if model is not None and defaults_for_model(model) else None
     if car is None:
+        where = Path(model).parent / "robot.yaml" if model is not None else f"models/{scene.robot.model}/robot.yaml"
         raise SceneError(f"{scene.source or scene.name}: planner.kinematics: {kinematics} needs the robot's "
-                         f"steering (kinematics: in models/{scene.robot.model}/robot.yaml)")
+                         f"steering (kinematics: in {where}); this robot has none")
     return make_space(base, kinematics, car.min_turning_radius, offset=-0.5 * car.wheelbase)

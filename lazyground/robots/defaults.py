@@ -21,7 +21,7 @@ from typing import Any
 import yaml
 
 from lazyground.scene.schema import AXES, EndEffectorSpec  # noqa: F401  (re-exported: robot.yaml and scenes share it)
-from lazyground.scene.typed_yaml import SceneError, checked, load_dataclass, positive
+from lazyground.scene.typed_yaml import SceneError, checked, load_dataclass, load_yaml, positive
 
 DEFAULTS_FILE = "robot.yaml"
 
@@ -105,7 +105,7 @@ def defaults_for_model(model_file: str | Path) -> RobotDefaults | None:
 def load_robot_defaults(path: Path) -> RobotDefaults:
     """Read one ``robot.yaml`` strictly (cached by path; the files ship with the package)."""
     try:
-        data = yaml.safe_load(Path(path).read_text())
+        data = load_yaml(Path(path).read_text())
     except (OSError, yaml.YAMLError) as exc:
         raise SceneError(f"{path}: cannot read robot defaults: {str(exc).splitlines()[0]}") from None
     try:

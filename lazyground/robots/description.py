@@ -163,10 +163,14 @@ def obj_for(mesh: Path) -> Path:
         vertices, triangles = _read_stl(mesh) if suffix == ".stl" else _read_dae(mesh)
         if len(triangles) == 0:
             raise SceneError(f"{mesh}: the mesh has no triangles")
-        out.parent.mkdir(parents=True, exist_ok=True)
         tmp = out.with_suffix(".tmp")
-        tmp.write_text(obj_text(vertices, triangles))
-        tmp.replace(out)  # atomic: concurrent runs never read half a file
+        try:
+            out.parent.mkdir(parents=True, exist_ok=True)
+            tmp.write_text(obj_text(vertices, triangles))
+            tmp.replace(out)  # atomic: concurrent runs never read half a file
+        except OSError as exc:  # e.g. a read-only home in a container
+            raise SceneError(f"{mesh}: cannot write the converted mesh to {out.parent}: {exc.strerror or exc}; "
+                             "set LAZYGROUND_CACHE to a writable folder") from None
     return out
 
 

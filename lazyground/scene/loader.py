@@ -11,7 +11,7 @@ import yaml
 
 from lazyground.bundled import bundled_scene, data_dir, scene_names
 from lazyground.scene.schema import Scene, SceneObject
-from lazyground.scene.typed_yaml import SceneError, load_dataclass
+from lazyground.scene.typed_yaml import SceneError, load_dataclass, load_yaml
 
 MAX_SCENE_BYTES = 5 * 1024 * 1024
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -42,8 +42,11 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
 
     ``robot_overrides`` replaces robot keys before the robot's defaults are filled in (the CLI's
     ``--package``/``--srdf``: absolute paths)."""
+    problem = _not_a_scene(text)
+    if problem:
+        raise SceneError(f"{source}: {problem}")
     try:
-        data = yaml.safe_load(text)
+        data = load_yaml(text)
     except RecursionError:  # PyYAML composes nested collections recursively
         raise SceneError(f"{source}: YAML nesting too deep") from None
     except yaml.YAMLError as exc:
@@ -53,6 +56,9 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
         raise SceneError(f"{source}: YAML syntax error{where}: {problem}") from None
     if data is None:
         raise SceneError(f"{source}: the scene is empty")
+    problem = _not_a_scene(text, data) if isinstance(data, dict) else None
+    if problem:
+        raise SceneError(f"{source}: {problem}")
     from lazyground.scene.robot_fill import fill_from_robot_defaults  # late: it imports robots.defaults
 
     try:
@@ -84,6 +90,8 @@ def load_scene(path: str | os.PathLike, robot_overrides: dict | None = None) -> 
     path = Path(path)
     if not path.is_file():
         path = bundled_scene(str(path)) or path  # a bare name: the bundled scene, from any directory
+    if path.is_dir():
+        raise SceneError(f"{path}: is a folder, not a scene file")
     if not path.is_file():
         hint = f" (bundled scenes: {', '.join(scene_names())})" if Path(path).name == str(path) else ""
         raise SceneError(f"{path}: no such scene file{hint}")
@@ -95,6 +103,25 @@ def load_scene(path: str | os.PathLike, robot_overrides: dict | None = None) -> 
     except UnicodeDecodeError:
         raise SceneError(f"{path}: not a UTF-8 text file") from None
     return parse_scene(text, str(path), path.parent, robot_overrides)
+
+
+def _not_a_scene(text: str, data: dict | None = None) -> str | None:
+    """What a file given as a scene is instead (a robot model, a MoveIt message) and what to do with it, or None."""
+    from lazyground.moveit.detect import FileKind, kind_of_mapping, kind_of_text  # late: lazyground.moveit imports this
+
+    kind = kind_of_mapping(data) if data is not None else kind_of_text(text)
+    model = "a scene names it under robot.model (docs/scene_format.md); `lazyground check-robot FILE` shows what it holds"
+    hint = {
+        FileKind.PLANNING_SCENE: "convert it with `lazyground import-moveit FILE -o scene.yaml`",
+        FileKind.MOTION_PLAN_REQUEST: "give it to `lazyground plan SCENE REQUEST` as --start-from FILE",
+        FileKind.URDF: model,
+        FileKind.SDF: model,
+        FileKind.SRDF: "give it as --srdf FILE or under robot.srdf in a scene",
+        FileKind.XML: "a scene is YAML (docs/scene_format.md)",
+        FileKind.SCENE_TEXT: "save the scene as a moveit_msgs/PlanningScene message in YAML and convert it with "
+                             "`lazyground import-moveit`",
+    }.get(kind)
+    return f"this is {kind.value}, not a lazyground scene: {hint}" if hint else None
 
 
 def _bundled() -> str:

@@ -12,12 +12,46 @@ import types
 import typing
 from typing import Any, Union, get_args, get_origin, get_type_hints
 
+import yaml
+
 
 INT_LIMIT = 2**63 - 1  # integers beyond 64 bits are never meaningful in a scene
 
 
 class SceneError(ValueError):
     """A scene file that cannot be used; the message is one line."""
+
+
+class _UniqueKeyLoader(yaml.SafeLoader):
+    """``yaml.SafeLoader`` refusing a key given twice in one mapping (PyYAML keeps the last one silently)."""
+
+    def construct_mapping(self, node, deep=False):
+        if isinstance(node, yaml.MappingNode):
+            first: dict = {}
+            for key_node, _ in node.value:
+                if key_node.tag == "tag:yaml.org,2002:merge":  # '<<': keys it brings in may be overridden
+                    continue
+                key = self.construct_object(key_node, deep=True)
+                try:
+                    seen = key in first
+                except TypeError:  # an unhashable key: SafeLoader's own error says so below
+                    continue
+                if seen:
+                    raise yaml.constructor.ConstructorError(
+                        None, None, f"duplicate key {key!r} (first at line {first[key]})", key_node.start_mark)
+                first[key] = key_node.start_mark.line + 1
+        return super().construct_mapping(node, deep)
+
+
+def load_yaml(text: str):
+    """``yaml.safe_load`` that also refuses duplicate keys (a ``yaml.YAMLError`` naming the key and both lines).
+
+    Empty documents after a ``---`` are ignored (``ros2 topic echo`` ends a message with one); two
+    documents with content are a ``yaml.YAMLError``."""
+    docs = [d for d in yaml.load_all(text, Loader=_UniqueKeyLoader) if d is not None]
+    if len(docs) > 1:
+        raise yaml.composer.ComposerError(None, None, f"{len(docs)} YAML documents separated by '---'; give one", None)
+    return docs[0] if docs else None
 
 
 def _fail(path: str, problem: str) -> typing.NoReturn:

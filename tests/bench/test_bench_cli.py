@@ -138,6 +138,58 @@ def test_bad_arguments_exit_2(tmp_path, capsys):
     assert "unknown algorithm 'prm'" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("argv,message", [
+    # audit8: each of these ran every run as an error row, then "internal error: ValueError: could not convert
+    # string to float: ''" (exit 3); --out a file or an unwritable place was "internal error: FileExistsError"
+    (["--request", "fly"], "error: request 'fly' on scene parking_1: unknown word 'fly'"),
+    (["--scenes", "arm:0"], "error: --scenes arm:0: an arm needs at least one joint"),
+    (["--seed", "-1"], "error: --seed: must be >= 0, got -1"),
+    (["--jobs", "0"], "error: --jobs must be >= 1, got 0"),
+    (["--out", "{tmp}/file"], "error: --out {tmp}/file: is a file, not a folder"),
+    (["--out", "/proc/lazyground_bench"], "error: --out /proc/lazyground_bench: cannot write there: "),
+])
+def test_bad_input_is_refused_before_any_run(argv, message, tmp_path, capsys):
+    from tests.unit.test_cli_outputs import refused
+
+    (tmp_path / "file").write_text("")
+    refused(["bench", "--scenes", "parking_1", "--runs", "1", "--out", "{tmp}/out", *argv], message, tmp_path, capsys)
+    assert not (tmp_path / "out" / "results.csv").exists()
+
+
+@pytest.mark.parametrize("content,message", [
+    # audit8: "internal error: UnicodeDecodeError" / "internal error: KeyError: 'scene'"; an older results.csv (fewer
+    # columns) was resumed silently, the new rows appended under its header in the wrong columns
+    (bytes(range(128, 256)), "error: --resume: cannot read "),
+    (b"a,b\n1,2\n", "error: --resume: {csv} has other columns than this version of lazyground bench writes"),
+    (None, "error: --resume: {csv} has other columns than this version of lazyground bench writes"),
+])
+def test_resume_refuses_a_results_csv_it_did_not_write(content, message, tmp_path, capsys):
+    from lazyground.bench.runner import FIELDS
+
+    csv_path = tmp_path / "results.csv"
+    older = ",".join(FIELDS[:-2]) + "\n" + ",".join(["parking_1", "lazyground", "reward-penalty", "0.05", "0", "solved"]
+                                                   + ["1.0"] * (len(FIELDS) - 8)) + "\n"
+    csv_path.write_bytes(content if content is not None else older.encode())
+    before = csv_path.read_bytes()
+    assert main(["bench", "--scenes", "parking_1", "--runs", "1", "--resume", "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert err.splitlines() == [err.strip()] and err.startswith(message.replace("{csv}", str(csv_path))), err
+    assert csv_path.read_bytes() == before
+
+
+def test_an_error_row_does_not_break_the_tables():
+    # audit8: one run ending in an error (no times) made the time split raise after every run had finished
+    from lazyground.bench.tables import time_split_table
+
+    solved = {"scene": "a", "planner": "lazyground", "strategy": "consecutive", "bias": "0.5", "status": "solved",
+              "time_s": 1.0, "grounding_s": 0.0, "goal_sampling_s": 0.0, "collision_s": 0.5, "other_s": 0.5,
+              "time_limit": 10.0}
+    error = {**{k: "" for k in solved}, "scene": "a", "planner": "lazyground", "strategy": "consecutive", "bias": "0.5",
+             "status": "error", "time_limit": "10.0"}
+    cells = [l for l in time_split_table([solved, error]).splitlines() if l.startswith("| a")][0].split(" | ")
+    assert cells[3:6] == ["1", "1", "1.000"]  # one finished run, solved
+
+
 def test_ctrl_c_keeps_finished_runs(tmp_path):
     out = tmp_path / "bench"
     cmd = [sys.executable, "-m", "lazyground", "bench", "--scenes", "parking_1", "--strategies", "reward-penalty",

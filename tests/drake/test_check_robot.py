@@ -30,6 +30,17 @@ def test_bundled_robots_are_clean(capsys, robot, dof):
     assert any("limits [" in line and "velocity" in line for line in lines)
 
 
+def test_a_clean_robot_prints_nothing_on_stderr():
+    # audit8: every check-robot run printed "INFO:drake:Allocating contexts to support implicit context parallelism 2"
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    run = subprocess.run([sys.executable, "-m", "lazyground", "check-robot", "panda"], capture_output=True, text=True,
+                         cwd=Path(__file__).resolve().parents[2])
+    assert run.returncode == 0 and run.stderr == ""
+
+
 def test_ros_package_with_srdf_reports_meshes_pairs_and_unsupported(tmp_path, capsys):
     pkg = make_package(tmp_path)
     code, lines, _ = _run(capsys, str(pkg / "urdf" / "my_arm.urdf"), "--srdf", str(pkg / "config" / "my_arm.srdf"))

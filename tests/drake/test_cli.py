@@ -73,6 +73,8 @@ def test_car_kinematics_need_a_car(capsys):
     assert main(["plan", fetch, "pick up a can", "--kinematics", "reeds-shepp"]) == 2
     err = capsys.readouterr().err.strip()
     assert "kinematics" in err and len(err.splitlines()) == 1
+    # audit8: the path read "models//.../models/fetch/fetch.urdf/robot.yaml" (the model's absolute path inside a template)
+    assert err.endswith("/models/fetch/robot.yaml); this robot has none") and "//" not in err, err
 
 
 def test_plan_bidirectional(capsys):
@@ -129,6 +131,17 @@ def test_bad_input_exits_2_with_one_line(argv, fragment, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err.strip()
     assert fragment in err and len(err.splitlines()) == 1
+
+
+@pytest.mark.skipif(not Path("/dev/full").exists(), reason="needs /dev/full")
+def test_a_full_disk_while_writing_an_output_is_bad_input(tmp_path, capsys):
+    # audit8: "internal error: OSError: [Errno 28] No space left on device (rerun with --debug)", exit 3
+    full = tmp_path / "t.csv"
+    full.symlink_to("/dev/full")
+    assert main(["plan", P1, "park", "--seed", "1", "--trajectory", str(full)] + BY_SEED) == 2
+    out, err = capsys.readouterr()
+    assert "reached: park:spot_" in out  # the plan itself is reported
+    assert err.splitlines() == [f"error: --trajectory {full}: cannot write: No space left on device"]
 
 
 def test_subprocess_error_has_no_traceback(tmp_path):

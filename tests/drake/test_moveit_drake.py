@@ -39,6 +39,17 @@ def test_mesh_obstacles_collide_as_their_shape(tmp_path, mesh):
     assert not near.config_free(stretched) and "block" in near.explain(stretched)
 
 
+def test_a_mesh_file_that_is_not_an_obj_is_a_scene_error(tmp_path):
+    # audit8: a PNG renamed .obj (or an OBJ without vertices) was "internal error: RuntimeError: MakeConvexHull()
+    # cannot be used on a mesh with fewer than three vertices", exit 3
+    (tmp_path / "block.obj").write_bytes(b"\x89PNG\r\n\x1a\n" + bytes(64))
+    path = tmp_path / "s.yaml"
+    path.write_text(f"name: m\nrobot: {FETCH}\nobstacles: [{{id: block, geometry: {{mesh: {{file: block.obj}}}}, pose: {{xyz: [2, 0, 0]}}}}]\n")
+    with pytest.raises(SceneError, match=r"s\.yaml: block: cannot use its geometry: MakeConvexHull\(\) cannot be used on a mesh "
+                                         r"with fewer than three vertices"):
+        DrakeWorld(load_scene(path), visual=False)
+
+
 def _with(path, key, value):
     out = path.with_name(f"{path.stem}_{value}.yaml")
     out.write_text(path.read_text().replace(key, value))

@@ -145,6 +145,9 @@ def test_user_rules_win_and_parse(tmp_path):
     path.write_text("- a\n")
     with pytest.raises(SceneError, match="mapping"):
         load_rules_file(path)
+    path.write_text("'^tray': table\n'^tray': obstacle\n")  # audit8: the second rule replaced the first silently
+    with pytest.raises(SceneError, match=r"duplicate key '\^tray' \(first at line 1\)"):
+        load_rules_file(path)
 
 
 @pytest.mark.parametrize("text, words", [
@@ -155,6 +158,11 @@ def test_user_rules_win_and_parse(tmp_path):
     ("[1, 2]\n", "not a MoveIt planning scene"),
     ("name: x\nrobot: {model: fetch}\n", "not a MoveIt planning scene (top-level keys: name, robot"),
     ("world: {collision_objects: []}\n", "no collision object could be imported"),
+    # audit8: RViz's text export was "not a MoveIt planning scene (a YAML str; ...)"
+    ("(noname)+\n* box_1\n0 0 0\n0 0 0 1\n1\nbox\n0.1 0.1 0.1\n0.5 0 0.5\n0 0 0 1\n0 0 0 0\n0\n.\n",
+     "this is MoveIt's text scene format (.scene: RViz's scene objects export), not a planning scene: give the scene as "
+     "a moveit_msgs/PlanningScene message in YAML"),
+    ("world: {collision_objects: []}\n---\nworld: {collision_objects: []}\n---\n", "2 YAML documents separated by '---'; give one"),
 ])
 def test_what_is_not_a_planning_scene_is_said_in_one_line(text, words, tmp_path):
     src = tmp_path / "in.yaml"
@@ -271,3 +279,25 @@ def test_srdf_option_is_written_into_the_robot_block(tmp_path):
     out = tmp_path / "out.yaml"
     assert main(["import-moveit", str(source), "-o", str(out), "--srdf", str(srdf)]) == 0
     assert yaml.safe_load(out.read_text())["robot"]["srdf"] == str(srdf.resolve())
+
+
+def test_a_topic_echo_ending_in_a_document_separator_imports(tmp_path):
+    # audit8: a message saved with `ros2 topic echo --once` ends in '---': "YAML syntax error at line 82: but found
+    # another document"
+    src = tmp_path / "echo.yaml"
+    src.write_text((CORPUS / "big_box_table.yaml").read_text() + "---\n")
+    _import(src, tmp_path, name="out")
+    assert (tmp_path / "out.yaml").is_file()
+
+
+@pytest.mark.parametrize("text, this_is", [
+    ("name: x\nrobot: {model: fetch}\n", "this is not one"),  # audit8: was "this is not a MoveIt planning scene"
+    ("world: {collision_objects: []}\n", "this is a MoveIt planning scene"),
+])
+def test_start_from_says_what_the_file_is(text, this_is, tmp_path):
+    from lazyground.moveit.start import request_start
+
+    path = tmp_path / "r.yaml"
+    path.write_text(text)
+    with pytest.raises(SceneError, match=f"--start-from expects a MoveIt motion-plan request \\(start_state.joint_state\\); {this_is}$"):
+        request_start(path)

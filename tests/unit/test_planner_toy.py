@@ -57,6 +57,12 @@ def test_reward_penalty_penalises_unreachable_samples_and_resamples():
     assert len(res.goal_samples) == 4 + 4 * res.resamplings
 
 
+def test_an_iteration_limit_is_named_as_such():
+    # audit8: max_iterations=5 said "no path within 10 s (5 iterations)" after a few milliseconds
+    world, res = run([UNREACHABLE], 0, PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=5))
+    assert res.status is PlanStatus.TIMEOUT and res.message == "no path within 5 iterations (max_iterations)"
+
+
 def test_same_seed_same_path():
     _, a = run([UNREACHABLE, REACHABLE], 11)
     _, b = run([UNREACHABLE, REACHABLE], 11)
@@ -83,9 +89,8 @@ def test_no_valid_goal_names_each_region():
     assert "block: 0/50 valid (in collision x50)" in res.message
 
 
-def test_timeout_respects_the_limit(monkeypatch):
-    # The time limit itself, on a fake clock that advances 1 ms per reading: the planner stops at
-    # the first reading past the limit, whatever the machine's load.
+def fake_clock(monkeypatch) -> None:
+    """The planner's and goal sampling's clock advances 1 ms per reading, whatever the machine's load."""
     ticks = iter(range(10**9))
     clock = SimpleNamespace(perf_counter=lambda: next(ticks) * 1e-3)
     from lazyground import goals
@@ -93,6 +98,24 @@ def test_timeout_respects_the_limit(monkeypatch):
 
     monkeypatch.setattr(search, "time", clock)
     monkeypatch.setattr(goals, "time", clock)
+
+
+@pytest.mark.parametrize("algorithm", ["rrt", "bidirectional"])
+def test_a_limit_reached_before_every_region_was_tried_is_a_timeout(monkeypatch, algorithm):
+    # audit8: "--time-limit 0.001" on fetch_cans_1 said no_valid_goal ("no valid goal configuration in any
+    # goal region"), with 11 of 12 regions "not tried": the limit ended goal sampling, not the regions
+    fake_clock(monkeypatch)
+    world, res = run([INVALID], 0, PlannerSettings(time_limit=0.01, algorithm=algorithm))
+    assert res.status is PlanStatus.TIMEOUT and res.path is None, res.message
+    assert res.message.startswith("no valid goal configuration found within 0.01 s") and "block: 0/" in res.message
+    fake_clock(monkeypatch)
+    world, res = run([INVALID], 0, PlannerSettings(time_limit=1.0, algorithm=algorithm))  # time to give up on the region
+    assert res.status is PlanStatus.NO_VALID_GOAL, res.message
+
+
+def test_timeout_respects_the_limit(monkeypatch):
+    # The time limit itself, on a fake clock: the planner stops at the first reading past the limit.
+    fake_clock(monkeypatch)
     settings = PlannerSettings(step_size=0.5, time_limit=0.3, goal_bias=0.1)
     world, res = run([UNREACHABLE], 0, settings)
     assert res.status is PlanStatus.TIMEOUT and res.path is None

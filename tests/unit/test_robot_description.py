@@ -59,6 +59,17 @@ def test_stl_converts_to_an_obj_with_the_same_triangles(tmp_path, writer):
     assert obj_for(stl) == obj  # cached by content
 
 
+def test_an_unwritable_mesh_cache_is_one_line_naming_the_fix(tmp_path, monkeypatch):
+    # audit8: HOME=/proc (a read-only home in a container) was "internal error: FileNotFoundError: ... '/proc/.cache'"
+    stl = tmp_path / "part.stl"
+    _binary_stl(stl, TRIANGLE)
+    (tmp_path / "file").write_text("")
+    monkeypatch.setenv("LAZYGROUND_CACHE", str(tmp_path / "file"))  # a file where the cache folder should be
+    with pytest.raises(SceneError, match=r"part\.stl: cannot write the converted mesh to .*/file/meshes: .*; "
+                                         r"set LAZYGROUND_CACHE to a writable folder$"):
+        obj_for(stl)
+
+
 def test_not_an_stl_and_unknown_formats_are_one_line(tmp_path):
     bad = tmp_path / "bad.stl"
     bad.write_bytes(b"\x00\x01 garbage")

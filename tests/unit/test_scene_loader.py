@@ -29,6 +29,14 @@ def test_bad_scene_is_rejected_with_one_line(case):
     assert case["error"] in message
 
 
+def test_a_folder_is_not_a_missing_file(tmp_path):
+    # audit8: "plan some_folder park" said "some_folder: no such scene file (bundled scenes: ...)"
+    folder = tmp_path / "scenes.yaml"
+    folder.mkdir()
+    with pytest.raises(SceneError, match=r"scenes\.yaml: is a folder, not a scene file$"):
+        load_scene(folder)
+
+
 def test_minimal_scene_loads_with_defaults():
     scene = parse_scene("name: x\n" + CAR, "ok.yaml", ROOT)
     assert scene.robot.model.endswith("models/car/car.urdf")
