@@ -163,11 +163,13 @@ def shortcut_path(
     start = _drop_redundant(space, _Path(space, list(body), [0] * (len(body) - 1)))
     deadline = t0 + settings.time_budget
     fine = _FineCheck(space, checker, resolution / validation_factor, raw)
-    edge = _remembered(bisected_edge(space, checker, resolution))  # a redo's greedy pass asks the same edges again
-    versions, iterations, backtracked = _shorten(space, edge, fine, start, settings, rng, deadline, lazy=True)
+    checked = bisected_edge(space, checker, resolution)
+    edge = _remembered(checked)  # a redo's greedy pass asks the same edges again
+    probe = _remembered(lambda a, b: checked(a, b, "probes"))
+    versions, iterations, backtracked = _shorten(space, edge, fine, start, settings, rng, deadline, lazy=True, probe=probe)
     if versions is None:  # a segment of the unchecked greedy pass failed the fine check: again, checking each as chosen
         rest = replace(settings, max_iterations=settings.max_iterations - iterations)  # attempts in all stay within it
-        versions, more, backtracked = _shorten(space, edge, fine, start, rest, rng, deadline, lazy=False)
+        versions, more, backtracked = _shorten(space, edge, fine, start, rest, rng, deadline, lazy=False, probe=probe)
         iterations += more
     if not versions:  # a piece of the input path (version 0's) fails: the input path itself
         return done(ShortcutStatus.BACKTRACKED, raw, iterations, 0)
@@ -188,17 +190,17 @@ def _remembered(edge):
     """``edge`` with its answers kept per (a, b)."""
     known = {}
 
-    def remembered(a: np.ndarray, b: np.ndarray) -> bool:
+    def remembered(a: np.ndarray, b: np.ndarray, *part) -> bool:
         key = _segment_key(a, b)
         if key not in known:
-            known[key] = edge(a, b)
+            known[key] = edge(a, b, *part)
         return known[key]
 
     return remembered
 
 
 def _shorten(space: ConfigSpace, edge, fine: "_FineCheck", start: _Path, settings: ShortcutSettings,
-             rng: np.random.Generator, deadline: float, lazy: bool) -> tuple[list | None, int, bool]:
+             rng: np.random.Generator, deadline: float, lazy: bool, probe=None) -> tuple[list | None, int, bool]:
     """Greedy pass, random shortcuts, relaxation, then the fine check of the result, going back to the newest
     version whose segments all pass. Returns (versions, attempts, whether it went back); versions is [] when
     a piece of the input path fails.
@@ -212,13 +214,13 @@ def _shorten(space: ConfigSpace, edge, fine: "_FineCheck", start: _Path, setting
     versions = [start]
     lazy = lazy and settings.greedy and len(start.q) > 2
     if lazy:
-        versions.append(_drop_redundant(space, _greedy(space, edge, None, start, born=1)))
+        versions.append(_drop_redundant(space, _greedy(space, edge, None, start, born=1, probe=probe)))
     elif settings.greedy and len(start.q) > 2:
-        versions[0] = _drop_redundant(space, _greedy(space, edge, fine.segment_free, start))
+        versions[0] = _drop_redundant(space, _greedy(space, edge, fine.segment_free, start, probe=probe))
     iterations = _random_shortcuts(space, edge, versions, settings, rng, deadline)
     _relax(space, edge, versions, settings, deadline)
     if settings.regreedy and len(versions) > 1 + lazy and len(versions[-1].q) > 2 and time.perf_counter() < deadline:
-        versions.append(_drop_redundant(space, _greedy(space, edge, fine.segment_free, versions[-1])))
+        versions.append(_drop_redundant(space, _greedy(space, edge, fine.segment_free, versions[-1], probe=probe)))
     backtracked = False
     while (bad := fine.first_failure(versions[-1])) is not None:
         if lazy and bad == 1:
@@ -314,12 +316,13 @@ GREEDY_SPLITS = 6
 GREEDY_BACKOFFS = 3  # pull-backs of a farthest point whose segment fails the fine check
 
 
-def _greedy(space: ConfigSpace, edge, fine_free, path: _Path, born: int = 0) -> _Path:
+def _greedy(space: ConfigSpace, edge, fine_free, path: _Path, born: int = 0, probe=None) -> _Path:
     """String pulling: from the start, a straight segment to the farthest point of the path visible
     from it, then again from there.
 
     The farthest point is found by binary search over arc length (points inside segments
-    included) with ``edge``, the planner's check. It lies where the segment just passes an
+    included) with ``edge``, the planner's check; given ``probe`` (``edge``'s probes only), the search
+    asks the probes and only the point it settles on is checked in full. It lies where the segment just passes an
     obstacle, so it is then checked at the fine resolution (``fine_free``) and, failing that,
     pulled back towards the current point. Every segment it makes is therefore checked at the
     fine resolution (flag 0: none backtracks past it); the pieces of the input's segments it
@@ -337,15 +340,12 @@ def _greedy(space: ConfigSpace, edge, fine_free, path: _Path, born: int = 0) -> 
         if edge(cur, q[-1]) and fine_free(cur, q[-1]):
             out.append(q[-1])
             return _Path(space, out, flags + [born])
-        lo, hi = cum[k + 1], cum[-1]  # q[k + 1] is visible (along the segment), the goal is not
-        for _ in range(GREEDY_SPLITS):
-            if hi - lo <= cum[-1] / 2**GREEDY_SPLITS:
-                break
-            mid = 0.5 * (lo + hi)
-            if edge(cur, _point_at(space, q, cum, mid)[1]):
-                lo = mid
-            else:
-                hi = mid
+        # q[k + 1] is visible (along the segment), the goal is not. The search asks only the edges' probes and
+        # checks the rest of the edge it settles on; a wall the fine check finds between the coarse checks redoes
+        # the search with full checks (then the pull-backs below)
+        lo = _farthest(space, q, cum, cur, k, probe or edge, (lambda a, b: edge(a, b, "rest")) if probe else None)
+        if probe and lo > cum[k + 1] and not fine_free(cur, _point_at(space, q, cum, lo)[1]):
+            lo = _farthest(space, q, cum, cur, k, edge)
         for _ in range(GREEDY_BACKOFFS):
             if lo <= cum[k + 1] or fine_free(cur, _point_at(space, q, cum, lo)[1]):
                 break
@@ -363,6 +363,26 @@ def _greedy(space: ConfigSpace, edge, fine_free, path: _Path, born: int = 0) -> 
         out.append(cur)
     out.append(q[-1])  # the rest of the last segment
     return _Path(space, out, flags + [path.new[-1]])
+
+
+def _farthest(space: ConfigSpace, q: list, cum: np.ndarray, cur: np.ndarray, k: int, edge, rest=None) -> float:
+    """The arc length of the farthest point of the path after q[k + 1] that ``edge`` says ``cur`` sees (binary search).
+
+    With ``rest`` (the check of the rest of an edge whose ``edge`` answer, its probes, passed), the point the
+    search settles on must pass it too; a point that fails bounds the search, which goes on from the point
+    before it (every point it passes through saw its probes pass).
+    """
+    seen, hi = [cum[k + 1]], cum[-1]
+    while True:
+        while hi - seen[-1] > cum[-1] / 2**GREEDY_SPLITS:
+            mid = 0.5 * (seen[-1] + hi)
+            if edge(cur, _point_at(space, q, cum, mid)[1]):
+                seen.append(mid)
+            else:
+                hi = mid
+        if rest is None or len(seen) == 1 or rest(cur, _point_at(space, q, cum, seen[-1])[1]):
+            return seen[-1]
+        hi = seen.pop()
 
 
 def _try_vertices(edge, path: _Path, rng, born: int, min_gain: float) -> _Path | None:

@@ -42,3 +42,18 @@ def test_it_answers_as_the_sequential_check_and_stops_early_on_a_collision():
     world.asked = 0
     a, b = np.array([1.0, 2.0]), np.array([9.0, 2.0])  # free: every configuration checked once
     assert edge(a, b) and world.asked == len(SPACE.discretize(a, b, 0.05))
+
+
+def test_its_probes_and_the_rest_split_the_edge():
+    world = CountingWorld([(4.9, 4.0, 5.1, 6.0)])
+    edge = bisected_edge(SPACE, world, 0.05)
+    for a, b in (([1.0, 2.0], [9.0, 2.0]), ([1.0, 2.0], [1.2, 2.0])):  # 161 configurations, then 5
+        a, b = np.array(a), np.array(b)
+        n = len(SPACE.discretize(a, b, 0.05))
+        world.asked = 0
+        assert edge(a, b, "probes")
+        probed = world.asked
+        assert probed == min(n, PROBES)
+        assert edge(a, b, "rest") and world.asked == n
+    a, b = np.array([0.5, 5.05]), np.array([8.5, 5.05])  # the post between the probes: only the rest sees it
+    assert edge(a, b, "probes") and not edge(a, b, "rest") and not edge(a, b)

@@ -6,7 +6,8 @@ import pytest
 from lazyground.motion.curve import blended_curve, unwrap_path
 from lazyground.motion.validate import first_colliding_join
 from lazyground.motion.edges import bisected_edge
-from lazyground.motion.shortcut import ShortcutSettings, ShortcutStatus, _FineCheck, _Path, _remembered, _shorten, shortcut_path
+from lazyground.motion.shortcut import (ShortcutSettings, ShortcutStatus, _FineCheck, _greedy, _Path, _remembered, _shorten,
+                                        shortcut_path)
 from lazyground.planning import PlannerSettings, path_is_valid, solve
 from lazyground.planning.space import ConfigSpace
 from tests.unit.toy import REACHABLE, SPACE, START, WALLS, BoxWorld, CountingWorld, goal_source
@@ -174,3 +175,19 @@ def test_a_merged_run_of_the_input_path_is_checked_again_at_its_own_points():
     fine = _FineCheck(SPACE, world, FINE, raw)
     assert fine.first_failure(_Path(SPACE, [a, c], [0])) == 0  # traced to the input path: shortcut returns it
     assert fine.first_failure(_Path(SPACE, [a, b, c], [0, 0])) is None
+
+
+def test_the_greedy_search_on_probes_keeps_only_points_whose_whole_edge_passes():
+    # probes that pass everything (they miss every obstacle): the points the search settles on are checked in
+    # full ("rest"); here only points at x <= 1 are seen whole, and the greedy's segments are exactly those
+    q = [np.array([0.0, 0.0]), np.array([0.0, 4.0]), np.array([4.0, 4.0])]
+    asked = []
+
+    def edge(a, b, part="all"):
+        asked.append(part)
+        return bool(b[0] <= 1.0 + 1e-12)
+
+    out = _greedy(SPACE, edge, None, _Path(SPACE, q, [0, 0]), born=1, probe=lambda a, b: True)
+    assert all(edge(a, b) for a, b in zip(out.q[:-2], out.q[1:-1]))  # the last is a piece of the input's own segment
+    assert 0.9 < out.q[1][0] <= 1.0 and out.q[1][1] == 4.0  # the farthest point seen whole, within 4 / 2**6
+    assert "rest" in asked
