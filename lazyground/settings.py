@@ -302,7 +302,7 @@ def cli_values(args: argparse.Namespace) -> dict[str, Any]:
 # --- the docs ---------------------------------------------------------------------------------------
 
 def markdown_table() -> str:
-    """The ``planner:`` settings table of docs/scene_format.md."""
+    """The ``planner:`` settings table of docs/scene_format.md and its ``per_algorithm`` keys."""
     rows = ["| key | default | allowed | meaning | also |", "| --- | --- | --- | --- | --- |"]
     for s in declared(Layer.SCENE):
         default = s.default_doc or (f"`{s.default}`" if s.choices else f"{s.default:,}" if s.type is int else f"{s.default:g}")
@@ -310,6 +310,9 @@ def markdown_table() -> str:
         also = ", ".join(f"`{s.flag}`" if layer is Layer.CLI else layer.value
                          for layer in (Layer.CLI, Layer.API, Layer.PER_ALGORITHM, Layer.BENCH) if layer in s.layers)
         rows.append(f"| `{s.name}` | {default} | {allowed} | {s.doc} | {also} |")
+    keys = ", ".join(f"`{s.name}`" for s in declared(Layer.PER_ALGORITHM))
+    rows += ["", f"`per_algorithm` (default none): settings that apply only when one algorithm runs: "
+             f"`{{rrt: {{step_size: 2.65}}}}` (keys {keys}); the CLI's and API's own values still win."]
     return "\n".join(rows) + "\n"
 
 
