@@ -184,10 +184,15 @@ def shorten_car_result(space: CarSpace, checker: ValidityChecker, result: PlanRe
 
 
 def with_car_shortcut(motion: Motion | None, cut: CarShortcut | None) -> Motion | None:
-    """The motion of a shortened car path, recording the planner's path as its raw path."""
+    """The motion of a shortened car path, recording the planner's path as its raw path.
+
+    Both lengths are driven metres, as the result's ``path_length``; a straight line in (x, y, heading)
+    is no lower bound of what a car drives, so there is no direct length.
+    """
     if motion is None or cut is None:
         return motion
     status = ShortcutStatus.SHORTENED if cut.length < cut.raw_length else ShortcutStatus.UNCHANGED
     short = replace(motion.shortcut, status=status, raw_path=cut.raw_path, raw_length=cut.raw_length,
-                    iterations=cut.iterations, accepted=cut.accepted - cut.reverted, time_s=cut.time_s)
+                    length=cut.length, direct_length=float("nan"), iterations=cut.iterations,
+                    accepted=cut.accepted - cut.reverted, time_s=cut.time_s)
     return replace(motion, shortcut=short, shortcut_s=cut.time_s)

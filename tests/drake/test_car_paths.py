@@ -62,6 +62,10 @@ def test_returned_car_paths_are_drivable_and_free(name, kinematics, seeds):
         assert res.cusps == space.cusps(path)
         driven = np.hypot(*np.diff(space.reference(path)[:, :2], axis=0).T).sum()
         assert driven == pytest.approx(res.path_length, rel=1e-3)  # chords of 0.1 m arcs: within 1e-3
+        # the motion reports the same driven metres (its line and JSON once gave the raw path in metres and
+        # the shortened one in (x, y, heading) units: "33.016 -> 33.908 (shortened)")
+        short = report.motion.shortcut
+        assert short.length == pytest.approx(res.path_length) and short.length <= short.raw_length
         # the independent re-check: straight lines between the dense samples, at 1/10 of the edge resolution
         fine = report.settings.resolution / 10
         assert path_is_valid(world.space, world, path, fine) == -1, f"seed {seed}: collides between samples"
