@@ -37,8 +37,9 @@ def test_ompl_peers_share_goal_samples_and_checker():
         if r["status"] == "solved":
             assert r["region"].split("/")[0] in ("spot_b9", "spot_t10")  # the scene's reachable spots
             assert r["interpretation"] == "park:" + r["region"].split("/")[0]
-        else:
-            assert 3.0 <= r["time_s"] < 4.0
+        else:  # OMPL ends the solve by its own clock, which ran out ~8 ms before ours once (2.992 s of 3 s); a
+            # busy machine only makes the run longer, so no upper bound
+            assert r["time_s"] >= 0.95 * 3.0
 
 
 def test_generated_arm_urdf_and_regions():
