@@ -20,6 +20,7 @@ import numpy as np
 from pydrake.geometry import Role
 from pydrake.planning import RobotDiagramBuilder, SceneGraphCollisionChecker
 
+from lazyground.drake.coordinates import unbounded_positions
 from lazyground.drake.robot_model import add_robot, allow_collisions
 from lazyground.robots.defaults import defaults_for_model
 from lazyground.robots.srdf import read_srdf
@@ -133,6 +134,10 @@ def check_robot(model: str | Path, srdf: str | Path | None = None, packages: dic
     checker = SceneGraphCollisionChecker(model=diagram, robot_model_instances=[instance], edge_step_size=0.05,
                                          env_collision_padding=PADDING, self_collision_padding=PADDING)
     joints = _joints(plant, instance)
+    unbounded = unbounded_positions(plant, instance)
+    if unbounded:  # planning refuses them without limits, which a scene may give: a note, not a problem
+        notes.append(f"unbounded positions {', '.join(unbounded)} (no limits in the model): a scene that plans them "
+                     f"must give robot.limits, e.g. limits: {{{unbounded[0]}: [lower, upper]}}")
     collisions = {}
     for name, pose in poses.items():
         q, problem = _pose_vector(plant, instance, pose, name)

@@ -104,6 +104,15 @@ def coordinates_from_plant(plant, robot, scene: Scene) -> Coordinates:
     return Coordinates(space, tuple(idx), q_full)
 
 
+def unbounded_positions(plant, robot) -> list[str]:
+    """The robot's positions without finite limits that do not wrap: planning needs ``robot.limits`` for them."""
+    names = plant.GetPositionNames(robot, add_model_instance_prefix=False, always_add_suffix=False)
+    lower, upper = (plant.GetPositionsFromArray(robot, v) for v in (plant.GetPositionLowerLimits(), plant.GetPositionUpperLimits()))
+    wrap = plant.GetPositionsFromArray(robot, _joint_layout(plant, robot)[0].astype(float)) > 0.5
+    bounded = np.isfinite(lower) & np.isfinite(upper)
+    return [n for n, w, b in zip(names, wrap, bounded) if not (w or b)]
+
+
 def _joint_layout(plant, robot) -> tuple[np.ndarray, list[str]]:
     """Per plant position: whether it is a wrapping angle, and the name of its joint."""
     wrap = np.zeros(plant.num_positions(), bool)

@@ -30,6 +30,16 @@ def test_bundled_robots_are_clean(capsys, robot, dof):
     assert any("limits [" in line and "velocity" in line for line in lines)
 
 
+def test_unbounded_positions_get_a_note_naming_them(capsys):
+    # planning refuses a position without limits unless the scene gives robot.limits; check-robot said only "ok"
+    code, lines, _ = _run(capsys, "car")
+    notes = [line for line in lines if line.startswith("note: unbounded positions")]
+    assert code == 0 and lines[-1].startswith("ok: car.urdf")
+    assert len(notes) == 1 and "car_x, car_y " in notes[0] and "car_qz" not in notes[0]  # the heading wraps
+    _, lines, _ = _run(capsys, "fetch")  # continuous joints wrap: no note
+    assert not any("unbounded" in line for line in lines)
+
+
 def test_a_clean_robot_prints_nothing_on_stderr():
     # audit8: every check-robot run printed "INFO:drake:Allocating contexts to support implicit context parallelism 2"
     import subprocess
