@@ -38,6 +38,7 @@ moving environment body, a mesh it cannot read) gets no certifier
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -233,7 +234,7 @@ class SphereCertifier:
         own = self._finer(R, p, centre, clear, b, g, o, self._self.threshold[k], G + k, moving=True, pair=G * O + k)
         return clear.min(axis=1) > 0.0, self._open([env, own])
 
-    @property
+    @cached_property
     def pair_geometries(self) -> np.ndarray:
         """(pairs, 2): the pairs of :meth:`certify`, as indices into :attr:`geometry_ids`: (moving geometry,
         obstacle) for every moving geometry and obstacle (obstacles numbered after the moving geometries;
