@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from grounding.regions import occupant_geometry
+from lazyground.scene.types import occupant_geometry
 from lazyground import goals
 from lazyground.geometry import Pose, wrap_angle
 from lazyground.goals import ConfigGoalSource, goal_source_for, register_goal_source
@@ -187,7 +187,7 @@ def test_a_kind_without_a_source_is_one_clear_error(monkeypatch):
 
 def test_what_an_occupied_spot_holds_is_type_data_overridable_per_object():
     scene = parse_scene(LOT)
-    assert occupant_geometry(scene.object("spot_2"), scene).box == (4.5, 1.8, 1.5)  # grounding/types.yaml
+    assert occupant_geometry(scene.object("spot_2"), scene).box == (4.5, 1.8, 1.5)  # lazyground/scene/types.yaml
     assert occupant_geometry(scene.object("spot_3"), scene).box == (3.0, 1.5, 1.2)  # the object's own
     assert occupant_geometry(scene.object("spot_1"), scene).box == (4.5, 1.8, 1.5)  # asked only when occupied
 
