@@ -201,3 +201,18 @@ def test_the_library_never_prints_nor_parses_arguments():
                 if "argparse" in names:
                     found.append(f"{mod}:{node.lineno} import argparse")
     assert found == []
+
+
+def test_no_module_reaches_into_anothers_private_members():
+    """``obj._name`` only on ``self``/``cls``, and no ``from module import _name``: a helper that needs
+    another class's internals is on the wrong side of a boundary (ik_attempts.py did this before #35)."""
+    found = []
+    for mod, path in module_names().items():
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Attribute) and node.attr.startswith("_") and not node.attr.startswith("__"):
+                owner = node.value
+                if not (isinstance(owner, ast.Name) and owner.id in ("self", "cls", "os")):  # os._exit: public API
+                    found.append(f"{mod}:{node.lineno} {ast.unparse(node)}")
+            elif isinstance(node, ast.ImportFrom) and (node.module or "").split(".")[0] in PACKAGES:
+                found += [f"{mod}:{node.lineno} from {node.module} import {a.name}" for a in node.names if a.name.startswith("_")]
+    assert found == []
