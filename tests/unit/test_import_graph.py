@@ -216,3 +216,21 @@ def test_no_module_reaches_into_anothers_private_members():
             elif isinstance(node, ast.ImportFrom) and (node.module or "").split(".")[0] in PACKAGES:
                 found += [f"{mod}:{node.lineno} from {node.module} import {a.name}" for a in node.names if a.name.startswith("_")]
     assert found == []
+
+
+def layers_markdown() -> str:
+    """The layer table of docs/architecture.md, from :data:`LAYERS` (``python3 tests/unit/test_import_graph.py`` prints it)."""
+    rows = ["| layer | modules (a prefix names a package or module and everything under it) |", "| --- | --- |"]
+    for name, prefixes in LAYERS:
+        rows.append(f"| {name} | {', '.join(f'`{p}`' for p in prefixes)} |")
+    return "\n".join(rows) + "\n"
+
+
+def test_docs_draw_the_layers_of_this_table():
+    text = (ROOT / "docs" / "architecture.md").read_text()
+    assert " < ".join(LAYER_NAMES) in text
+    assert layers_markdown() in text, "docs/architecture.md: regenerate the table with python3 tests/unit/test_import_graph.py"
+
+
+if __name__ == "__main__":
+    print(layers_markdown(), end="")
