@@ -20,7 +20,7 @@ from lazyground.scene import load_scene  # noqa: E402
 from tests.counts import BY_COUNTS  # noqa: E402
 
 SCENES = Path(__file__).resolve().parents[2] / "yaml_scenes"
-# IK meets a goal pose within 0.01 rad and 2 mm a side (lazyground/drake/ik.py); a wrong axis is off by 90 deg
+# IK meets a goal pose within 0.01 rad and 2 mm a side (lazyground/drake/ik/source.py); a wrong axis is off by 90 deg
 ANGLE, POSITION = 0.011, 0.004
 
 
