@@ -30,7 +30,7 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
     "strategies": (["lazyground/planning/strategies.py"],
                    ["tests/unit/test_strategies.py", "tests/contract/test_strategy_contract.py"]),
     "tree-nn": (["lazyground/planning/tree.py", "lazyground/planning/nn.py"],
-                ["tests/unit/test_tree.py", "tests/unit/test_nn.py", "tests/unit/test_planner_toy.py"]),
+                ["tests/unit/test_tree.py", "tests/unit/test_nn.py"]),
     "search": (["lazyground/planning/search.py", "lazyground/planning/rrt.py", "lazyground/planning/birrt.py"],
                ["tests/unit/test_planner_toy.py", "tests/unit/test_birrt_toy.py", "tests/unit/test_fine_recheck.py",
                 "tests/contract/test_planner_contract.py"]),

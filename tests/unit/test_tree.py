@@ -58,3 +58,37 @@ def test_arrays_are_typed_even_when_empty():
     assert parents.dtype.kind == "i" and biased.dtype == bool
     nodes, parents, biased = hand_tree().arrays()
     assert parents.tolist() == [-1, 0, 1, 0, 2, 3] and biased.dtype == bool and nodes[4].tolist() == [4.0, 0.0]
+
+
+def test_a_goal_forest_answers_per_label_and_prunes_per_label():
+    """The bidirectional planner's goal forest: one root per goal sample, nodes carry their root's label."""
+    t = Tree(PLANE, per_label=True)
+    t.add_root(np.array([0.0, 0.0]), label=0)
+    t.add_root(np.array([10.0, 0.0]), label=1)
+    t.add(np.array([1.0, 0.0]), 0)
+    t.add(np.array([9.0, 0.0]), 1, goal_biased=True)
+    t.add(np.array([2.0, 0.0]), 2, checked=False)
+    assert t.labels == [0, 1, 0, 1, 0]
+    assert t.goal_biased == [False, False, False, True, False] and t.checked == [True, True, True, True, False]
+    q = np.array([8.0, 0.0])
+    assert t.nearest(q) == 3 and t.nearest(q, label=0) == 4 and t.nearest(q, label=7) == -1
+    t.prune(2)  # 2 and 4
+    assert t.nearest(q, label=0) == 0 and t.nearest(np.array([1.5, 0.0]), label=1) == 3
+    assert t.nearest(np.array([1.5, 0.0])) == 0
+    t.prune(0)
+    assert t.nearest(q, label=0) == -1 and t.nearest(q) == 3
+    nodes, parents, biased = t.arrays()
+    assert biased.shape == (5,) and biased.tolist() == [False, False, False, True, False]
+
+
+def test_nothing_is_nearest_once_every_node_is_pruned():
+    t = hand_tree()
+    t.prune(0)
+    assert t.nearest(np.array([1.0, 0.0])) == -1 and t.nearest_k(np.array([1.0, 0.0]), 1) == []
+    base = ConfigSpace(("x", "y", "th"), np.array([0.0, 0.0, -np.pi]), np.array([40.0, 40.0, np.pi]), None,
+                       np.array([False, False, True]))
+    car = Tree(make_space(base, "reeds-shepp", 3.0))
+    car.add_root(np.array([10.0, 10.0, 0.0]))
+    car.add(np.array([12.0, 10.0, 0.0]), 0)
+    car.prune(0)
+    assert car.nearest(np.array([11.0, 10.0, 0.0])) == -1
