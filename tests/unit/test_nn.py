@@ -88,11 +88,3 @@ def test_empty_and_empty_removal():
     nn.remove([])
     assert nn.nearest(np.zeros(2)) == 0 and list(nn.nearest_k(np.zeros(2), 3)) == [0]
 
-
-def test_ties_go_in_the_order_added_below_the_k_d_trees():
-    """Equal distances (120 points at two spots) come out in the order the points were added, as the planner's
-    seeded runs need (numpy's default sort would shuffle them)."""
-    nn = NearestNeighbors(2)
-    for p in [(5.0, 5.0)] * 60 + [(1.0, 1.0)] * 60:
-        nn.add(np.array(p))
-    assert list(nn.nearest_k(np.zeros(2), 70)) == list(range(60, 120)) + list(range(10))
