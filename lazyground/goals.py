@@ -15,13 +15,13 @@ is imported (any ``DrakeWorld`` has imported it).
 
 from __future__ import annotations
 
-import time
 from typing import Callable, Iterator
 
 import numpy as np
 
 from lazyground.planning.problem import GoalSample, RegionStats, ValidityChecker
 from lazyground.planning.space import ConfigSpace
+from lazyground.planning.stop import StopCondition
 from lazyground.regions import REGION_KINDS, ConfigRegion, GoalRegion
 
 
@@ -51,17 +51,19 @@ class RoundRobinGoalSource:
     def exhausted(self) -> bool:
         return all(self.region_exhausted(j) for j in range(len(self.regions)))
 
-    def draw(self, n: int, rng: np.random.Generator, deadline: float) -> list[GoalSample]:
+    def draw(self, n: int, rng: np.random.Generator, stop: StopCondition) -> list[GoalSample]:
+        """Up to n new valid samples, round-robin over the regions; fewer if attempts run out or ``stop``
+        says so (its deadline or interrupt: the iteration cap is the planner's)."""
         out: list[GoalSample] = []
         budget = n * self._attempts_per_sample
-        t0 = time.perf_counter()
+        t0 = stop.now()
         try:
-            while len(out) < n and budget > 0 and not self.exhausted() and time.perf_counter() < deadline:
+            while len(out) < n and budget > 0 and not self.exhausted() and not stop.should_stop():
                 plan = self.plan(self._next, min(budget, self.batch_size(n - len(out))))
-                results = self.attempts(plan, rng, deadline)
+                results = self.attempts(plan, rng, stop)
                 try:
                     for j, after in plan:  # the attempts in round-robin order, as if made one by one
-                        if len(out) >= n or budget <= 0 or time.perf_counter() >= deadline:
+                        if len(out) >= n or budget <= 0 or stop.should_stop():
                             break
                         sample, reason, seconds = next(results)
                         self._next = after
@@ -77,7 +79,7 @@ class RoundRobinGoalSource:
                 finally:
                     results.close()
         finally:
-            self._time += time.perf_counter() - t0
+            self._time += stop.now() - t0
         return out
 
     def plan(self, position: int, k: int) -> list[tuple[int, int]]:
@@ -107,18 +109,18 @@ class RoundRobinGoalSource:
         return 1
 
     def attempts(self, plan: list[tuple[int, int]], rng: np.random.Generator,
-                 deadline: float) -> Iterator[tuple[GoalSample | None, str, float]]:
+                 stop: StopCondition) -> Iterator[tuple[GoalSample | None, str, float]]:
         """(sample or None, failure reason, seconds) for the planned attempts, in order, made lazily.
 
         The caller stops taking results once it has enough (closing the generator);
         the default makes each :meth:`attempt` only when its result is asked for.
         """
         for j, _ in plan:
-            a0 = time.perf_counter()
-            sample, reason = self.attempt(j, rng, deadline)
-            yield sample, reason, time.perf_counter() - a0
+            a0 = stop.now()
+            sample, reason = self.attempt(j, rng, stop)
+            yield sample, reason, stop.now() - a0
 
-    def attempt(self, j: int, rng: np.random.Generator, deadline: float) -> tuple[GoalSample | None, str]:
+    def attempt(self, j: int, rng: np.random.Generator, stop: StopCondition) -> tuple[GoalSample | None, str]:
         """One try at a valid sample in region j: (sample, "") or (None, reason)."""
         raise NotImplementedError
 
@@ -134,7 +136,7 @@ class ConfigGoalSource(RoundRobinGoalSource):
         self._space = space
         self._checker = checker
 
-    def attempt(self, j, rng, deadline):
+    def attempt(self, j, rng, stop):
         q = self.regions[j].sample(rng)
         if not self._space.within_bounds(q):
             return None, "outside limits"

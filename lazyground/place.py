@@ -13,7 +13,6 @@ plans step 1 again over the others; the report says so.
 
 from __future__ import annotations
 
-import time
 from dataclasses import replace
 
 import numpy as np
@@ -26,6 +25,7 @@ from lazyground.geometry import Pose
 from lazyground.plan_report import PlanReport
 from lazyground.planning.problem import PlannerSettings, PlanResult, PlanStatus
 from lazyground.planning.rrt import path_is_valid, solve
+from lazyground.planning.stop import Clock, StopCondition
 from lazyground.regions import GoalRegion
 from lazyground.robots.end_effector import frame_of
 from lazyground.scene.schema import Scene
@@ -108,7 +108,8 @@ def _combine(results: list[PlanResult], status: PlanStatus, path, goal, region, 
 
 
 def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Generator, worlds: Worlds, *,
-        seed: int | None = None, keep_tree: bool = False, place_share: float = PLACE_SHARE) -> Outcome:
+        seed: int | None = None, keep_tree: bool = False, place_share: float = PLACE_SHARE,
+        clock: Clock | None = None) -> Outcome:
     """Plan "put X on Y": a grasp of any X, then a placement on any Y, with fallback (the "place" task);
     then each step is shortened and timed (lazyground.motion.steps).
 
@@ -121,6 +122,7 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
         seed: recorded in the results.
         keep_tree: keep the search trees (for viewers).
         place_share: the share of the time limit one placement attempt may use.
+        clock: the clock the time limit is read on (default: the stop condition's).
 
     Returns:
         An Outcome: on success the pick and the place step (the place step carries the
@@ -128,9 +130,9 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
         Its result's ``time_s`` counts planning (IK, lift, search), not building worlds.
     """
     world = worlds.get()
-    t0 = time.perf_counter()
+    # one budget for every step: the pick gets what is left, a placement attempt its share (StopCondition.share)
+    stop = StopCondition.after(settings.time_limit, max_iterations=settings.max_iterations, clock=clock)
     setup_before = worlds.setup_s  # world building from here on is set-up, not planning
-    deadline = t0 + settings.time_limit
     frame = frame_of(scene.robot)
     grasps, places = _regions_by_object(g)
     excluded: list[str] = []
@@ -140,7 +142,7 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
     motion_s = 0.0  # shortening and timing the steps after the solve (lazyground.motion): not planning
 
     def planning_s() -> float:
-        return time.perf_counter() - t0 - (worlds.setup_s - setup_before) - motion_s
+        return stop.elapsed() - (worlds.setup_s - setup_before) - motion_s
 
     def finish(status: PlanStatus, message: str, **done) -> Outcome:
         if results:
@@ -151,16 +153,15 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
                        done.get("placement"), len(excluded) if done.get("steps") else 0)
 
     while True:
-        remaining = deadline - time.perf_counter()
         candidates = [r for r in grasps if r.object not in excluded]
-        if remaining <= 0 or not candidates:
+        if stop.remaining() <= 0 or not candidates:
             break
         pick = solve(world.space, world, IKGoalSource(tuple(candidates), world), world.start,
-                     replace(settings, time_limit=remaining), rng, seed=seed, keep_tree=keep_tree)
+                     settings, rng, seed=seed, keep_tree=keep_tree, stop=stop.share())
         results.append(pick)
         if not pick.solved:
             return finish(pick.status, f"pick: {pick.message}")
-        if time.perf_counter() >= deadline:  # grasped at the limit: no time to lift and place (timeout)
+        if stop.timed_out():  # grasped at the limit: no time to lift and place (timeout)
             break
         obj = scene.object(pick.goal_region.object)
         q_grasp = pick.path[-1]
@@ -175,11 +176,12 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
             notes.append(f"picked {obj.id} ({pick.goal_region.label}) but could not lift it clear; trying another object")
             excluded.append(obj.id)
             continue
-        budget = min(deadline - time.perf_counter(), place_share * settings.time_limit)
+        share = stop.share(place_share)
+        budget = share.budget
         if budget <= 0:  # the lift used up the time: a timeout, not a reason to try another object
             break
-        place = solve(carrying.space, carrying, source, lift.q_lift, replace(settings, time_limit=max(budget, 1e-3)),
-                      rng, seed=seed, keep_tree=keep_tree)
+        place = solve(carrying.space, carrying, source, lift.q_lift, settings, rng, seed=seed, keep_tree=keep_tree,
+                      stop=share)
         results.append(place)
         if place.status is PlanStatus.INTERRUPTED:  # Ctrl-C is not a reason to try another object
             return finish(place.status, f"place: {place.message}")
@@ -189,9 +191,9 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
             excluded.append(obj.id)
             continue
         X_WO = carrying.frame_pose(frame, place.path[-1]).compose(grasp.X_GO)
-        t_motion = time.perf_counter()
+        t_motion = stop.now()
         pick, pick_motion, place, place_motion = pick_and_place_motions(world, carrying, pick, lift.path, place, settings, rng)
-        motion_s = time.perf_counter() - t_motion
+        motion_s = stop.now() - t_motion
         results[-2:] = [pick, place]  # the shortened steps (the combined result sums their lengths)
         steps = (Step(f"pick {obj.id}", pick, setup_before, motion=pick_motion),
                  Step(f"place {obj.id}", place, setup, grasp, motion=place_motion))
@@ -203,7 +205,7 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
     if not results:
         return finish(PlanStatus.TIMEOUT, "no time left")
     tried = ", ".join(excluded) or "none"
-    status = PlanStatus.TIMEOUT if deadline - time.perf_counter() <= 0 else PlanStatus.NO_VALID_GOAL
+    status = PlanStatus.TIMEOUT if stop.remaining() <= 0 else PlanStatus.NO_VALID_GOAL
     return finish(status, f"no object could be picked and placed in time (tried: {tried})")
 
 

@@ -13,7 +13,6 @@ as every returned path) is put back as it was driven.
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -25,6 +24,7 @@ from lazyground.planning import curves
 from lazyground.planning.car import DENSE_SPACING, CarSpace, drive_profile
 from lazyground.planning.problem import PlanResult, ValidityChecker
 from lazyground.planning.search import path_is_valid
+from lazyground.planning.stop import StopCondition
 from lazyground.settings import PlannerSettings
 
 _SPARSE = 8  # the first pass of a candidate curve's collision check takes every 8th sample
@@ -70,7 +70,7 @@ def shorten_car_path(
     resolution: float,
     validation_factor: float,
     max_iterations: int,
-    time_budget: float,
+    stop: StopCondition,
     rng: np.random.Generator,
 ) -> CarShortcut:
     """Shortcut a dense car path by curves between its own samples (start and goal kept).
@@ -82,13 +82,14 @@ def shorten_car_path(
         resolution: the planner's edge resolution; candidate curves are checked at it.
         validation_factor: new curves of the result are re-checked at ``resolution / validation_factor``.
         max_iterations: shortcut attempts (pairs of samples tried).
-        time_budget: seconds; whichever budget runs out first stops the attempts.
+        stop: when to stop trying (its deadline: the shortcut's time budget); whichever of it and
+            ``max_iterations`` comes first stops the attempts.
         rng: the only source of randomness (the plan's generator).
 
     Returns:
         A CarShortcut; every curve of its path that is not a piece of ``dense`` passed the fine re-check.
     """
-    t0 = time.perf_counter()
+    t0 = stop.now()
     dense = np.asarray(dense, float)
     steps = driven_lengths(space, dense)
     gears = drive_profile(space.reference(dense))
@@ -98,7 +99,7 @@ def shorten_car_path(
     hop_len = [float(v) for v in steps]
     hop_gears = [[g] if g else [] for g in gears.tolist()]
     iterations = accepted = 0
-    while iterations < max_iterations and len(keep) > 2 and time.perf_counter() - t0 < time_budget:
+    while iterations < max_iterations and len(keep) > 2 and not stop.should_stop():
         iterations += 1
         i, j = sorted(rng.choice(len(keep), size=2, replace=False).tolist())
         if j - i < 2:
@@ -123,7 +124,7 @@ def shorten_car_path(
     length = float(sum(steps[a:b].sum() if b == a + 1 else space.distance(dense[a], dense[b])
                        for a, b in zip(keep[:-1], keep[1:])))
     return CarShortcut(path, dense, length, float(steps.sum()), space.cusps(path), space.cusps(dense),
-                       iterations, accepted, reverted, time.perf_counter() - t0)
+                       iterations, accepted, reverted, stop.now() - t0)
 
 
 def _curve_free(space: CarSpace, checker: ValidityChecker, a: np.ndarray, b: np.ndarray, resolution: float) -> bool:
@@ -179,7 +180,7 @@ def shorten_car_result(space: CarSpace, checker: ValidityChecker, result: PlanRe
     if not result.solved or result.path is None or planner.shortcut_iterations <= 0:
         return result, None
     cut = shorten_car_path(space, checker, result.path, planner.resolution, planner.validation_factor,
-                           planner.shortcut_iterations, planner.shortcut_time, rng)
+                           planner.shortcut_iterations, StopCondition.after(planner.shortcut_time), rng)
     return replace(result, path=cut.path, path_length=cut.length, cusps=cut.cusps), cut
 
 

@@ -1,13 +1,11 @@
 """One planning query's bookkeeping, shared by the tree planners.
 
-The clock and deadline, the goal samples drawn so far and the goal-selection
+The stop condition (:mod:`lazyground.planning.stop`), the goal samples drawn so far and the goal-selection
 strategy over them (reward, penalty, resampling on demand), the counters, the
 fine re-check of a candidate path, and the PlanResult.
 """
 
 from __future__ import annotations
-
-import time
 
 import numpy as np
 
@@ -20,6 +18,7 @@ from lazyground.planning.problem import (
     ValidityChecker,
 )
 from lazyground.planning.space import ConfigSpace
+from lazyground.planning.stop import StopCondition
 from lazyground.planning.strategies import StrategySettings, make_strategy
 from lazyground.planning.tree import Tree
 
@@ -86,11 +85,13 @@ class Search:
         rng: np.random.Generator,
         seed: int | None,
         keep_tree: bool,
+        stop: StopCondition | None = None,
     ):
         self.space, self.checker, self.goals, self.settings, self.rng = space, checker, goals, settings, rng
-        self.seed, self.keep_tree = seed, keep_tree
-        self.t0 = time.perf_counter()
-        self.deadline = self.t0 + settings.time_limit
+        if stop is None:  # the settings' own limits, from now
+            stop = StopCondition.after(settings.time_limit, max_iterations=settings.max_iterations)
+        self.seed, self.keep_tree, self.stop = seed, keep_tree, stop
+        self.t0 = stop.now()
         self._check_t0, self._sample_t0 = checker.check_time, goals.sample_time
         self._sampling_checks = 0.0  # collision checks made by the goal sampler count as goal sampling
         self._checks0, self._sampling_count = _checks(checker), 0
@@ -103,12 +104,13 @@ class Search:
         self.iterations = self.resamplings = self.rejected = 0
 
     def time_left(self) -> bool:
-        return time.perf_counter() < self.deadline and self.iterations < self.settings.max_iterations
+        """Whether the stop condition lets the search go on (one clock reading)."""
+        return not self.stop.should_stop(self.iterations)
 
     def draw(self, n: int) -> None:
         """Draw up to n more goal samples and hand them to the strategy."""
         c0, n0 = self.checker.check_time, _checks(self.checker)
-        new = self.goals.draw(n, self.rng, self.deadline)
+        new = self.goals.draw(n, self.rng, self.stop)
         self._sampling_checks += self.checker.check_time - c0
         self._sampling_count += _checks(self.checker) - n0
         first = len(self.samples)
@@ -185,7 +187,7 @@ class Search:
             tree_size=sum(len(t) for t in self.trees),
             goal_samples=self.samples,
             resamplings=self.resamplings,
-            time_s=time.perf_counter() - self.t0,
+            time_s=self.stop.now() - self.t0,
             goal_sampling_s=self.goals.sample_time - self._sample_t0,
             collision_s=self.checker.check_time - self._check_t0 - self._sampling_checks,
             message=message,

@@ -6,6 +6,7 @@ from lazyground.goals import goal_source_for
 from lazyground.motion.car_shortcut import shorten_car_result, with_car_shortcut
 from lazyground.motion.pipeline import motion_for_world
 from lazyground.planning.rrt import solve
+from lazyground.planning.stop import StopCondition
 from lazyground.robots.car import planning_space
 from lazyground.tasks.outcome import Outcome, Step
 
@@ -15,7 +16,8 @@ def make_goal_source(world, regions):
     return goal_source_for(tuple(regions), world)
 
 
-def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, keep_tree: bool = False) -> Outcome:
+def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, keep_tree: bool = False,
+        clock=None) -> Outcome:
     """Plan to whichever of ``grounding``'s goal regions is reachable first.
 
     Args:
@@ -26,6 +28,7 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
         worlds: a :class:`~lazyground.tasks.worlds.Worlds` for ``scene``.
         seed: recorded in the result.
         keep_tree: keep the search tree (for viewers).
+        clock: the clock the time limit is read on (default: the stop condition's).
 
     Returns:
         An Outcome with one step; its path shortened and timed (lazyground.motion) when solved.
@@ -34,7 +37,8 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     setup_s = worlds.setup_s
     source = make_goal_source(world, grounding.goal_regions)
     space = planning_space(scene, world.space, settings.kinematics)  # a car's curves, or world.space
-    result = solve(space, world, source, world.start, settings, rng, seed=seed, keep_tree=keep_tree)
+    stop = StopCondition.after(settings.time_limit, max_iterations=settings.max_iterations, clock=clock)
+    result = solve(space, world, source, world.start, settings, rng, seed=seed, keep_tree=keep_tree, stop=stop)
     # shortened and timed (issue #16); a car's path is shortened along its own curves (#17), then
     # timed as driven, resting at every gear change (a straight shortcut would leave the curves)
     cut = None

@@ -7,10 +7,11 @@ from lazyground.motion.car_shortcut import driven_lengths, shorten_car_path
 from lazyground.planning.car import gear_changes, make_space
 from lazyground.planning.search import path_is_valid
 from lazyground.planning.space import ConfigSpace
+from lazyground.planning.stop import StopCondition
 from tests.unit.test_car import BASE, OFFSET, R, _assert_drivable
 from tests.unit.toy import BoxWorld
 
-NO_CLOCK = 1e9  # tests stop on attempts, never on the clock
+NO_CLOCK = StopCondition()  # tests stop on attempts, never on the clock
 
 
 def _planned(space, world, seed):
