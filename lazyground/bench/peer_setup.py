@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from lazyground.planning.stop import StopCondition
 from lazyground.settings import Algorithm
 
 
@@ -84,8 +85,6 @@ def peer_setup(problem, spec, counterpart: Algorithm) -> PeerSetup:
     from lazyground.api import make_goal_source, planner_settings
     from lazyground.bench import arms
     from lazyground.goals import ConfigGoalSource
-
-    from lazyground.planning.stop import StopCondition
 
     stop = StopCondition.after(spec.time_limit, clock=time.perf_counter)  # the peers read perf_counter too
     t0, deadline = stop.start, stop.deadline
