@@ -46,6 +46,12 @@ class PlanReport:
         return self.outcome.steps[0].motion
 
     @property
+    def cusps(self) -> int | None:
+        """A car's gear changes along its path (its motion's; None: not a car, or not solved)."""
+        motion = self.motion
+        return motion.cusps if motion is not None else None
+
+    @property
     def status(self) -> PlanStatus:
         return self.result.status
 

@@ -18,7 +18,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from lazyground.geometry import wrap_angle
-from lazyground.motion.pipeline import Motion
+from lazyground.motion.pipeline import Motion, motion_for_world
 from lazyground.motion.shortcut import ShortcutStatus
 from lazyground.planning import curves
 from lazyground.planning.car import DENSE_SPACING, CarSpace, drive_profile
@@ -181,7 +181,7 @@ def shorten_car_result(space: CarSpace, checker: ValidityChecker, result: PlanRe
         return result, None
     cut = shorten_car_path(space, checker, result.path, planner.resolution, planner.validation_factor,
                            planner.shortcut_iterations, StopCondition.after(planner.shortcut_time), rng)
-    return replace(result, path=cut.path, path_length=cut.length, cusps=cut.cusps), cut
+    return replace(result, path=cut.path, path_length=cut.length), cut
 
 
 def with_car_shortcut(motion: Motion | None, cut: CarShortcut | None) -> Motion | None:
@@ -197,3 +197,15 @@ def with_car_shortcut(motion: Motion | None, cut: CarShortcut | None) -> Motion 
                     length=cut.length, direct_length=float("nan"), iterations=cut.iterations,
                     accepted=cut.accepted - cut.reverted, time_s=cut.time_s)
     return replace(motion, shortcut=short, shortcut_s=cut.time_s)
+
+
+def shorten_and_time_car(space: CarSpace, world, result: PlanResult, planner: PlannerSettings,
+                         rng: np.random.Generator) -> tuple[PlanResult, Motion | None]:
+    """A car's post-processing (``CarSpace.post_processing``, lazyground.motion.post): shortened along its
+    curves (#17), then timed as driven, resting at every gear change (a straight shortcut would leave the
+    curves); the motion records the gear changes (``cusps``)."""
+    result, cut = shorten_car_result(space, world, result, planner, rng)
+    stops = space.cusp_indices(result.path) if result.solved else None
+    result, motion = motion_for_world(world, result, planner, rng, stops=stops, car=space)
+    motion = with_car_shortcut(motion, cut)
+    return result, None if motion is None else replace(motion, cusps=space.cusps(result.path))

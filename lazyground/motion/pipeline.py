@@ -34,6 +34,7 @@ class Motion:
     shortcut_s: float
     timing_s: float
     note: str = ""  # why there is no trajectory
+    cusps: int | None = None  # a car's gear changes along the path (None: not a car; lazyground.motion.car_shortcut)
 
     @property
     def raw_path(self) -> np.ndarray:

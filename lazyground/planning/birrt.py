@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from lazyground.planning.problem import PlanResult, PlanStatus
-from lazyground.planning.search import Search, edge_free, path_is_valid
+from lazyground.planning.search import Search, path_is_valid
 from lazyground.planning.tree import Tree
 
 # Where along a start-tree edge a step checks a configuration besides its end (the rest waits for _join).
@@ -124,7 +124,7 @@ def _step(s: Search, tree: Tree, parent: int, q_new: np.ndarray) -> int:
     """
     q_parent = tree.nodes[parent]
     if tree is not s.trees[0]:
-        return tree.add(q_new, parent) if edge_free(s.space, s.checker, q_parent, q_new, s.settings.resolution) else -1
+        return tree.add(q_new, parent) if s.motion.edge_free(q_parent, q_new, s.settings.resolution) else -1
     free = getattr(s.checker, "config_unpadded_free", s.checker.config_free)
     if not free(q_new) or not all(free(s.space.interpolate(q_parent, q_new, t)) for t in LAZY_PROBES):
         return -1  # (most steps end blocked: the probes are computed only past a free end)

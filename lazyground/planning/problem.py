@@ -129,7 +129,6 @@ class PlanResult:
     path_length: float = 0.0
     invalid_paths_rejected: int = 0
     collision_checks: int = 0  # the planner's config and edge checks (an edge check counts once), not the goal sampler's
-    cusps: int | None = None  # car spaces: gear changes along the path (None: not a car)
 
     @property
     def solved(self) -> bool:

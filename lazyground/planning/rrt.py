@@ -14,7 +14,7 @@ import numpy as np
 
 from lazyground.planning.birrt import grow_bidirectional
 from lazyground.planning.problem import GoalSource, PlannerSettings, PlanResult, PlanStatus, ValidityChecker
-from lazyground.planning.search import Search, edge_fraction, edge_free, path_is_valid
+from lazyground.planning.search import Search, path_is_valid
 from lazyground.planning.space import ConfigSpace
 from lazyground.planning.stop import StopCondition, StopReason
 from lazyground.planning.tree import Tree
@@ -81,7 +81,7 @@ def solve(
 
 def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
     """Algorithm 1: one tree from the start, goal-biased steps towards the selected goal sample."""
-    space, checker, settings, rng = s.space, s.checker, s.settings, s.rng
+    space, motion, settings, rng = s.space, s.motion, s.settings, s.rng
     tree = Tree(space)
     tree.add_root(start)
     s.trees = [tree]
@@ -108,11 +108,11 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
             q_new = None  # the same edge as before: its answer has not changed
         elif gi is not None and settings.goal_extension is GoalExtension.PARTIAL:
             # the authors' RRTGoalRegion: a blocked goal step keeps its free part and counts as progress
-            t = edge_fraction(space, checker, q_near, q_new, resolution)
+            t = motion.edge_fraction(q_near, q_new, resolution)
             if t < 1.0:
                 reached = False
                 q_new = space.interpolate(q_near, q_new, t) if t > 0.0 else None
-        elif not edge_free(space, checker, q_near, q_new, resolution):
+        elif not motion.edge_free(q_near, q_new, resolution):
             q_new = None
         if q_new is None:
             if gi is not None:
@@ -126,7 +126,7 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
         # "connect" keeps stepping towards the goal sample while the steps are free
         while settings.goal_extension is GoalExtension.CONNECT and not reached and s.time_left():
             q_next, r = space.steer(q_new, q_towards, settings.step_size)
-            if not edge_free(space, checker, q_new, q_next, resolution):
+            if not motion.edge_free(q_new, q_next, resolution):
                 break
             node, q_new, reached = tree.add(q_next, node, True), q_next, r
         s.reward(gi)

@@ -51,30 +51,6 @@ def _checks(checker: ValidityChecker) -> int:
     return int(getattr(checker, "checks", 0))
 
 
-def edge_free(space: ConfigSpace, checker: ValidityChecker, a: np.ndarray, b: np.ndarray, resolution: float) -> bool:
-    """Whether the edge a -> b is free: the checker's own edge check for straight edges,
-    the space's samples along the curve otherwise (Drake's edge check interpolates linearly)."""
-    if space.linear_edges:
-        return checker.edge_free(a, b, resolution)
-    return bool(np.all(checker.configs_free(space.discretize(a, b, resolution, skip_first=True))))
-
-
-def edge_fraction(space: ConfigSpace, checker: ValidityChecker, a: np.ndarray, b: np.ndarray, resolution: float) -> float:
-    """The largest checked fraction t such that a -> interpolate(a, b, t) is free (the free prefix)."""
-    if space.linear_edges:
-        return checker.edge_fraction(a, b, resolution)
-    qs = space.discretize(a, b, resolution, skip_first=True)
-    blocked = np.flatnonzero(~np.asarray(checker.configs_free(qs), bool))
-    if not len(blocked):
-        return 1.0
-    if blocked[0] == 0:
-        return 0.0
-    # samples need not be evenly spaced (a car samples each segment on its own): the fraction of the
-    # distance to the last free sample, which interpolate maps back to it (a shortest path's prefix
-    # is the shortest path to its end)
-    return space.distance(a, qs[blocked[0] - 1]) / space.distance(a, b)
-
-
 class Search:
     def __init__(
         self,
@@ -91,6 +67,7 @@ class Search:
         if stop is None:  # the settings' own limits, from now
             stop = StopCondition.after(settings.time_limit, max_iterations=settings.max_iterations)
         self.seed, self.keep_tree, self.stop = seed, keep_tree, stop
+        self.motion = space.motion_validator(checker)  # edges as the space moves along them (OMPL's MotionValidator)
         self.t0 = stop.now()
         self._check_t0, self._sample_t0 = checker.check_time, goals.sample_time
         self._sampling_checks = 0.0  # collision checks made by the goal sampler count as goal sampling
@@ -173,10 +150,9 @@ class Search:
         for i, sample in enumerate(self.samples):
             sample.weight = self.selector.weight(i)
         goal = self.samples[gi] if gi is not None else None
-        length, cusps = (self.space.path_length(path) if path is not None else 0.0), None
-        if path is not None and not self.space.linear_edges:  # a car: return the curves it drives, densely
-            path = self.space.densify(path)
-            cusps = self.space.cusps(path)
+        length = self.space.path_length(path) if path is not None else 0.0
+        if path is not None:  # as the robot moves along it (a car: its curves, densely)
+            path = self.space.dense_path(path)
         return PlanResult(
             status=status,
             seed=self.seed,
@@ -198,7 +174,6 @@ class Search:
             path_length=length,
             invalid_paths_rejected=self.rejected,
             collision_checks=_checks(self.checker) - self._checks0 - self._sampling_count,
-            cusps=cusps,
         )
 
     def region_summary(self) -> str:

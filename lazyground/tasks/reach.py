@@ -3,8 +3,7 @@
 from __future__ import annotations
 
 from lazyground.goals import goal_source_for
-from lazyground.motion.car_shortcut import shorten_car_result, with_car_shortcut
-from lazyground.motion.pipeline import motion_for_world
+from lazyground.motion.post import post_process
 from lazyground.planning.rrt import solve
 from lazyground.planning.stop import StopCondition
 from lazyground.robots.car import planning_space
@@ -39,13 +38,6 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     space = planning_space(scene, world.space, settings.kinematics)  # a car's curves, or world.space
     stop = StopCondition.after(settings.time_limit, max_iterations=settings.max_iterations, clock=clock)
     result = solve(space, world, source, world.start, settings, rng, seed=seed, keep_tree=keep_tree, stop=stop)
-    # shortened and timed (issue #16); a car's path is shortened along its own curves (#17), then
-    # timed as driven, resting at every gear change (a straight shortcut would leave the curves)
-    cut = None
-    if not space.linear_edges:
-        result, cut = shorten_car_result(space, world, result, settings, rng)
-    stops = None if space.linear_edges or not result.solved else space.cusp_indices(result.path)
-    result, motion = motion_for_world(world, result, settings, rng, stops=stops, car=None if stops is None else space)
-    motion = with_car_shortcut(motion, cut)
+    result, motion = post_process(space, world, result, settings, rng)  # shortened and timed, as the space chose
     notes = (motion.note,) if motion is not None and motion.note else ()
     return Outcome(result, (Step(grounding.action, result, setup_s, motion=motion),), world.space.names, notes)

@@ -210,7 +210,7 @@ class _StepView:
             if hide_tree:  # a large tree covers the objects; the page's button shows it
                 self.meshcat.SetProperty(f"{path}/tree", "visible", False)
         if self.motion is not None:
-            car = self.report.result.cusps is not None  # a car's path is already its curves, densely sampled
+            car = self.report.cusps is not None  # a car's path is already its curves, densely sampled
             qs = self.motion if car else resample_path(self.motion, 200, self.world.space.wrap)
             dense = self.points(qs)
             self.meshcat.SetLine(f"{path}/path", dense, 4.0, Rgba(*PATH_RGBA))

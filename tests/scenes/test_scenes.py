@@ -70,7 +70,7 @@ def test_scene_expectation(path, k):
             assert res.goal_region.contains(res.path[-1])
         assert path_is_valid(world.space, world, res.path, fine) == -1, f"seed {seed}: path collides at {fine:g}"
         if report.motion is None:  # a car driving Reeds-Shepp curves: its dense path is what it drives (#17)
-            assert res.cusps is not None, f"seed {seed}: no timed trajectory"
+            assert report.cusps is not None, f"seed {seed}: no timed trajectory"
             continue
         # the timed trajectory too, as a curve (issue #16)
         assert trajectory_problems(report.motion.trajectory, world.space, world, world.start, res.path[-1], fine) == [], f"seed {seed}"
