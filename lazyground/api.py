@@ -20,20 +20,29 @@ from lazyground import tasks
 from lazyground.plan_report import PlanReport
 from lazyground.planning.stop import Clock, default_clock
 from lazyground.scene import Scene, load_scene
-from lazyground.settings import PlannerSettings
+from lazyground.settings import PlannerSettings, RunSettings
 from lazyground.settings import coerce as coerce_setting
 from lazyground.settings import from_scene as settings_from_scene
 from lazyground.tasks.reach import make_goal_source  # noqa: F401  (a public name of the API)
 from lazyground.tasks.worlds import Worlds
 
 
-def planner_settings(scene: Scene, **overrides) -> PlannerSettings:
+def run_settings(scene: Scene, **overrides) -> RunSettings:
     """The settings a run on ``scene`` uses (see :func:`lazyground.settings.from_scene`).
 
     Raises:
         ValueError: an unknown setting, or a value out of its range / choices.
     """
     return settings_from_scene(scene.planner, **overrides)
+
+
+def planner_settings(scene: Scene, **overrides) -> PlannerSettings:
+    """The planner's part of :func:`run_settings` (what :func:`lazyground.planning.solve` takes).
+
+    Raises:
+        ValueError: an unknown setting, or a value out of its range / choices.
+    """
+    return run_settings(scene, **overrides).planner
 
 
 def plan(
@@ -56,8 +65,8 @@ def plan(
         world: a prebuilt DrakeWorld for this scene (saves set-up time in loops); every task uses it.
         clock: the clock the time limit is read on and the time split measured by (default
             :func:`lazyground.planning.stop.default_clock`; tests pass a ``FakeClock``).
-        **overrides: PlannerSettings fields (strategy, goal_bias, step_size, time_limit, ...);
-            declared in :mod:`lazyground.settings`.
+        **overrides: settings by name (strategy, goal_bias, step_size, time_limit, speed, ik_restarts, ...),
+            declared in :mod:`lazyground.settings` (RunSettings' groups).
 
     Returns:
         The PlanReport; ``report.outcome`` holds the task's typed steps.
@@ -71,7 +80,7 @@ def plan(
     if not isinstance(scene, Scene):
         scene = load_scene(scene)
     seed = scene.planner.seed if seed is None else coerce_setting("seed", seed)
-    settings = planner_settings(scene, **overrides)
+    settings = run_settings(scene, **overrides)
     read = clock or default_clock
     t0 = read()
     g = grounding.ground(request, scene)

@@ -23,6 +23,7 @@ from lazyground.planning.problem import GoalSample, RegionStats, ValidityChecker
 from lazyground.planning.space import ConfigSpace
 from lazyground.planning.stop import StopCondition
 from lazyground.regions import REGION_KINDS, ConfigRegion, GoalRegion
+from lazyground.settings import GoalSamplingSettings
 
 
 class RoundRobinGoalSource:
@@ -32,11 +33,18 @@ class RoundRobinGoalSource:
     is exhausted and skipped from then on.
     """
 
-    def __init__(self, regions: tuple[GoalRegion, ...], give_up_after: int = 50, attempts_per_sample: int = 10):
+    def __init__(self, regions: tuple[GoalRegion, ...], give_up_after: int | None = None,
+                 attempts_per_sample: int | None = None, sampling: GoalSamplingSettings | None = None):
+        """Args:
+            regions: the goal regions.
+            give_up_after, attempts_per_sample: override ``sampling``'s (for tools and tests).
+            sampling: the run's goal-sampling settings (default: their declared defaults).
+        """
+        sampling = GoalSamplingSettings() if sampling is None else sampling
         self.regions = tuple(regions)
         self.stats = [RegionStats() for _ in self.regions]
-        self._give_up_after = give_up_after
-        self._attempts_per_sample = attempts_per_sample
+        self._give_up_after = sampling.give_up_after if give_up_after is None else give_up_after
+        self._attempts_per_sample = sampling.attempts_per_sample if attempts_per_sample is None else attempts_per_sample
         self._next = 0
         self._time = 0.0
 
@@ -160,12 +168,14 @@ def register_goal_source(kinds: tuple[str, ...], factory: Callable[..., RoundRob
         GOAL_SOURCES[kind] = factory
 
 
-def goal_source_for(regions: tuple[GoalRegion, ...], world) -> RoundRobinGoalSource:
+def goal_source_for(regions: tuple[GoalRegion, ...], world,
+                    sampling: GoalSamplingSettings | None = None) -> RoundRobinGoalSource:
     """The goal source registered for these regions' kind, built over ``world``.
 
     Args:
         regions: the goal regions, all sampled by one source.
         world: the world to sample in (a DrakeWorld, or any object the factory accepts).
+        sampling: the run's goal-sampling settings, handed to the factory as ``sampling=`` (None: its defaults).
 
     Raises:
         ValueError: no regions, a kind without a registered source, or kinds needing different sources.
@@ -181,11 +191,11 @@ def goal_source_for(regions: tuple[GoalRegion, ...], world) -> RoundRobinGoalSou
             factories.append(factory)
     if len(factories) > 1:
         raise ValueError(f"regions of kinds {', '.join(sorted({r.kind for r in regions}))} need different goal sources")
-    return factories[0](tuple(regions), world)
+    return factories[0](tuple(regions), world) if sampling is None else factories[0](tuple(regions), world, sampling=sampling)
 
 
-def _config_source(regions, world) -> ConfigGoalSource:
-    return ConfigGoalSource(regions, world.space, world)
+def _config_source(regions, world, sampling: GoalSamplingSettings | None = None) -> ConfigGoalSource:
+    return ConfigGoalSource(regions, world.space, world, sampling=sampling)
 
 
 register_goal_source((ConfigRegion.kind,), _config_source)

@@ -5,7 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from grounding.model import Grounding, Interpretation
-from lazyground.planning.problem import PlannerSettings, PlanResult, PlanStatus
+from lazyground.planning.problem import PlanResult, PlanStatus
+from lazyground.settings import RunSettings
 from lazyground.tasks.outcome import Outcome, Step
 
 
@@ -20,7 +21,7 @@ class PlanReport:
     request: str
     scene: str
     seed: int
-    settings: PlannerSettings
+    settings: RunSettings  # the run's: settings.planner, .goal_sampling, .motion, .task
     grounding: Grounding
     result: PlanResult
     joint_names: tuple[str, ...]

@@ -26,10 +26,10 @@ def report_to_json(report: PlanReport) -> dict:
         "request": report.request,
         "scene": report.scene,
         "seed": report.seed,
-        "strategy": report.settings.strategy,
-        "algorithm": report.settings.algorithm,
-        "goal_bias": report.settings.goal_bias,
-        "kinematics": report.settings.kinematics,
+        "strategy": report.settings.planner.strategy,
+        "algorithm": report.settings.planner.algorithm,
+        "goal_bias": report.settings.planner.goal_bias,
+        "kinematics": report.settings.planner.kinematics,
         "action": report.grounding.action,
         "ambiguous": report.grounding.ambiguous,
         "interpretations": [i.to_json() for i in report.grounding.interpretations],
@@ -94,7 +94,7 @@ def report_lines(report: PlanReport) -> list[str]:
     """A short human summary."""
     res = report.result
     g = report.grounding
-    lines = [f"request: {report.request!r} on scene {report.scene} (seed {report.seed}, {_planner_label(report.settings)})"]
+    lines = [f"request: {report.request!r} on scene {report.scene} (seed {report.seed}, {_planner_label(report.settings.planner)})"]
     kinds = "ambiguous: " if g.ambiguous else ""
     lines.append(f"interpretations ({kinds}{len(g.interpretations)}): " + ", ".join(i.id for i in g.interpretations))
     for note in g.notes + report.notes:

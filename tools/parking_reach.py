@@ -42,7 +42,7 @@ def main() -> None:
                 spots[r.chosen_object] += 1
                 cusps.append(r.cusps or 0)
         mean_cusps = f"{statistics.mean(cusps):.1f}" if cusps else "-"
-        print(f"{scene.name} {r.settings.kinematics} {strategy}: solved {solved}/{args.seeds}, "
+        print(f"{scene.name} {r.settings.planner.kinematics} {strategy}: solved {solved}/{args.seeds}, "
               f"mean time {statistics.mean(times):.2f} s (max {max(times):.2f}), mean gear changes {mean_cusps}; "
               f"reached {dict(sorted(spots.items()))}")
 

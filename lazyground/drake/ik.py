@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Callable
 
 import numpy as np
@@ -140,7 +140,10 @@ class IKGoalSource(RoundRobinGoalSource):
 
     def __init__(self, regions: tuple[PoseRegion, ...], world, settings: IKSettings | None = None, **kwargs):
         super().__init__(regions, **kwargs)
-        settings = DEFAULT_IK_SETTINGS if settings is None else settings
+        sampling = kwargs.get("sampling")
+        if settings is None:  # the run's restarts and solver over the IK defaults
+            settings = DEFAULT_IK_SETTINGS if sampling is None else replace(
+                DEFAULT_IK_SETTINGS, restarts=sampling.ik_restarts, solver=str(sampling.ik_solver))
         attached = getattr(world, "attached", None)
         frames = []
         for r in self.regions:

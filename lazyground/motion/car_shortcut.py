@@ -25,7 +25,7 @@ from lazyground.planning.car import DENSE_SPACING, CarSpace, drive_profile
 from lazyground.planning.problem import PlanResult, ValidityChecker
 from lazyground.planning.search import path_is_valid
 from lazyground.planning.stop import StopCondition
-from lazyground.settings import PlannerSettings
+from lazyground.settings import RunSettings
 
 _SPARSE = 8  # the first pass of a candidate curve's collision check takes every 8th sample
 
@@ -162,7 +162,7 @@ def _densified(space: CarSpace, dense: np.ndarray, keep: list[int]) -> np.ndarra
     return np.vstack(parts)
 
 
-def shorten_car_result(space: CarSpace, checker: ValidityChecker, result: PlanResult, planner: PlannerSettings,
+def shorten_car_result(space: CarSpace, checker: ValidityChecker, result: PlanResult, settings: RunSettings,
                        rng: np.random.Generator) -> tuple[PlanResult, CarShortcut | None]:
     """The task's hook: a solved car result with its path shortened along curves.
 
@@ -170,17 +170,18 @@ def shorten_car_result(space: CarSpace, checker: ValidityChecker, result: PlanRe
         space: the car space it was planned in.
         checker: the planner's validity checker.
         result: the planner's result (its path dense along the curves).
-        planner: the settings it was planned with (resolution, validation factor, shortcut budgets).
+        settings: the run's (the planner's resolution and validation factor, the motion's shortcut budgets).
         rng: the plan's generator (continues its stream, so the shortcut follows from the seed).
 
     Returns:
         (the result with the shortened path, its driven length and gear changes, the CarShortcut);
         (result, None) when it is not solved or shortcutting is off.
     """
-    if not result.solved or result.path is None or planner.shortcut_iterations <= 0:
+    motion, planner = settings.motion, settings.planner
+    if not result.solved or result.path is None or motion.shortcut_iterations <= 0:
         return result, None
     cut = shorten_car_path(space, checker, result.path, planner.resolution, planner.validation_factor,
-                           planner.shortcut_iterations, StopCondition.after(planner.shortcut_time), rng)
+                           motion.shortcut_iterations, StopCondition.after(motion.shortcut_time), rng)
     return replace(result, path=cut.path, path_length=cut.length), cut
 
 
@@ -199,13 +200,13 @@ def with_car_shortcut(motion: Motion | None, cut: CarShortcut | None) -> Motion 
     return replace(motion, shortcut=short, shortcut_s=cut.time_s)
 
 
-def shorten_and_time_car(space: CarSpace, world, result: PlanResult, planner: PlannerSettings,
+def shorten_and_time_car(space: CarSpace, world, result: PlanResult, settings: RunSettings,
                          rng: np.random.Generator) -> tuple[PlanResult, Motion | None]:
     """A car's post-processing (``CarSpace.post_processing``, lazyground.motion.post): shortened along its
     curves (#17), then timed as driven, resting at every gear change (a straight shortcut would leave the
     curves); the motion records the gear changes (``cusps``)."""
-    result, cut = shorten_car_result(space, world, result, planner, rng)
+    result, cut = shorten_car_result(space, world, result, settings, rng)
     stops = space.cusp_indices(result.path) if result.solved else None
-    result, motion = motion_for_world(world, result, planner, rng, stops=stops, car=space)
+    result, motion = motion_for_world(world, result, settings, rng, stops=stops, car=space)
     motion = with_car_shortcut(motion, cut)
     return result, None if motion is None else replace(motion, cusps=space.cusps(result.path))

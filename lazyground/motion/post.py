@@ -15,16 +15,16 @@ from lazyground.motion.car_shortcut import shorten_and_time_car
 from lazyground.motion.pipeline import Motion, motion_for_world
 from lazyground.planning.problem import PlanResult
 from lazyground.planning.space import ConfigSpace
-from lazyground.settings import PlannerSettings
+from lazyground.settings import RunSettings
 
-PostProcessor = Callable[[ConfigSpace, object, PlanResult, PlannerSettings, np.random.Generator],
+PostProcessor = Callable[[ConfigSpace, object, PlanResult, RunSettings, np.random.Generator],
                          tuple[PlanResult, Motion | None]]
 
 
-def _straight(space: ConfigSpace, world, result: PlanResult, planner: PlannerSettings,
+def _straight(space: ConfigSpace, world, result: PlanResult, settings: RunSettings,
               rng: np.random.Generator) -> tuple[PlanResult, Motion | None]:
     """Straight shortcuts, then a timed spline (lazyground.motion.pipeline)."""
-    return motion_for_world(world, result, planner, rng)
+    return motion_for_world(world, result, settings, rng)
 
 
 POST_PROCESSORS: dict[str, PostProcessor] = {
@@ -33,7 +33,7 @@ POST_PROCESSORS: dict[str, PostProcessor] = {
 }
 
 
-def post_process(space: ConfigSpace, world, result: PlanResult, planner: PlannerSettings,
+def post_process(space: ConfigSpace, world, result: PlanResult, settings: RunSettings,
                  rng: np.random.Generator) -> tuple[PlanResult, Motion | None]:
     """Shorten and time a result the way its space asks (a no-op Motion of None when it is not solved).
 
@@ -41,10 +41,10 @@ def post_process(space: ConfigSpace, world, result: PlanResult, planner: Planner
         space: the space the result was planned in (its ``post_processing`` picks the processor).
         world: the DrakeWorld it was planned in (checker and limits).
         result: the planner's result.
-        planner: the run's settings (resolution, shortcut budgets, speed, sample rate).
+        settings: the run's settings (the planner's resolution, the motion's budgets, speed, sample rate).
         rng: the plan's generator (continues its stream, so the motion follows from the seed).
 
     Raises:
         KeyError: the space names a post-processing that is not registered.
     """
-    return POST_PROCESSORS[space.post_processing](space, world, result, planner, rng)
+    return POST_PROCESSORS[space.post_processing](space, world, result, settings, rng)

@@ -10,9 +10,9 @@ from lazyground.robots.car import planning_space
 from lazyground.tasks.outcome import Outcome, Step
 
 
-def make_goal_source(world, regions):
+def make_goal_source(world, regions, sampling=None):
     """The goal sampler registered for these regions' kind (:func:`lazyground.goals.goal_source_for`)."""
-    return goal_source_for(tuple(regions), world)
+    return goal_source_for(tuple(regions), world, sampling)
 
 
 def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, keep_tree: bool = False,
@@ -22,7 +22,7 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     Args:
         scene: the Scene.
         grounding: the request's Grounding (its ``goal_regions``).
-        settings: PlannerSettings.
+        settings: the run's RunSettings.
         rng: the only source of randomness.
         worlds: a :class:`~lazyground.tasks.worlds.Worlds` for ``scene``.
         seed: recorded in the result.
@@ -34,10 +34,11 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     """
     world = worlds.get()
     setup_s = worlds.setup_s
-    source = make_goal_source(world, grounding.goal_regions)
-    space = planning_space(scene, world.space, settings.kinematics)  # a car's curves, or world.space
-    stop = StopCondition.after(settings.time_limit, max_iterations=settings.max_iterations, clock=clock)
-    result = solve(space, world, source, world.start, settings, rng, seed=seed, keep_tree=keep_tree, stop=stop)
+    planner = settings.planner
+    source = make_goal_source(world, grounding.goal_regions, settings.goal_sampling)
+    space = planning_space(scene, world.space, planner.kinematics)  # a car's curves, or world.space
+    stop = StopCondition.after(planner.time_limit, max_iterations=planner.max_iterations, clock=clock)
+    result = solve(space, world, source, world.start, planner, rng, seed=seed, keep_tree=keep_tree, stop=stop)
     result, motion = post_process(space, world, result, settings, rng)  # shortened and timed, as the space chose
     notes = (motion.note,) if motion is not None and motion.note else ()
     return Outcome(result, (Step(grounding.action, result, setup_s, motion=motion),), world.space.names, notes)

@@ -67,7 +67,7 @@ def test_returned_car_paths_are_drivable_and_free(name, kinematics, seeds):
         short = report.motion.shortcut
         assert short.length == pytest.approx(res.path_length) and short.length <= short.raw_length
         # the independent re-check: straight lines between the dense samples, at 1/10 of the edge resolution
-        fine = report.settings.resolution / 10
+        fine = report.settings.planner.resolution / 10
         assert path_is_valid(world.space, world, path, fine) == -1, f"seed {seed}: collides between samples"
     assert solved == len(seeds)
 
@@ -77,5 +77,5 @@ def test_holonomic_mode_is_the_papers_puck():
     world = DrakeWorld(scene, visual=False)
     report = api.plan(scene, "park", seed=0, world=world, kinematics="holonomic", **UNBOUNDED)
     assert report.result.solved and report.cusps is None
-    assert report.settings.kinematics == "holonomic"
+    assert report.settings.planner.kinematics == "holonomic"
     assert planning_space(scene, world.space, "holonomic") is world.space

@@ -127,7 +127,7 @@ def test_pick_up_a_can_end_to_end(cans1):
     res = report.result
     assert res.solved, res.message
     assert report.chosen_object in ("Can3", "Can4")  # Can1/Can2 sit deep in shelf 1
-    assert path_is_valid(world.space, world, res.path, report.settings.step_size / 100) == -1
+    assert path_is_valid(world.space, world, res.path, report.settings.planner.step_size / 100) == -1
     assert np.allclose(res.path[0], world.start) and np.allclose(res.path[-1], res.goal.end)
     region = res.goal_region
     v = region_coordinates(region, IKGoalSource((region,), world).frame_pose(region.frame, world.full(res.goal.end)))

@@ -59,7 +59,7 @@ def test_scene_expectation(path, k):
         if not res.solved:
             continue
         solved += 1
-        fine = report.settings.resolution / 10
+        fine = report.settings.planner.resolution / 10
         if report.steps:  # pick and place: both steps, the carried object included
             assert report.chosen_object in (expect.reachable or [report.chosen_object])
             assert validate_pick_and_place(report, scene, fine) == [], f"seed {seed}"
