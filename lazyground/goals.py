@@ -44,8 +44,8 @@ class RoundRobinGoalSource:
         self.regions = tuple(regions)
         self.stats = [RegionStats() for _ in self.regions]
         self._give_up_after = sampling.give_up_after if give_up_after is None else give_up_after
-        self._attempts_per_sample = sampling.attempts_per_sample if attempts_per_sample is None else attempts_per_sample
-        self._next = 0
+        self.attempts_per_sample = sampling.attempts_per_sample if attempts_per_sample is None else attempts_per_sample
+        self.next_region = 0
         self._time = 0.0
 
     @property
@@ -63,18 +63,18 @@ class RoundRobinGoalSource:
         """Up to n new valid samples, round-robin over the regions; fewer if attempts run out or ``stop``
         says so (its deadline or interrupt: the iteration cap is the planner's)."""
         out: list[GoalSample] = []
-        budget = n * self._attempts_per_sample
+        budget = n * self.attempts_per_sample
         t0 = stop.now()
         try:
             while len(out) < n and budget > 0 and not self.exhausted() and not stop.should_stop():
-                plan = self.plan(self._next, min(budget, self.batch_size(n - len(out))))
+                plan = self.plan(self.next_region, min(budget, self.batch_size(n - len(out))))
                 results = self.attempts(plan, rng, stop)
                 try:
                     for j, after in plan:  # the attempts in round-robin order, as if made one by one
                         if len(out) >= n or budget <= 0 or stop.should_stop():
                             break
                         sample, reason, seconds = next(results)
-                        self._next = after
+                        self.next_region = after
                         budget -= 1
                         st = self.stats[j]
                         st.attempts += 1

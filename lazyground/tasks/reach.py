@@ -6,7 +6,7 @@ from lazyground.goals import goal_source_for
 from lazyground.motion.post import post_process
 from lazyground.planning.rrt import solve
 from lazyground.planning.stop import StopCondition
-from lazyground.robots.car import planning_space
+from lazyground.tasks.car_space import planning_space
 from lazyground.tasks.outcome import Outcome, Step
 
 

@@ -18,11 +18,10 @@ from dataclasses import replace
 import numpy as np
 
 from grounding.model import Grounding
-from lazyground.drake.ik import IKGoalSource
-from lazyground.motion.steps import pick_and_place_motions
 from lazyground.drake.world import DrakeWorld
 from lazyground.geometry import Pose
-from lazyground.plan_report import PlanReport
+from lazyground.goals import goal_source_for
+from lazyground.motion.steps import pick_and_place_motions
 from lazyground.planning.problem import PlanResult, PlanStatus
 from lazyground.planning.rrt import path_is_valid, solve
 from lazyground.planning.stop import Clock, StopCondition
@@ -53,10 +52,11 @@ def _placement_regions(regions: list[GoalRegion], half_height: float) -> tuple[G
     return tuple(replace(r, X_SE=Pose((0.0, 0.0, half_height))) for r in regions)
 
 
-def lift_off(world: DrakeWorld, carrying: DrakeWorld, ik: IKGoalSource, frame: str, q_grasp: np.ndarray, resolution: float,
+def lift_off(world: DrakeWorld, carrying: DrakeWorld, ik, frame: str, q_grasp: np.ndarray, resolution: float,
              task: TaskSettings = TaskSettings()) -> Lift | None:
     """Raise the gripper (and object) straight up until the carried object is clear of its support.
 
+    ``ik`` is the goal source registered for pose regions (it solves IK to a pose: ``ik.solve``).
     The lift is solved in ``task.lift_step`` IK steps (1 cm), each seeded by the last, so the path
     stays close to a vertical line. The object rests on its support at the
     grasp, so the first millimetres may touch it; from the first collision-free
@@ -158,7 +158,7 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
         candidates = [r for r in grasps if r.object not in excluded]
         if stop.remaining() <= 0 or not candidates:
             break
-        pick = solve(world.space, world, IKGoalSource(tuple(candidates), world, sampling=settings.goal_sampling),
+        pick = solve(world.space, world, goal_source_for(tuple(candidates), world, settings.goal_sampling),
                      world.start, planner, rng, seed=seed, keep_tree=keep_tree, stop=stop.share())
         results.append(pick)
         if not pick.solved:
@@ -172,8 +172,12 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
         built = worlds.setup_s
         carrying = worlds.get(grasp)
         setup = worlds.setup_s - built
-        source = IKGoalSource(_placement_regions(places.get(obj.id, []), obj.geometry.half_extents()[2]), carrying,
-                              sampling=settings.goal_sampling)
+        targets = _placement_regions(places.get(obj.id, []), obj.geometry.half_extents()[2])
+        if not targets:
+            notes.append(f"picked {obj.id} but it has no placement region; trying another object")
+            excluded.append(obj.id)
+            continue
+        source = goal_source_for(targets, carrying, settings.goal_sampling)
         lift = lift_off(world, carrying, source, frame, q_grasp, planner.resolution, settings.task)
         if lift is None:
             notes.append(f"picked {obj.id} ({pick.goal_region.label}) but could not lift it clear; trying another object")
@@ -212,8 +216,8 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
     return finish(status, f"no object could be picked and placed in time (tried: {tried})")
 
 
-def validate_pick_and_place(report: PlanReport, scene: Scene, resolution: float) -> list[str]:
-    """Re-check both steps at ``resolution``, the carried object included; returns problems found."""
+def validate_pick_and_place(report, scene: Scene, resolution: float) -> list[str]:
+    """Re-check both steps of a solved place ``PlanReport`` at ``resolution``, the carried object included; returns problems found."""
     problems = []
     pick, place = report.steps
     worlds = Worlds(scene, visual=False)
