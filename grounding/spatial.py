@@ -6,8 +6,8 @@
   resting on nothing within 3 cm of z = 0 is on the ``floor``. Only direct
   support counts (a can on a tray on a table is on the tray).
 * **directions** — the robot looks along its base +x: "left" is +y and "right"
-  is -y in the robot's base frame (the world frame when the scene gives no
-  base pose); "top" is +z.
+  is -y in the robot's base frame (its start pose when the scene gives no base
+  pose: the car's ``car_x``, ``car_y``, ``car_qz``); "top" is +z.
 * **units** — boards of one piece of furniture (shelf boards of one rack): the
   objects of one type sharing ``attributes: {unit: NAME}``, else those whose
   footprints overlap (stacked boards). "left/right shelf" compares whole units;
@@ -69,15 +69,25 @@ def support_of(obj: SceneObject, scene: Scene) -> str | None:
     return best
 
 
+def robot_yaw(scene: Scene) -> float:
+    """The robot's heading: its base yaw, else a start heading joint (the car's ``car_qz``), else 0."""
+    if scene.robot.base is not None:
+        return float(scene.robot.base.rpy[2])
+    yaws = [v for k, v in scene.robot.start.items() if k.endswith(("_qz", "_theta", "_yaw")) or k in ("theta", "yaw")]
+    return float(yaws[0]) if yaws else 0.0
+
+
+def robot_frame(point, scene: Scene) -> tuple[float, float]:
+    """(ahead, left) of a world point in the robot's base frame: its base pose, else its start pose."""
+    o = robot_position(scene)
+    yaw = robot_yaw(scene)
+    dx, dy = float(point[0]) - o[0], float(point[1]) - o[1]
+    return math.cos(yaw) * dx + math.sin(yaw) * dy, -math.sin(yaw) * dx + math.cos(yaw) * dy
+
+
 def lateral(obj: SceneObject, scene: Scene) -> float:
     """The object's y in the robot's base frame: larger is further left."""
-    base = scene.robot.base
-    x, y, _ = obj.pose.xyz
-    if base is None:
-        return float(y)
-    yaw = base.rpy[2]
-    dx, dy = x - base.xyz[0], y - base.xyz[1]
-    return float(-math.sin(yaw) * dx + math.cos(yaw) * dy)
+    return robot_frame(obj.pose.xyz, scene)[1]
 
 
 def top_height(obj: SceneObject) -> float:
