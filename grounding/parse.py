@@ -50,6 +50,8 @@ def _terminal(toks: list[Token], i: int) -> str:
     after = toks[i + 2].cat if i + 2 < len(toks) else ""
     if cat == "conjunction" and (nxt in ("verb", "manner") or (nxt == "negation" and after == "verb")):
         return "THEN"
+    if toks[i].text == "that" and prev in ("noun", "id", "idtail", "number", "wildcard", "one"):  # "a box that isn't red"
+        return "WHICH"
     ids = ("number", "idtail")
     if cat == "disjunction" and prev in ids and nxt in ids:
         return "IDOR"

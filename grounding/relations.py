@@ -4,13 +4,15 @@ Directions are in the robot's frame (``spatial.robot_frame``: ahead, left); boxe
 world bounds (``spatial.world_box``), seen from the robot as the bounds of their corners.
 
 * **next_to** (next to, beside, by, near): the ground-plane gap between the two boxes is at most
-  ``NEAR_GAP`` (0.3 m) or half the larger footprint side of the two, whichever is more; an object
-  resting on the other (or under it) is *on* it, not next to it.
+  ``NEAR_GAP`` (0.4 m) or half the larger footprint side of the two, whichever is more; boxes whose
+  footprints overlap (by more than 1 cm both ways) are stacked — on, under, in — not side by side.
 * **behind / front**: the object's centre is beyond the landmark's far side (behind) or before its
-  near side (in front), as the robot looks, and within the landmark's width widened by half of it.
+  near side (in front), as the robot looks, and the two boxes overlap sideways once the landmark's
+  is widened by half its width.
 * **left_of / right_of**: the object's centre is left (right) of the landmark's whole box.
-* **above / below** (over, under, beneath): the centre is higher than the landmark's top (lower than
-  its bottom) and over (under) its footprint.
+* **above / below** (over, under, beneath): the object's bottom is at or above the landmark's top
+  (its top at or below the landmark's bottom) and their footprints are at most ``STACK_GAP``
+  (0.2 m) apart.
 * **between X and Y**: the centre projects onto the segment from X's centre to Y's strictly inside
   it, at most half the segment's length off it.
 
@@ -27,7 +29,9 @@ import numpy as np
 from grounding import spatial
 from lazyground.scene.schema import Scene, SceneObject
 
-NEAR_GAP = 0.3
+NEAR_GAP = 0.4
+STACK_GAP = 0.2
+OVERLAP = 0.01
 RELATIONS = ("next_to", "behind", "front", "left_of", "right_of", "above", "below", "between")
 
 
@@ -35,6 +39,12 @@ def _xy_gap(a: SceneObject, b: SceneObject) -> float:
     (alo, ahi), (blo, bhi) = spatial.world_box(a), spatial.world_box(b)
     d = np.maximum(0.0, np.maximum(alo[:2] - bhi[:2], blo[:2] - ahi[:2]))
     return float(np.hypot(*d))
+
+
+def _stacked(a: SceneObject, b: SceneObject) -> bool:
+    """Whether the two footprints overlap by more than ``OVERLAP`` both ways (one is on, under or in the other)."""
+    (alo, ahi), (blo, bhi) = spatial.world_box(a), spatial.world_box(b)
+    return bool(all(min(ahi[k], bhi[k]) - max(alo[k], blo[k]) > OVERLAP for k in (0, 1)))
 
 
 def _footprint(o: SceneObject) -> float:
@@ -49,28 +59,22 @@ def _robot_box(o: SceneObject, scene: Scene) -> tuple[float, float, float, float
     return min(p[0] for p in pts), max(p[0] for p in pts), min(p[1] for p in pts), max(p[1] for p in pts)
 
 
-def holds(relation: str, obj: SceneObject, landmark: SceneObject, scene: Scene, support=None) -> bool:
-    """Whether ``obj`` stands in ``relation`` to ``landmark`` (not "between").
-
-    Args:
-        support: a callable id -> id of the support (``Resolver.support``), to tell "on" from "next to".
-    """
+def holds(relation: str, obj: SceneObject, landmark: SceneObject, scene: Scene) -> bool:
+    """Whether ``obj`` stands in ``relation`` to ``landmark`` (not "between")."""
     if obj.id == landmark.id:
         return False
     if relation == "next_to":
-        if support is not None and (support(obj) == landmark.id or support(landmark) == obj.id):
-            return False
-        return _xy_gap(obj, landmark) <= max(NEAR_GAP, 0.5 * max(_footprint(obj), _footprint(landmark)))
+        return not _stacked(obj, landmark) and _xy_gap(obj, landmark) <= max(NEAR_GAP, 0.5 * max(_footprint(obj), _footprint(landmark)))
     if relation in ("above", "below"):
-        lo, hi = spatial.world_box(landmark)
-        c = obj.pose.xyz
-        over = lo[0] <= c[0] <= hi[0] and lo[1] <= c[1] <= hi[1]
-        return over and (c[2] > hi[2] if relation == "above" else c[2] < lo[2])
+        (olo, ohi), (llo, lhi) = spatial.world_box(obj), spatial.world_box(landmark)
+        level = olo[2] >= lhi[2] - 1e-6 if relation == "above" else ohi[2] <= llo[2] + 1e-6
+        return level and _xy_gap(obj, landmark) <= STACK_GAP
     u, v = spatial.robot_frame(obj.pose.xyz, scene)
     umin, umax, vmin, vmax = _robot_box(landmark, scene)
     if relation in ("behind", "front"):
         widen = 0.5 * (vmax - vmin)
-        beside = vmin - widen <= v <= vmax + widen
+        _, _, ovmin, ovmax = _robot_box(obj, scene)
+        beside = ovmax >= vmin - widen and ovmin <= vmax + widen
         return beside and (u > umax if relation == "behind" else u < umin)
     if relation == "left_of":
         return v > vmax

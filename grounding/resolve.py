@@ -130,7 +130,7 @@ class Resolver:
             if not objs:
                 raise GroundingError(f"no {np.word!r} in this scene; it has: {inventory(self.scene)}")
         else:
-            objs = [o for o in self.scene.objects if self.has_role(o.type, role) and (role == "park") == self.has_role(o.type, "park")]
+            objs = [o for o in self.scene.objects if role is None or (self.has_role(o.type, role) and (role == "park") == self.has_role(o.type, "park"))]
             if not objs and role == "park":
                 raise GroundingError(f"no parking spot in this scene; it has: {inventory(self.scene)}")
             if not objs:
@@ -162,6 +162,10 @@ class Resolver:
         if state is not None:
             raise GroundingError(f"not supported: parking in a spot that is {state.word!r}; occupied spots are never goals")
         free = [o for o in objs if not o.occupied]
+        if free and ordinal and len(free) < len(objs):
+            m = next(m for m in np.modifiers if m.kind == "ordinal")
+            taken = ", ".join(o.id for o in objs if o.occupied)
+            self.notes.append(f"the {m.word} {np.word or 'spot'} of another row, {taken}, is occupied: kept {', '.join(o.id for o in free)}")
         if free:
             return free
         others = [o for o in self.scene.objects_of_type(objs[0].type) if not o.occupied]
@@ -202,7 +206,7 @@ class Resolver:
         if m.value == "between":
             kept = [o for o in objs if any(relations.between(o, a, b) for a in marks[0] for b in marks[1])]
         else:
-            kept = [o for o in objs if any(relations.holds(m.value, o, lm, self.scene, self.support) for lm in marks[0])]
+            kept = [o for o in objs if any(relations.holds(m.value, o, lm, self.scene) for lm in marks[0])]
         if kept or m.negated:
             return kept, {}
         near = sorted((o for o in objs if o.id not in {x.id for g in marks for x in g}),
@@ -252,11 +256,20 @@ class Resolver:
 
     def _ordinal(self, objs, m: Modifier, np):
         n = int(m.value)
-        if n > len(objs):
+        if n > len(objs) or (all(self.has_role(o.type, "park") for o in objs) and not m.order
+                             and n > max(len(r) for r in spatial.rows(objs))):
             raise GroundingError(f"no {np.describe()}: there {'is' if len(objs) == 1 else 'are'} only {len(objs)} "
                                  f"{_plural_word(np, objs) if len(objs) > 1 else np.word or objs[0].type}")
+        if not m.order and all(self.has_role(o.type, "park") for o in objs):  # spots count along their row
+            rows = [self._from_near_end(r) for r in spatial.rows(objs)]
+            return [r[n - 1 if n > 0 else n] for r in rows if n <= len(r)], {}
         ordered = self._ordered(objs, m.order)
         return [ordered[n - 1 if n > 0 else n]], {}
+
+    def _from_near_end(self, row: list[SceneObject]) -> list[SceneObject]:
+        """A row (``spatial.rows`` order) counted from its end nearer the robot."""
+        d = self.distances([row[0], row[-1]], None)
+        return row if d[row[0].id] <= d[row[-1].id] else row[::-1]
 
     def _ordered(self, objs: list[SceneObject], side: str) -> list[SceneObject]:
         """Objects counted from a side ("from the left": most left first), or in scene-file order."""
@@ -351,8 +364,8 @@ class Resolver:
         if np.head not in ("noun", "id"):  # "no middle" -> "no middle parking spot"
             types = {o.type for o in objs}
             said = f"{np.text} {types.pop().replace('_', ' ') if len(types) == 1 else 'object'}{said[len(np.text):]}".strip()
-        if arg is not None and arg.negated:
-            said = f"{said} that is not {_said(arg.kind if isinstance(arg, Modifier) else 'location', replace(arg, negated=False))}"
+        if isinstance(arg, Modifier) and arg.negated:
+            said = f"{said} that is not {arg.word}"
         return f"no {said}; {' '.join(adjectives)} {where} are: {breakdown}"
 
 

@@ -151,3 +151,29 @@ def distance_to_point(obj: SceneObject, p: np.ndarray) -> float:
 def distance_between(a: SceneObject, b: SceneObject) -> float:
     """Ground-plane distance from ``a``'s centre to ``b``'s bounds ("the can nearest the table")."""
     return distance_to_point(b, np.asarray(a.pose.xyz, float))
+
+
+def rows(objs: list[SceneObject], tol: float = 0.5) -> list[list[SceneObject]]:
+    """Rows of a layout (parking spots): the same heading (mod 180 degrees), on one line across it, and no
+    gap wider than 1.5 spacings between neighbours (a gap starts a new row)."""
+    lines: dict[tuple, list[SceneObject]] = {}
+    for o in objs:
+        yaw = o.pose.rpy[2] % math.pi
+        x, y = o.pose.xyz[0], o.pose.xyz[1]
+        along = math.cos(yaw) * x + math.sin(yaw) * y  # the same for spots side by side
+        key = next((k for k in lines if abs(k[0] - yaw) < 0.02 and abs(k[1] - along) < tol), (yaw, along))
+        lines.setdefault(key, []).append(o)
+    out = []
+    for (yaw, _), line in lines.items():
+        pos = {o.id: -math.sin(yaw) * o.pose.xyz[0] + math.cos(yaw) * o.pose.xyz[1] for o in line}
+        line = sorted(line, key=lambda o: pos[o.id])
+        steps = [pos[b.id] - pos[a.id] for a, b in zip(line, line[1:])]
+        spacing = min(steps, default=0.0)
+        row = [line[0]]
+        for step, o in zip(steps, line[1:]):
+            if step > 1.5 * spacing + 1e-6:
+                out.append(row)
+                row = []
+            row.append(o)
+        out.append(row)
+    return out
