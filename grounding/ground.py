@@ -49,6 +49,7 @@ def ground(request: str, scene: Scene, lexicon: Lexicon | None = None) -> Ground
     clause = one_clause(parse(lex.tokens(text), lex, inventory(scene)))
     res = Resolver(scene, lex)
     action, obj, target = _frame(clause, res)
+    ee = end_effector_of(scene.robot) if action != "park" else None
     notes: list[str] = []
     if action == "park":
         spots = res.choice(target, "park")
@@ -60,14 +61,14 @@ def ground(request: str, scene: Scene, lexicon: Lexicon | None = None) -> Ground
         objs = res.choice(obj, "pick")
         notes += _ambiguity(obj, objs, _what(obj, objs))
         if action == "pick":
-            interps = [_interpretation("pick", o, None, scene) for o in objs]
+            interps = [_interpretation("pick", o, None, scene, ee=ee) for o in objs]
         else:
             targets = res.choice(target, "support")
             notes += _ambiguity(target, targets, "surfaces")
-            interps = [_interpretation("place", o, t, scene) for o in objs for t in targets if o.id != t.id]
+            interps = [_interpretation("place", o, t, scene, ee=ee) for o in objs for t in targets if o.id != t.id]
             if not interps:
                 raise GroundingError(f"nothing to place: {objs[0].id} cannot be put on itself")
-        interps, unfit = _graspable(interps, scene)
+        interps, unfit = _graspable(interps, scene, ee)
         notes += unfit
     return Grounding(request, action, tuple(interps), tuple(notes + res.notes))
 
@@ -107,7 +108,7 @@ def _parks(c: Clause) -> bool:
                                                                      for alts in c.objects for a in alts))
 
 
-def _graspable(interps: list[Interpretation], scene: Scene) -> tuple[list[Interpretation], list[str]]:
+def _graspable(interps: list[Interpretation], scene: Scene, ee) -> tuple[list[Interpretation], list[str]]:
     """Drop interpretations whose object no grasp fits (grounding/grasps.py), with a note each.
 
     Raises:
@@ -115,7 +116,6 @@ def _graspable(interps: list[Interpretation], scene: Scene) -> tuple[list[Interp
     """
     keep = [i for i in interps if i.goal_regions]
     dropped = sorted({i.objects[0] for i in interps if not i.goal_regions})
-    ee = end_effector_of(scene.robot)
     unfit = [fit_note(scene.object(o), ee) for o in dropped]
     if not keep:
         raise GroundingError("; ".join(unfit))
@@ -200,15 +200,16 @@ def _located(alts: tuple[NounPhrase, ...], pps: list) -> tuple[NounPhrase, ...]:
     return tuple(replace(a, locations=a.locations + locs) for a in alts)
 
 
-def _interpretation(action: str, obj: SceneObject, target: SceneObject | None, scene: Scene, manner: str = "") -> Interpretation:
+def _interpretation(action: str, obj: SceneObject, target: SceneObject | None, scene: Scene, manner: str = "",
+                    ee=None) -> Interpretation:
     iid = f"{action}:{obj.id}" + (f":{target.id}" if target is not None else "")
     if action == "park":
         regions = regions_for(obj, "park", iid, scene)
         if manner:  # "reverse into spot 4": only the goal regions with that heading
             regions = tuple(r for r in regions if r.label == manner) or regions
         return Interpretation(iid, action, (obj.id,), None, regions)
-    place = regions_for(target, "support", iid, scene) if target is not None else ()
-    return Interpretation(iid, action, (obj.id,), target.id if target else None, regions_for(obj, "pick", iid, scene), place)
+    place = regions_for(target, "support", iid, scene, ee) if target is not None else ()
+    return Interpretation(iid, action, (obj.id,), target.id if target else None, regions_for(obj, "pick", iid, scene, ee), place)
 
 
 def _what(alts: tuple[NounPhrase, ...], objs: list[SceneObject]) -> str:

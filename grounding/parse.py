@@ -50,8 +50,11 @@ def _terminal(toks: list[Token], i: int) -> str:
     after = toks[i + 2].cat if i + 2 < len(toks) else ""
     if cat == "conjunction" and (nxt in ("verb", "manner") or (nxt == "negation" and after == "verb")):
         return "THEN"
-    if toks[i].text == "that" and prev in ("noun", "id", "idtail", "number", "wildcard", "one"):  # "a box that isn't red"
-        return "WHICH"
+    if toks[i].text == "that" and prev in ("noun", "id", "idtail", "number", "wildcard", "one", "robot", "person", "floor", "position"):
+        return "WHICH"  # "a box that isn't red"
+    side = toks[i + 2].cat if nxt == "determiner" and i + 2 < len(toks) else nxt
+    if toks[i].text == "from" and side in ("position", "person", "robot") and any(t.cat == "ordinal" for t in toks[:i]):
+        return "FROMSIDE"  # "the third can from the left", "the second spot from me"
     ids = ("number", "idtail")
     if cat == "disjunction" and prev in ids and nxt in ids:
         return "IDOR"
@@ -189,6 +192,11 @@ class _Semantics(Transformer):
         mods += tuple(m for i in items if isinstance(i, tuple) and i and i[0] == "mods" for m in i[1])
         locs = tuple(loc for i in items if isinstance(i, tuple) and i and i[0] == "locations" for loc in i[1])
         excluded = tuple(x for i in items if isinstance(i, tuple) and i and i[0] == "excluded" for x in i[1])
+        order = next((i for i in items if isinstance(i, tuple) and i and i[0] == "order"), None)
+        if order is not None:
+            if order[1] not in ORDER_SIDES | {"near"}:
+                raise GroundingError(f"cannot count {order[2]!r}: say from the left, right, top or bottom")
+            mods = tuple(replace(m, order=order[1]) if m.kind == "ordinal" else m for m in mods)
         if not mods and not head and not locs and det:
             raise GroundingError(f"expected an object after {det['word']!r}")
         lo = det.get("end", meta.start_pos)
@@ -330,6 +338,10 @@ class _Semantics(Transformer):
 
     def layout(self, meta, items):
         return ("layout",)
+
+    def from_side(self, meta, items):
+        t = self._tok(items[-1])
+        return ("order", t.value if t.cat == "position" else "near", self._words(meta.start_pos, meta.end_pos))
 
     def body_premods(self, meta, items):
         return ("mods", tuple(replace(i, order="") for i in items if isinstance(i, Modifier)))

@@ -74,8 +74,11 @@ def check_types(scene: Scene) -> None:
                                  f"a scene declares its own under grasp_types, e.g. 'grasp_types: {{{obj.type}: {{}}}}')")
 
 
-def regions_for(obj: SceneObject, role: str, interpretation: str, scene: Scene | None = None) -> tuple[GoalRegion, ...]:
+def regions_for(obj: SceneObject, role: str, interpretation: str, scene: Scene | None = None,
+                ee: EndEffectorSpec | None = None) -> tuple[GoalRegion, ...]:
     """Goal regions for ``obj`` in ``role`` ("pick", "support" or "park").
+
+    ``ee``: the scene robot's end effector when the caller has it already (it is read from the robot's files).
 
     Raises:
         GroundingError: the type has no definition for that role.
@@ -83,7 +86,8 @@ def regions_for(obj: SceneObject, role: str, interpretation: str, scene: Scene |
     definition = type_definitions(scene).get(obj.type, {}).get(role)
     if not definition:
         raise GroundingError(f"no {role} definition for type {obj.type!r} (see grounding/types.yaml)")
-    ee = end_effector_of(scene.robot) if scene is not None else EndEffectorSpec(frame=END_EFFECTOR)
+    if ee is None:
+        ee = end_effector_of(scene.robot) if scene is not None else EndEffectorSpec(frame=END_EFFECTOR)
     out: list[GoalRegion] = []
     try:
         for spec in definition:

@@ -23,11 +23,12 @@
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 from itertools import product
 
 import numpy as np
 
-from lazyground.scene.schema import Scene, SceneObject
+from lazyground.scene.schema import PoseSpec, Scene, SceneObject
 
 TOUCH_TOL = 0.03
 SPREAD = 0.05
@@ -37,10 +38,16 @@ FLOOR = "floor"
 
 def world_box(obj: SceneObject) -> tuple[np.ndarray, np.ndarray]:
     """Axis-aligned world bounds of the object's shape."""
-    h = np.asarray(obj.geometry.half_extents())
-    corners = np.array(list(product(*[(-v, v) for v in h])))
-    pts = obj.pose.pose().transform_points(corners)
-    return pts.min(axis=0), pts.max(axis=0)
+    lo, hi = _box(tuple(obj.geometry.half_extents()), tuple(obj.pose.xyz), tuple(obj.pose.rpy))
+    return np.array(lo), np.array(hi)
+
+
+@lru_cache(maxsize=4096)
+def _box(half: tuple, xyz: tuple, rpy: tuple) -> tuple[tuple, tuple]:
+    """Bounds of a box of half extents ``half`` at pose (xyz, rpy); cached (requests ask the same objects again)."""
+    corners = np.array(list(product(*[(-v, v) for v in half])))
+    pts = PoseSpec(xyz=xyz, rpy=rpy).pose().transform_points(corners)
+    return tuple(pts.min(axis=0)), tuple(pts.max(axis=0))
 
 
 def _over_footprint(point: np.ndarray, support: SceneObject) -> bool:
