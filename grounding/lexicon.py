@@ -38,6 +38,7 @@ MAPPED = {
 }
 # "no. 3", "#3", "nr 3" -> "number 3" (so "no" stays a plain word elsewhere)
 NUMBER_SIGN = re.compile(r"(?:#|\bno\.?|\bnr\.?|\bnum\.?)\s*(?=\d)")
+SIDES = {"left", "right", "top", "bottom"}
 IDTAIL = re.compile(r"[a-z]{0,3}[0-9]+[a-z]?")
 SPLIT = re.compile(r"[a-z]+|[0-9]+")
 
@@ -135,7 +136,9 @@ class Lexicon:
         words = WORD.findall(NUMBER_SIGN.sub(" number ", text.lower()))
         out, i, n = [], 0, self.max_len
         while i < len(words):
-            for k in range(min(n, len(words) - i), 0, -1):
+            # "from the right next to ...": after "from (the)", a side word stands alone ("right", not "right next to")
+            side = words[i] in SIDES and (words[i - 1:i] == ["from"] or words[max(i - 2, 0):i] == ["from", "the"])
+            for k in range(1 if side else min(n, len(words) - i), 0, -1):
                 entry = self.phrases.get(tuple(words[i:i + k]))
                 if entry is not None:
                     out.append(Token(" ".join(words[i:i + k]), entry))

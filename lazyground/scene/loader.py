@@ -11,7 +11,7 @@ import yaml
 
 from lazyground.bundled import bundled_scene, data_dir, scene_names
 from lazyground.scene.schema import Scene, SceneObject
-from lazyground.scene.typed_yaml import SceneError, load_dataclass, load_yaml
+from lazyground.scene.typed_yaml import SceneError, line_of, load_dataclass, load_yaml
 
 MAX_SCENE_BYTES = 5 * 1024 * 1024
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -65,7 +65,8 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
         data = fill_from_robot_defaults(data, lambda model: resolve_model(model, scene_dir))
         scene = load_dataclass(data, Scene, "")
     except SceneError as exc:
-        raise SceneError(f"{source}: {exc}") from None
+        line = line_of(text, str(exc).split(": ", 1)[0])
+        raise SceneError(f"{source}: {exc}" + (f" (line {line})" if line else "")) from None
     model = resolve_model(scene.robot.model, scene_dir)
     if model is None:
         raise SceneError(f"{source}: robot.model: model file {scene.robot.model!r} not found (bundled: {_bundled()})")
