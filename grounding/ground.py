@@ -54,7 +54,7 @@ def ground(request: str, scene: Scene, lexicon: Lexicon | None = None) -> Ground
     if action == "park":
         spots = res.choice(target, "park")
         notes += _ambiguity(target, spots, "free parking spots")
-        interps = [_interpretation("park", s, None, scene, clause.manner) for s in spots]
+        interps = [_interpretation("park", s, None, scene, clause.manner) for s in spots]  # a manner only shapes parking
         if clause.manner:
             notes.append(f"{clause.manner} into the spot only ({clause.verb.text!r})")
     else:
@@ -99,8 +99,8 @@ def one_clause(request: Request) -> Clause:
 
 
 def _refers_back(c: Clause) -> bool:
-    """A clause whose object is "it"/"them" or missing ("... and put it on the table", "... and park")."""
-    return not c.objects or all(a.head == "pronoun" for alts in c.objects for a in alts)
+    """A clause whose object is "it"/"them", the car, or missing ("... and put it on the table", "... and park the car")."""
+    return not c.objects or all(a.head in ("pronoun", "robot") for alts in c.objects for a in alts)
 
 
 def _parks(c: Clause) -> bool:
@@ -149,7 +149,7 @@ def _frame(c: Clause, res: Resolver) -> tuple[str, tuple[NounPhrase, ...], tuple
             raise GroundingError(f"not supported: {a.quantity.word!r} asks for several objects; the robot handles one at a time")
     leave = robot_only and verb.value == "place" and (not pps or c.free_target or _is_spot(pps[-1].alternatives, res))
     anything = bool(obj) and all(a.free or (a.head in ("wildcard", "") and all(m.kind == "relation" for m in a.modifiers)) for a in obj)
-    if verb.value == "park" or _is_spot(obj, res) or leave or c.manner:
+    if verb.value == "park" or _is_spot(obj, res) or leave:
         if obj and not _is_spot(obj, res) and not robot_only and not anything:
             raise GroundingError(f"{verb.text!r} needs a parking spot, not {obj[0].full()!r}; try 'park in a free spot'")
         if _is_spot(obj, res) or (anything and not robot_only):

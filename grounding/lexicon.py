@@ -35,6 +35,7 @@ MAPPED = {
     "verbs": "verb", "manners": "manner", "nouns": "noun", "determiners": "determiner", "quantifiers": "quantifier",
     "numbers": "number", "colours": "colour", "sizes": "size", "positions": "position", "superlatives": "superlative",
     "states": "state", "prepositions": "preposition", "ordinals": "ordinal", "relations": "relation",
+    "distances": "distance",
 }
 # "no. 3", "#3", "nr 3" -> "number 3" (so "no" stays a plain word elsewhere)
 NUMBER_SIGN = re.compile(r"(?:#|\bno\.?|\bnr\.?|\bnum\.?)\s*(?=\d)")

@@ -50,8 +50,9 @@ def _terminal(toks: list[Token], i: int) -> str:
     after = toks[i + 2].cat if i + 2 < len(toks) else ""
     if cat == "conjunction" and (nxt in ("verb", "manner") or (nxt == "negation" and after == "verb")):
         return "THEN"
-    if toks[i].text == "that" and prev in ("noun", "id", "idtail", "number", "wildcard", "one", "robot", "person", "floor", "position"):
-        return "WHICH"  # "a box that isn't red"
+    if (toks[i].text == "that" and prev in ("noun", "id", "idtail", "number", "wildcard", "one", "robot", "person", "floor", "position")
+            and nxt in ("negation", "participle", "which", "preposition", "relation", "superlative")):
+        return "WHICH"  # "a box that isn't red" (but "get me that red mug")
     side = toks[i + 2].cat if nxt == "determiner" and i + 2 < len(toks) else nxt
     if toks[i].text == "from" and side in ("position", "person", "robot") and any(t.cat == "ordinal" for t in toks[:i]):
         return "FROMSIDE"  # "the third can from the left", "the second spot from me"
@@ -326,8 +327,8 @@ class _Semantics(Transformer):
 
     def distance(self, meta, items):
         t = self._tok(items[0])
-        lm = items[-1]
-        return Modifier("superlative", t.value, t.text, () if lm.head in ("person", "robot") else (lm,))
+        lm = items[-1] if isinstance(items[-1], NounPhrase) else None
+        return Modifier("superlative", t.value, t.text, () if lm is None or lm.head in ("person", "robot") else (lm,))
 
     def relative(self, meta, items):
         negated = any(isinstance(i, LarkToken) and i.type == "NEGATION" for i in items)

@@ -71,7 +71,8 @@ class Resolver:
 
     def np(self, np: NounPhrase, role: str | None) -> list[SceneObject]:
         """Every object ``np`` can mean in ``role`` ("pick", "support", "park" or None = landmark)."""
-        layout = role == "park" and any(m.kind == "ordinal" for m in np.modifiers)
+        free_said = any(m.kind == "state" and m.value == "free" for m in np.modifiers)  # "the first free spot" counts free ones
+        layout = role == "park" and any(m.kind == "ordinal" for m in np.modifiers) and not free_said
         objs = self._base(np, role, defer_free=role == "park")
         applied: list[tuple[str, str]] = []
         mods = sorted(np.modifiers, key=lambda m: ORDER[m.kind])
