@@ -3,9 +3,11 @@
 Directions are in the robot's frame (``spatial.robot_frame``: ahead, left); boxes are the objects'
 world bounds (``spatial.world_box``), seen from the robot as the bounds of their corners.
 
-* **next_to** (next to, beside, by, near): the ground-plane gap between the two boxes is at most
-  ``NEAR_GAP`` (0.4 m) or half the larger footprint side of the two, whichever is more; boxes whose
-  footprints overlap (by more than 1 cm both ways) are stacked — on, under, in — not side by side.
+* **next_to** (next to, beside, by, near): the ground-plane gap between the two boxes is at most the
+  *reach*, ``NEAR_GAP`` (0.4 m) or half the larger footprint side of the two, whichever is more; boxes
+  whose footprints overlap (by more than 1 cm both ways) are stacked — on, under, in — not side by
+  side. When nothing is within reach, the one declared relaxation keeps the candidates nearest the
+  landmark (ties within 1 cm) if they are within twice the reach, with a note (``nearest_gap``).
 * **behind / front**: the object's centre is beyond the landmark's far side (behind) or before its
   near side (in front), as the robot looks, and the two boxes overlap sideways once the landmark's
   is widened by half its width.
@@ -30,6 +32,7 @@ from grounding import spatial
 from lazyground.scene.schema import Scene, SceneObject
 
 NEAR_GAP = 0.4
+TIE = 0.01
 STACK_GAP = 0.2
 OVERLAP = 0.01
 RELATIONS = ("next_to", "behind", "front", "left_of", "right_of", "above", "below", "between")
@@ -45,6 +48,17 @@ def _stacked(a: SceneObject, b: SceneObject) -> bool:
     """Whether the two footprints overlap by more than ``OVERLAP`` both ways (one is on, under or in the other)."""
     (alo, ahi), (blo, bhi) = spatial.world_box(a), spatial.world_box(b)
     return bool(all(min(ahi[k], bhi[k]) - max(alo[k], blo[k]) > OVERLAP for k in (0, 1)))
+
+
+def _reach(a: SceneObject, b: SceneObject) -> float:
+    return max(NEAR_GAP, 0.5 * max(_footprint(a), _footprint(b)))
+
+
+def nearest_gap(obj: SceneObject, landmarks: list[SceneObject]) -> float | None:
+    """The smallest gap from ``obj`` to a landmark it is side by side with and within twice the reach of, or None."""
+    gaps = [_xy_gap(obj, lm) for lm in landmarks
+            if lm.id != obj.id and not _stacked(obj, lm) and _xy_gap(obj, lm) <= 2 * _reach(obj, lm)]
+    return min(gaps, default=None)
 
 
 def _footprint(o: SceneObject) -> float:
@@ -64,7 +78,7 @@ def holds(relation: str, obj: SceneObject, landmark: SceneObject, scene: Scene) 
     if obj.id == landmark.id:
         return False
     if relation == "next_to":
-        return not _stacked(obj, landmark) and _xy_gap(obj, landmark) <= max(NEAR_GAP, 0.5 * max(_footprint(obj), _footprint(landmark)))
+        return not _stacked(obj, landmark) and _xy_gap(obj, landmark) <= _reach(obj, landmark)
     if relation in ("above", "below"):
         (olo, ohi), (llo, lhi) = spatial.world_box(obj), spatial.world_box(landmark)
         level = olo[2] >= lhi[2] - 1e-6 if relation == "above" else ohi[2] <= llo[2] + 1e-6

@@ -210,6 +210,14 @@ class Resolver:
             kept = [o for o in objs if any(relations.holds(m.value, o, lm, self.scene) for lm in marks[0])]
         if kept or m.negated:
             return kept, {}
+        if m.value == "next_to":  # the declared relaxation: nothing within reach -> the nearest, within twice the reach
+            gaps = {o.id: g for o in objs if (g := relations.nearest_gap(o, marks[0])) is not None}
+            if gaps:
+                best = min(gaps.values())
+                kept = [o for o in objs if o.id in gaps and gaps[o.id] <= best + relations.TIE]
+                self.notes.append(f"nothing is within reach {m.word} {m.landmark.full()}; kept the nearest: "
+                                  + ", ".join(f"{o.id} ({gaps[o.id]:.2f} m away)" for o in kept))
+                return kept, {}
         near = sorted((o for o in objs if o.id not in {x.id for g in marks for x in g}),
                       key=lambda o: min(relations.gap(o, x) for g in marks for x in g))
         closest = ", ".join(f"{o.id} ({min(relations.gap(o, x) for g in marks for x in g):.2f} m away)" for o in near[:3])

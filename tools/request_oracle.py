@@ -189,7 +189,16 @@ def expected(scene, d: Desc, role: str | None) -> set[str]:
         objs = [o for o in objs if support(scene, o) not in marks]
     if d.rel is not None:
         marks = [o for o in scene.objects if o.id in expected(scene, d.rel[1], None)]
-        objs = [o for o in objs if any(related(scene, d.rel[0], o, m) for m in marks)]
+        kept = [o for o in objs if any(related(scene, d.rel[0], o, m) for m in marks)]
+        if not kept and d.rel[0] == "next_to":  # nothing within reach: the nearest within twice the reach
+            near = {}
+            for o in objs:
+                ok = [_gap(o, m) for m in marks if m.id != o.id and not _stacked(o, m)
+                      and _gap(o, m) <= 2 * max(NEAR, 0.5 * max(_extent(o), _extent(m)))]
+                if ok:
+                    near[o.id] = min(ok)
+            kept = [o for o in objs if o.id in near and near[o.id] <= min(near.values()) + TIE]
+        objs = kept
     if d.between is not None:
         a = [o for o in scene.objects if o.id in expected(scene, d.between[0], None)]
         b = [o for o in scene.objects if o.id in expected(scene, d.between[1], None)]

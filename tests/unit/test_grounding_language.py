@@ -175,6 +175,21 @@ def test_refused_with_the_closest(name, text, message):
     assert str(info.value).startswith(message), str(info.value)
 
 
+@pytest.mark.parametrize("name, text, kept, note", [
+    (KPC, "get the mug next to the soda", {"pick:cup_red"}, "kept the nearest: cup_red (0.43 m away)"),
+    (KPC, "get the cup near the yellow box", {"pick:cup_green"}, "kept the nearest: cup_green (0.41 m away)"),
+])
+def test_next_to_relaxes_to_the_nearest_with_a_note(name, text, kept, note):
+    g = ground(text, _scene(name))
+    assert {i.id for i in g.interpretations} == kept
+    assert any(note in n and "nothing is within reach" in n for n in g.notes), g.notes
+
+
+def test_the_relaxation_stops_at_twice_the_reach():
+    with pytest.raises(GroundingError, match=r"no can next to the yellow box; the nearest: Can1 \(0.88 m away\)"):
+        ground("pick up the can next to the yellow box", _scene(PUTBOX))
+
+
 def test_notes_say_what_was_skipped_or_kept():
     g = ground("park in the second spot", _scene("parking_1"))
     assert any("spot_t1, is occupied" in n for n in g.notes)
