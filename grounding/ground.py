@@ -65,7 +65,8 @@ def ground(request: str, scene: Scene, lexicon: Lexicon | None = None) -> Ground
         else:
             targets = res.choice(target, "support")
             notes += _ambiguity(target, targets, "surfaces")
-            interps = [_interpretation("place", o, t, scene, ee=ee) for o in objs for t in targets if o.id != t.id]
+            memo: dict = {}
+            interps = [_interpretation("place", o, t, scene, ee=ee, memo=memo) for o in objs for t in targets if o.id != t.id]
             if not interps:
                 raise GroundingError(f"nothing to place: {objs[0].id} cannot be put on itself")
         interps, unfit = _graspable(interps, scene, ee)
@@ -201,15 +202,26 @@ def _located(alts: tuple[NounPhrase, ...], pps: list) -> tuple[NounPhrase, ...]:
 
 
 def _interpretation(action: str, obj: SceneObject, target: SceneObject | None, scene: Scene, manner: str = "",
-                    ee=None) -> Interpretation:
+                    ee=None, memo: dict | None = None) -> Interpretation:
     iid = f"{action}:{obj.id}" + (f":{target.id}" if target is not None else "")
     if action == "park":
         regions = regions_for(obj, "park", iid, scene)
         if manner:  # "reverse into spot 4": only the goal regions with that heading
             regions = tuple(r for r in regions if r.label == manner) or regions
         return Interpretation(iid, action, (obj.id,), None, regions)
-    place = regions_for(target, "support", iid, scene, ee) if target is not None else ()
-    return Interpretation(iid, action, (obj.id,), target.id if target else None, regions_for(obj, "pick", iid, scene, ee), place)
+    place = _regions(target, "support", iid, scene, ee, memo) if target is not None else ()
+    return Interpretation(iid, action, (obj.id,), target.id if target else None, _regions(obj, "pick", iid, scene, ee, memo), place)
+
+
+def _regions(obj: SceneObject, role: str, iid: str, scene: Scene, ee, memo: dict | None) -> tuple:
+    """``regions_for``, built once per (object, role) in a request and relabelled per interpretation
+    ("put a box on a shelf": 5 boxes x 9 boards share 5 + 9 region sets)."""
+    if memo is None:
+        return regions_for(obj, role, iid, scene, ee)
+    key = (obj.id, role)
+    if key not in memo:
+        memo[key] = regions_for(obj, role, iid, scene, ee)
+    return tuple(r if r.interpretation == iid else replace(r, interpretation=iid) for r in memo[key])
 
 
 def _what(alts: tuple[NounPhrase, ...], objs: list[SceneObject]) -> str:
