@@ -56,7 +56,7 @@ def ground(request: str, scene: Scene, lexicon: Lexicon | None = None) -> Ground
         notes += _ambiguity(target, spots, "free parking spots")
         interps = [_interpretation("park", s, None, scene, clause.manner) for s in spots]  # a manner only shapes parking
         if clause.manner:
-            notes.append(f"{clause.manner} into the spot only ({clause.verb.text!r})")
+            notes.append(f"{clause.manner} into the spot only")
     else:
         objs = res.choice(obj, "pick")
         notes += _ambiguity(obj, objs, _what(obj, objs))

@@ -88,12 +88,13 @@ def parse(tokens: list[Token], lexicon: Lexicon, things: str) -> Request:
     if not toks:
         raise GroundingError("empty request: say what to do, e.g. 'pick up a can', 'put a cup on the table' or 'park'")
     first = toks[1] if toks[0].cat == "negation" and len(toks) > 1 else toks[0]
-    if first.cat not in ("verb", "manner"):
-        hint = f"unknown word {first.text!r}{lexicon.hint(first.text, 'verb')}" if first.cat == "unknown" else f"a request starts with a verb, not {first.text!r}"
-        raise GroundingError(f"{hint}; supported verbs: {verb_list(lexicon)} (see docs/requests.md)")
+    if first.cat == "unknown":
+        raise GroundingError(f"unknown word {first.text!r}{lexicon.hint(first.text, 'verb')}; supported verbs: {verb_list(lexicon)} (see docs/requests.md)")
     try:
         tree = _parser().parse(toks)
     except UnexpectedInput as exc:
+        if first.cat not in ("verb", "manner"):  # neither a request nor a bare noun phrase ("the green cup")
+            raise GroundingError(f"a request starts with a verb, not {first.text!r}; supported verbs: {verb_list(lexicon)} (see docs/requests.md)") from None
         raise _explain(exc, toks, lexicon, things) from None
     request = _Semantics(toks).transform(tree)
     return replace(request, clauses=tuple(_attach_positions(c) for c in request.clauses))
@@ -131,6 +132,11 @@ class _Semantics(Transformer):
         return " ".join(t.text for t in self.toks[lo:hi])
 
     # -- requests and clauses -------------------------------------------------------------
+
+    def bare_request(self, meta, items):
+        """A noun phrase alone means "get it" ("park in it" for a parking spot: see ground._frame)."""
+        clause = self.clause(meta, [("verb", Token("", Entry("verb", "pick")), "")] + list(items))
+        return Request((clause,))
 
     def start(self, meta, items):
         joiner = next((self._tok(i).text for i in items if isinstance(i, LarkToken)), "")

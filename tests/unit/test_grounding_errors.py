@@ -28,7 +28,7 @@ ERRORS = [
     ("lot", "park the can", None),
     # unknown words and verbs: name the word, list the verbs
     ("kitchen", "frobnicate the can", "unknown word 'frobnicate'; supported verbs: pick up, grab, take, get, fetch, lift, grasp, put, place, set, move, park (see docs/requests.md)"),
-    ("kitchen", "a can on the table", "a request starts with a verb, not 'a'; supported verbs:"),
+    ("kitchen", "on the table", "a request starts with a verb, not 'on'; supported verbs:"),
     ("kitchen", "pick up the widget", "unknown word 'widget'; objects here: table x1, can x5, box x3, shelf x5; verbs:"),
     ("kitchen", "pick up the can quietly", "unknown word 'quietly'; objects here:"),
     # unsupported forms
