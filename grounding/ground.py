@@ -153,10 +153,11 @@ def _frame(c: Clause, res: Resolver) -> tuple[str, tuple[NounPhrase, ...], tuple
     if verb.value == "park" or _is_spot(obj, res) or leave:
         if obj and not _is_spot(obj, res) and not robot_only and not anything:
             raise GroundingError(f"{verb.text!r} needs a parking spot, not {obj[0].full()!r}; try 'park in a free spot'")
+        rows = lambda pp: all(a.head == "row" for a in pp.alternatives)  # noqa: E731  ("in row c" locates, it is no spot)
         if _is_spot(obj, res) or (anything and not robot_only):
             spot = obj
-        elif pps and not c.free_target:
-            spot = pps.pop().alternatives
+        elif not c.free_target and any(not rows(pp) for pp in pps):
+            spot = pps.pop(max(i for i, pp in enumerate(pps) if not rows(pp))).alternatives
         else:
             spot = (NounPhrase("", determiner="indefinite"),)
         if robot_only and obj[0].modifiers:  # "park the car next to spot 3": the relation places the spot

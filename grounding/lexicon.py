@@ -28,7 +28,7 @@ FLAT = {
     "number_marks": "number_mark", "coloured": "coloured", "between": "between", "through": "through",
     "relativizers": "which", "participles": "participle", "negations": "negation", "exceptions": "exception",
     "but": "but", "different": "different", "polite": "polite", "fillers": "filler", "particles": "particle",
-    "conjunctions": "conjunction", "disjunctions": "disjunction", "pronouns": "pronoun", "layout": "layout",
+    "conjunctions": "conjunction", "disjunctions": "disjunction", "pronouns": "pronoun", "layout": "layout", "rows": "row",
 }
 # section -> category for "value: [phrases]" sections
 MAPPED = {
@@ -110,15 +110,16 @@ class Lexicon:
                 phrases[key] = Entry("id", ids.pop())
         return Lexicon(phrases, self.data)
 
-    def hint(self, word: str, cat: str | None = None) -> str:
+    def hint(self, word: str, cat: str | None = None, only: bool = False) -> str:
         """"; did you mean 'pick'?" and "; ids with 'b1': spot_b1, ..." for an unknown word ("" if none).
 
         Args:
             cat: a category the word should have had (e.g. "verb"): its words are suggested first.
+            only: suggest words of ``cat`` only (a verb's place: "throw" is no typo of "row").
         """
         close: list[str] = []
-        for only in ((cat,) if cat else ()) + (None,):  # ids are listed by ids_with, not guessed at
-            known = sorted({key[0] for key, e in self.phrases.items() if e.cat != "id" and only in (None, e.cat)
+        for want in ((cat,) if cat else ()) + (() if only and cat else (None,)):  # ids are listed by ids_with, not guessed at
+            known = sorted({key[0] for key, e in self.phrases.items() if e.cat != "id" and want in (None, e.cat)
                             and len(key) == 1 and not key[0].isdigit() and key[0] != word})  # words said alone
             swapped = [w for w in known if sorted(w) == sorted(word)]  # "pikc", "cna": two letters swapped
             near = [w for w in difflib.get_close_matches(word, known, n=3, cutoff=0.75)

@@ -56,6 +56,8 @@ def _terminal(toks: list[Token], i: int) -> str:
     side = toks[i + 2].cat if nxt == "determiner" and i + 2 < len(toks) else nxt
     if toks[i].text == "from" and side in ("position", "person", "robot") and any(t.cat == "ordinal" for t in toks[:i]):
         return "FROMSIDE"  # "the third can from the left", "the second spot from me"
+    if prev == "row" and len(toks[i].text) == 1 and toks[i].text.isalpha():  # "row a", "row c"
+        return "IDTAIL"
     ids = ("number", "idtail")
     if cat == "disjunction" and prev in ids and nxt in ids:
         return "IDOR"
@@ -89,7 +91,7 @@ def parse(tokens: list[Token], lexicon: Lexicon, things: str) -> Request:
         raise GroundingError("empty request: say what to do, e.g. 'pick up a can', 'put a cup on the table' or 'park'")
     first = toks[1] if toks[0].cat == "negation" and len(toks) > 1 else toks[0]
     if first.cat == "unknown":
-        raise GroundingError(f"unknown word {first.text!r}{lexicon.hint(first.text, 'verb')}; supported verbs: {verb_list(lexicon)} (see docs/requests.md)")
+        raise GroundingError(f"unknown word {first.text!r}{lexicon.hint(first.text, 'verb', only=True)}; supported verbs: {verb_list(lexicon)} (see docs/requests.md)")
     try:
         tree = _parser().parse(toks)
     except UnexpectedInput as exc:
@@ -296,6 +298,9 @@ class _Semantics(Transformer):
 
     def pronoun(self, meta, items):
         return self._head(meta, "pronoun")
+
+    def row(self, meta, items):
+        return self._head(meta, "row", self._tok(items[1]).text if len(items) > 1 else "")
 
     def head(self, meta, items):
         return items[0]

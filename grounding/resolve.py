@@ -195,12 +195,39 @@ class Resolver:
     # -- filters: each returns (kept or None = does not narrow, {id: label} for messages) --
 
     def _location(self, objs, loc: Location, np):
+        if any(a.head == "row" for a in loc.alternatives):  # "on the bottom row": the spots of that row
+            ids = {o.id for a in loc.alternatives for row in self._rows(a) for o in row}
+            return [o for o in objs if o.id in ids], {o.id: "not in that row" for o in objs}
         landmarks = set()
         for alt in loc.alternatives:
             landmarks |= {spatial.FLOOR} if alt.head == "floor" else {o.id for o in self.choice((alt,), None)}
         labels = {o.id: self.support(o) for o in objs}
         kept = [o for o in objs if labels[o.id] in landmarks]
         return kept, {k: f"on {self.name(v)}" if v else "not on a surface" for k, v in labels.items()}
+
+    def _rows(self, np: NounPhrase) -> list[list[SceneObject]]:
+        """The rows of parking spots a "row" phrase names: by name ("row c": ids with that letter), by side
+        (left/right as the robot looks; top/bottom as the map is drawn, +y up), nearest/farthest, or n-th from the robot."""
+        spots = [o for o in self.scene.objects if self.has_role(o.type, "park")]
+        rows = spatial.rows(spots) if spots else []
+        if np.value:
+            rows = [r for r in rows if all(np.value.lower() in _id_pieces(o.id) for o in r)]
+        near = lambda r: min(self.distances(r, None).values())  # noqa: E731
+        side = {"left": lambda r: sum(spatial.lateral(o, self.scene) for o in r) / len(r),
+                "top": lambda r: sum(o.pose.xyz[1] for o in r) / len(r), "near": lambda r: -near(r)}
+        for m in np.modifiers:
+            if rows and m.kind in ("position", "superlative") and m.value in {"left", "right", "top", "bottom", "near", "far"}:
+                score = side["left" if m.value in HORIZONTAL else "top" if m.value in VERTICAL else "near"]
+                vals = [score(r) for r in rows]
+                best = max(vals) if m.value in ("left", "top", "near") else min(vals)
+                rows = [r for r, v in zip(rows, vals) if abs(v - best) < 0.5]
+            elif rows and m.kind == "ordinal":
+                order, n = sorted(rows, key=near), int(m.value)
+                rows = [order[n - 1 if n > 0 else n]] if abs(n) <= len(order) else []
+        if not rows:
+            names = ", ".join(f"{r[0].id}..{r[-1].id}" for r in (spatial.rows(spots) if spots else []))
+            raise GroundingError(f"no {np.full() or 'row'} here; rows of spots: {names or 'none'}")
+        return rows
 
     def _relation(self, objs, m: Modifier, np):
         marks = [self.choice((lm,), None) for lm in m.landmarks]

@@ -131,6 +131,13 @@ CASES = {
         (PUTBOX, "pick up the second box from the left", ids("pick", "Box1")),
         (BOXES, "pick up the first can from the right", ids("pick", "Can3")),
     ],
+    "rows of a parking layout": [
+        ("parking_1", "park in one of the free spots on the bottom row", ids("park", "spot_b1", "spot_b9")),  # map +y is up
+        ("parking_1", "park in the first row", ids("park", "spot_b1", "spot_b9")),  # the row nearer the car
+        ("parking_1", "park in the left row", ids("park", "spot_t3", "spot_t10")),  # the car looks along +x: left is +y
+        ("parking_2", "park in any free space in row c", ids("park", "spot_c1", "spot_c2")),
+        ("parking_2", "park in row b", ids("park", "spot_b1", "spot_b4")),
+    ],
     "combinations": [
         ("kitchen", "could you get me the can that is not red next to the small box", ids("pick", "can_blue")),
         ("cafe", "I'd like a cup other than the white one on the counter", ids("pick", "cup_black")),
@@ -160,6 +167,8 @@ REFUSED = [
     (PANDA, "pick up the cup behind the red can", "no cup behind the red can; the nearest: cup_shelf (0.18 m away)"),
     ("kitchen", "pick up the can between the red can and the blue can", "no can between the red can and the blue can; the nearest:"),
     ("parking_1", "park near the exit", "unknown word 'exit'"),
+    ("parking_2", "park in the second spot in row a", "the second spot is spot_a1, which is occupied; the nearest free ones: spot_a2"),
+    ("parking_1", "park in row z", "no row z here; rows of spots: spot_b11..spot_b0, spot_t11..spot_t0"),
     ("kitchen", "pick up any can except can_red or the can", None),
     ("cafe", "pick up any cup but the cups", "no cup other than the cups: every match is excluded"),
     ("kitchen", "don't pick up the red can", "not supported: a negated action"),
