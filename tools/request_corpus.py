@@ -159,6 +159,8 @@ def _pick_item(rng, scene, name):
     objs = [o for o in scene.objects if o.type in PICKABLE]
     o = _pick(rng, objs)
     text, d = _object_phrase(rng, scene, o)
+    if rng.random() < 0.08:  # a noun phrase alone: "the red cup, please"
+        return Item(name, f"{text}{_pick(rng, [', please', ' please', '', '?'])}", "pick", (d,))
     verb = _pick(rng, PICK_VERBS)
     return Item(name, f"{_pick(rng, PREFIX)}{verb} {text}{_pick(rng, SUFFIX)}", "pick", (d,))
 
