@@ -83,8 +83,7 @@ class DrakeChecker:
         if self.compiled is None:
             free = self._free(q_full)
         else:
-            count, pairs = self.compiled.certify(q_full)
-            free = self._decide(q_full, int(count[0]), pairs[0])
+            free = self._decide(q_full, *self.compiled.certify_one(q_full))
         self.check_time += time.perf_counter() - t0
         self.checks += 1
         return free
@@ -101,7 +100,7 @@ class DrakeChecker:
             return self.config_free(q)
         t0 = time.perf_counter()
         q_full = self.coordinates.full(q)
-        code = self.compiled.certify(q_full)[0][0] if self.compiled is not None else -1
+        code = self.compiled.certify_one(q_full)[0] if self.compiled is not None else -1
         free = code == 0 or code != COLLIDES and not self._penetrates(q_full)
         self.check_time += time.perf_counter() - t0
         self.checks += 1
@@ -154,14 +153,14 @@ class DrakeChecker:
             free[i] = self._free(configs[i])
         return free
 
-    def _decide(self, q_full: np.ndarray, code: int, pairs: np.ndarray) -> bool:
+    def _decide(self, q_full: np.ndarray, code: int, pairs: np.ndarray | None) -> bool:
         """Drake's answer at ``q_full`` from the certifier's ``code`` for it (and its open ``pairs``)."""
         if code == 0:
             self.certified += 1
             return True
         if code == COLLIDES:
             return False
-        return self._open_free(q_full, pairs[:code] if code > 0 else None)
+        return self._open_free(q_full, pairs)
 
     def _open_free(self, q_full: np.ndarray, pairs: np.ndarray | None) -> bool:
         """Drake's answer at ``q_full``, which the certifier left open, from SceneGraph's signed distance of its

@@ -30,9 +30,10 @@ def warm_up() -> float:
         return 0.0
     t0 = time.perf_counter()
     fd, idata = kernels.pack(_TOY)
-    pairs = np.zeros((1, CAP), np.int64)
-    kernels.certify_rows(np.zeros((1, 1)), fd, idata, pairs)
-    kernels.first_open(np.zeros(1), np.ones(1), 2, np.arange(3), 0, fd, idata, np.zeros(CAP + 1, np.int64))
+    work, pairs = np.zeros(kernels.work_size(idata)), np.zeros(CAP + 1, np.int64)
+    kernels.certify_rows(np.zeros((1, 1)), fd, idata, work, np.zeros((1, CAP), np.int64))
+    kernels.certify_one(np.zeros(1), fd, idata, work, pairs)
+    kernels.first_open(np.zeros(1), np.ones(1), 2, np.arange(3), 0, fd, idata, work, pairs)
     kernels.edge_steps(np.zeros(1), np.ones(1), np.ones(1))
     _compile_s = time.perf_counter() - t0
     return _compile_s
@@ -63,19 +64,25 @@ class CompiledCertifier:
             kinds=tree.kinds, index=tree.index, slot=tree.slot, node=cert._node, start=cert._start,
             gcyl=solids.cylinder, ocyl=obstacles.cylinder, mover=pairs.mover, other=pairs.other))
         self._open = np.zeros(CAP + 1, np.int64)
+        self._work = np.zeros(kernels.work_size(self.idata))
+
+    def certify_one(self, q_full: np.ndarray) -> tuple[int, np.ndarray | None]:
+        """(the code of one configuration (:meth:`certify`), its open pairs when it has some)."""
+        code = kernels.certify_one(q_full, self.fd, self.idata, self._work, self._open)
+        return code, (self._open[:code].copy() if code > 0 else None)
 
     def certify(self, q_full: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(per row of plant positions: its open pairs' count, 0 certified free, -1 too many to list,
         COLLIDES proven colliding; (rows, CAP) the open pairs, indices into SphereCertifier.pair_geometries)."""
         q = np.ascontiguousarray(np.atleast_2d(q_full), float)
         pairs = np.empty((len(q), CAP), np.int64)
-        return kernels.certify_rows(q, self.fd, self.idata, pairs), pairs
+        return kernels.certify_rows(q, self.fd, self.idata, self._work, pairs), pairs
 
     def first_open(self, qa: np.ndarray, qb: np.ndarray, steps: int, order: np.ndarray, begin: int = 0):
         """The first position p >= begin of ``order`` whose configuration qa + order[p] / steps (qb - qa) is not
         certified, and its code (:meth:`certify`) and open pairs (None: too many to list or colliding);
         (-1, 0, None) when all are."""
-        p = kernels.first_open(qa, qb, steps, order, begin, self.fd, self.idata, self._open)
+        p = kernels.first_open(qa, qb, steps, order, begin, self.fd, self.idata, self._work, self._open)
         if p < 0:
             return -1, 0, None
         count = int(self._open[-1])

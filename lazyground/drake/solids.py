@@ -18,7 +18,7 @@ import numpy as np
 from pydrake.geometry import Box, Capsule, Convex, Cylinder, Ellipsoid, HalfSpace, Mesh, Sphere
 
 FAR = 1e6  # metres: a half-space as a box this deep
-MAX_SPHERES = 48  # per cover; a large box gets a coarser cover (more slack) rather than more spheres
+MAX_SPHERES = 96  # per cover; a large box gets a coarser cover (more slack) rather than more spheres
 
 
 def solid(shape) -> tuple[np.ndarray, np.ndarray, float, bool]:

@@ -144,7 +144,7 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, pairs, cap):
         b = node[g]
         for r in range(3):
             centre[g, r] = Rb[b, r, 0] * go[g, 0] + Rb[b, r, 1] * go[g, 1] + Rb[b, r, 2] * go[g, 2] + pb[b, r]
-        done[g] = False
+        done[g] = 0.0
     count = 0
     for g in range(G):
         cx, cy, cz, rg = centre[g, 0], centre[g, 1], centre[g, 2], grad[g]
@@ -175,9 +175,9 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, pairs, cap):
                     x2 = oR[o, 0, 2] * wx + oR[o, 1, 2] * wy + oR[o, 2, 2] * wz
                     if _solid_distance(x0, x1, x2, ohalf[o, 0], ohalf[o, 1], ohalf[o, 2], oround[o], ocyl[o]) - ir[s] <= thr - below:
                         return COLLIDES
-            if not done[g]:
+            if done[g] == 0.0:
                 _spheres(g, node[g], Rb, pb, sc, start, sph)
-                done[g] = True
+                done[g] = 1.0
             for s in range(start[g], start[g + 1]):
                 vx, vy, vz = sph[s, 0] - oo[o, 0], sph[s, 1] - oo[o, 1], sph[s, 2] - oo[o, 2]
                 x0 = oR[o, 0, 0] * vx + oR[o, 1, 0] * vy + oR[o, 2, 0] * vz
@@ -216,9 +216,9 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, pairs, cap):
                 x2 = W[0, 2] * wx + W[1, 2] * wy + W[2, 2] * wz
                 if _solid_distance(x0, x1, x2, ghalf[h, 0], ghalf[h, 1], ghalf[h, 2], ground[h], gcyl[h]) - ir[s] <= thr - below:
                     return COLLIDES
-        if not done[g]:
+        if done[g] == 0.0:
             _spheres(g, node[g], Rb, pb, sc, start, sph)
-            done[g] = True
+            done[g] = 1.0
         for s in range(start[g], start[g + 1]):
             vx, vy, vz = sph[s, 0] - centre[h, 0], sph[s, 1] - centre[h, 1], sph[s, 2] - centre[h, 2]
             x0 = W[0, 0] * vx + W[1, 0] * vy + W[2, 0] * vz
@@ -241,20 +241,44 @@ def _spheres(g, b, Rb, pb, sc, start, sph):
             sph[s, r] = Rb[b, r, 0] * sc[s, 0] + Rb[b, r, 1] * sc[s, 1] + Rb[b, r, 2] * sc[s, 2] + pb[b, r]
 
 
-@njit(cache=True)
-def _scratch(idata):
+def work_size(idata: np.ndarray) -> int:
+    """Floats of scratch space a call needs (see _views)."""
     m, n, G, S = idata[_M], idata[_N], idata[_G], idata[_S]
-    Rs = np.zeros((m + 1, 3, 3))
-    Rs[0, 0, 0] = Rs[0, 1, 1] = Rs[0, 2, 2] = 1.0
-    return Rs, np.zeros((m + 1, 3)), np.empty((n, 3, 3)), np.empty((n, 3)), np.empty((G, 3)), np.empty((S, 3)), \
-        np.empty(G, np.bool_), np.empty((3, 3))
+    return int(12 * (m + 1) + 12 * n + 4 * G + 3 * S + 9)
 
 
 @njit(cache=True)
-def certify_rows(Q, fd, idata, pairs):
-    """Per row of plant positions Q: the count of its open pairs (0: certified, -1: more than pairs.shape[1]),
-    the pairs in ``pairs[row]``."""
-    Rs, ps, Rb, pb, centre, sph, done, W = _scratch(idata)
+def _views(idata, work):
+    """Scratch arrays over ``work``: slot frames (identity world frame), body poses, centres, spheres, a rotation,
+    and per geometry whether its spheres are posed yet."""
+    m, n, G, S = idata[_M], idata[_N], idata[_G], idata[_S]
+    a = 0
+    Rs = work[a:a + 9 * (m + 1)].reshape((m + 1, 3, 3))
+    a += 9 * (m + 1)
+    ps = work[a:a + 3 * (m + 1)].reshape((m + 1, 3))
+    a += 3 * (m + 1)
+    Rb = work[a:a + 9 * n].reshape((n, 3, 3))
+    a += 9 * n
+    pb = work[a:a + 3 * n].reshape((n, 3))
+    a += 3 * n
+    centre = work[a:a + 3 * G].reshape((G, 3))
+    a += 3 * G
+    sph = work[a:a + 3 * S].reshape((S, 3))
+    a += 3 * S
+    done = work[a:a + G]
+    a += G
+    W = work[a:a + 9].reshape((3, 3))
+    Rs[0] = 0.0
+    Rs[0, 0, 0] = Rs[0, 1, 1] = Rs[0, 2, 2] = 1.0
+    ps[0] = 0.0
+    return Rs, ps, Rb, pb, centre, sph, done, W
+
+
+@njit(cache=True)
+def certify_rows(Q, fd, idata, work, pairs):
+    """Per row of plant positions Q: the count of its open pairs (0: certified, -1: more than pairs.shape[1],
+    COLLIDES: proven colliding), the pairs in ``pairs[row]``."""
+    Rs, ps, Rb, pb, centre, sph, done, W = _views(idata, work)
     out = np.empty(Q.shape[0], np.int64)
     cap = pairs.shape[1]
     for r in range(Q.shape[0]):
@@ -263,10 +287,17 @@ def certify_rows(Q, fd, idata, pairs):
 
 
 @njit(cache=True)
-def first_open(qa, qb, n, order, begin, fd, idata, pairs):
+def certify_one(q, fd, idata, work, pairs):
+    """:func:`certify_rows` of one configuration; its open pairs in ``pairs[:-1]``."""
+    Rs, ps, Rb, pb, centre, sph, done, W = _views(idata, work)
+    return _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, pairs, len(pairs) - 1)
+
+
+@njit(cache=True)
+def first_open(qa, qb, n, order, begin, fd, idata, work, pairs):
     """The first position p >= ``begin`` of ``order`` whose configuration qa + (order[p] / n) (qb - qa) is not
-    certified (its open pairs in ``pairs``, their count in ``pairs[-1]``: -1 for more than fit), or -1 when all are."""
-    Rs, ps, Rb, pb, centre, sph, done, W = _scratch(idata)
+    certified (its code in ``pairs[-1]``, its open pairs before), or -1 when all are."""
+    Rs, ps, Rb, pb, centre, sph, done, W = _views(idata, work)
     q = np.empty(len(qa))
     cap = len(pairs) - 1
     for p in range(begin, len(order)):

@@ -46,7 +46,7 @@ from lazyground.drake.chain import PRISMATIC, BodyTree, body_tree
 from lazyground.drake.solids import cover, exact, inner, solid, solid_distance, solid_radius
 
 MARGIN = 1e-4  # metres beyond the padding a lower bound must clear
-SLACK = 0.015  # metres a cover's spheres may reach beyond their shape (finer: more spheres)
+SLACK = 0.008  # metres a cover's spheres may reach beyond their shape (finer: more spheres)
 ANCHOR_EVERY = 12  # rows of a batch per anchor (see SphereCertifier.certified_free)
 FAR_PAIR = 0.05  # metres: self pairs this far apart at every anchor of a batch split their gap between their geometries
 
