@@ -59,8 +59,8 @@ class CompiledCertifier:
             ic=ic, ir=ir, below=[cert.collide_below], istart=istart, gexact=gexact, oexact=oexact,
             K=tree.K[:, :3, :], F=tree.F[:, :3, :], gR=solids.R, go=solids.o, ghalf=solids.half,
             ground=solids.rounding, grad=solids.radius, sc=cert._centers, sr=cert._radii, oR=obstacles.R,
-            oo=obstacles.o, ohalf=obstacles.half, oround=obstacles.rounding, ac=cert._aabb_centre,
-            ah=cert._aabb_half, env=cert._env_threshold, self_thr=pairs.threshold, parent=tree.parent,
+            oo=obstacles.o, ohalf=obstacles.half, oround=obstacles.rounding, ac=cert._aabb_centre.T,
+            ah=cert._aabb_half.T, reach2=cert._env_reach2, env=cert._env_threshold, self_thr=pairs.threshold, parent=tree.parent,
             kinds=tree.kinds, index=tree.index, slot=tree.slot, node=cert._node, start=cert._start,
             gcyl=solids.cylinder, ocyl=obstacles.cylinder, mover=pairs.mover, other=pairs.other))
         self._open = np.zeros(CAP + 1, np.int64)
@@ -92,7 +92,7 @@ class CompiledCertifier:
 # the smallest certifier the kernels accept: one revolute joint, a sphere, a box (for warm_up's compilation)
 _TOY = dict(
     counts=dict(m=1, n=1, G=1, S=1, O=1, P=0, I=1),
-    ic=np.zeros(3), ir=[0.05], below=[2e-4], istart=[0, 1], gexact=[1], oexact=[1],
+    ic=np.zeros(3), ir=[0.05], below=[2e-4], reach2=[[0.01]], istart=[0, 1], gexact=[1], oexact=[1],
     K=np.eye(4)[:3], F=np.eye(4)[:3], gR=np.eye(3), go=np.zeros(3), ghalf=np.zeros(3), ground=[0.1], grad=[0.1],
     sc=np.zeros(3), sr=[0.1], oR=np.eye(3), oo=[1.0, 0.0, 0.0], ohalf=[0.1, 0.1, 0.1], oround=[0.0],
     ac=[1.0, 0.0, 0.0], ah=[0.1, 0.1, 0.1], env=[[0.01]], self_thr=np.zeros(0), parent=[0], kinds=[0], index=[0],

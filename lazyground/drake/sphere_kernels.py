@@ -28,7 +28,7 @@ PRISMATIC_KIND = 1  # lazyground.drake.chain.PRISMATIC (checked in pack)
 # int header: counts, then offsets of each float and int block
 _M, _N, _G, _S, _O, _P, _I = range(7)
 _FLOAT_BLOCKS = ("K", "F", "gR", "go", "ghalf", "ground", "grad", "sc", "sr", "oR", "oo", "ohalf", "oround",
-                 "ac", "ah", "env", "self_thr", "ic", "ir", "below")
+                 "ac", "ah", "env", "self_thr", "ic", "ir", "below", "reach2")
 _INT_BLOCKS = ("parent", "kinds", "index", "slot", "node", "start", "gcyl", "ocyl", "mover", "other", "istart",
                "gexact", "oexact")
 COLLIDES = -2  # a row's code when a pair is proven to collide (see _row)
@@ -106,7 +106,7 @@ def _forward(q, fd, idata, Rs, ps, Rb, pb):
 
 
 @njit(cache=True)
-def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, pairs, cap):
+def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, gap, pairs, cap):
     """Open pairs of one configuration into ``pairs``; returns their count (0: certified; -1: more than ``cap``;
     COLLIDES: a pair proven closer than Drake's padding, by a sphere inside a moving geometry reaching into the
     exact solid of the other side, ``below`` under the pair's threshold)."""
@@ -124,8 +124,9 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, pairs, cap):
     oo = fd[f[10]:f[10] + 3 * O].reshape((O, 3))
     ohalf = fd[f[11]:f[11] + 3 * O].reshape((O, 3))
     oround = fd[f[12]:f[12] + O]
-    ac = fd[f[13]:f[13] + 3 * O].reshape((O, 3))
-    ah = fd[f[14]:f[14] + 3 * O].reshape((O, 3))
+    ac = fd[f[13]:f[13] + 3 * O].reshape((3, O))
+    ah = fd[f[14]:f[14] + 3 * O].reshape((3, O))
+    reach2 = fd[f[20]:f[20] + G * O].reshape((G, O))
     env = fd[f[15]:f[15] + G * O].reshape((G, O))
     sthr = fd[f[16]:f[16] + P]
     ic = fd[f[17]:f[17] + 3 * I].reshape((I, 3))
@@ -148,16 +149,17 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, pairs, cap):
     count = 0
     for g in range(G):
         cx, cy, cz, rg = centre[g, 0], centre[g, 1], centre[g, 2], grad[g]
+        # the bounding sphere against every obstacle's world box at once (no branches: vectorised); reach2 is
+        # (radius + threshold)^2, or -1 for a pair Drake does not check
         for o in range(O):
+            dx = max(abs(cx - ac[0, o]) - ah[0, o], 0.0)
+            dy = max(abs(cy - ac[1, o]) - ah[1, o], 0.0)
+            dz = max(abs(cz - ac[2, o]) - ah[2, o], 0.0)
+            gap[o] = dx * dx + dy * dy + dz * dz - reach2[g, o]
+        for o in range(O):
+            if gap[o] > 0.0:
+                continue
             thr = env[g, o]
-            if thr == -np.inf:
-                continue
-            dx = max(abs(cx - ac[o, 0]) - ah[o, 0], 0.0)
-            dy = max(abs(cy - ac[o, 1]) - ah[o, 1], 0.0)
-            dz = max(abs(cz - ac[o, 2]) - ah[o, 2], 0.0)
-            reach = rg + thr
-            if dx * dx + dy * dy + dz * dz > reach * reach:
-                continue
             vx, vy, vz = cx - oo[o, 0], cy - oo[o, 1], cz - oo[o, 2]
             x0 = oR[o, 0, 0] * vx + oR[o, 1, 0] * vy + oR[o, 2, 0] * vz
             x1 = oR[o, 0, 1] * vx + oR[o, 1, 1] * vy + oR[o, 2, 1] * vz
@@ -244,7 +246,7 @@ def _spheres(g, b, Rb, pb, sc, start, sph):
 def work_size(idata: np.ndarray) -> int:
     """Floats of scratch space a call needs (see _views)."""
     m, n, G, S = idata[_M], idata[_N], idata[_G], idata[_S]
-    return int(12 * (m + 1) + 12 * n + 4 * G + 3 * S + 9)
+    return int(12 * (m + 1) + 12 * n + 4 * G + 3 * S + 9 + idata[_O])
 
 
 @njit(cache=True)
@@ -268,43 +270,45 @@ def _views(idata, work):
     done = work[a:a + G]
     a += G
     W = work[a:a + 9].reshape((3, 3))
+    a += 9
+    gap = work[a:a + idata[_O]]
     Rs[0] = 0.0
     Rs[0, 0, 0] = Rs[0, 1, 1] = Rs[0, 2, 2] = 1.0
     ps[0] = 0.0
-    return Rs, ps, Rb, pb, centre, sph, done, W
+    return Rs, ps, Rb, pb, centre, sph, done, W, gap
 
 
 @njit(cache=True)
 def certify_rows(Q, fd, idata, work, pairs):
     """Per row of plant positions Q: the count of its open pairs (0: certified, -1: more than pairs.shape[1],
     COLLIDES: proven colliding), the pairs in ``pairs[row]``."""
-    Rs, ps, Rb, pb, centre, sph, done, W = _views(idata, work)
+    Rs, ps, Rb, pb, centre, sph, done, W, gap = _views(idata, work)
     out = np.empty(Q.shape[0], np.int64)
     cap = pairs.shape[1]
     for r in range(Q.shape[0]):
-        out[r] = _row(Q[r], fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, pairs[r], cap)
+        out[r] = _row(Q[r], fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, gap, pairs[r], cap)
     return out
 
 
 @njit(cache=True)
 def certify_one(q, fd, idata, work, pairs):
     """:func:`certify_rows` of one configuration; its open pairs in ``pairs[:-1]``."""
-    Rs, ps, Rb, pb, centre, sph, done, W = _views(idata, work)
-    return _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, pairs, len(pairs) - 1)
+    Rs, ps, Rb, pb, centre, sph, done, W, gap = _views(idata, work)
+    return _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, gap, pairs, len(pairs) - 1)
 
 
 @njit(cache=True)
 def first_open(qa, qb, n, order, begin, fd, idata, work, pairs):
     """The first position p >= ``begin`` of ``order`` whose configuration qa + (order[p] / n) (qb - qa) is not
     certified (its code in ``pairs[-1]``, its open pairs before), or -1 when all are."""
-    Rs, ps, Rb, pb, centre, sph, done, W = _views(idata, work)
+    Rs, ps, Rb, pb, centre, sph, done, W, gap = _views(idata, work)
     q = np.empty(len(qa))
     cap = len(pairs) - 1
     for p in range(begin, len(order)):
         t = order[p] / n
         for j in range(len(qa)):
             q[j] = qa[j] + t * (qb[j] - qa[j])
-        c = _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, pairs, cap)
+        c = _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, gap, pairs, cap)
         if c != 0:
             pairs[-1] = c
             return p
