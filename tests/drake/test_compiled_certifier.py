@@ -38,3 +38,13 @@ def test_edges_at_any_resolution_on_one_checker():
     world.edge_free(a, b, 0.05)
     world.edge_free(a, b, 0.01)
     assert not world._extra
+
+
+def test_the_compile_is_reported_once_per_process():
+    """A built world has its kernels; the time they took is reported (part of the build, not of a request)."""
+    from lazyground.drake import compiled
+
+    DrakeWorld(load_scene("yaml_scenes/ur5e_tabletop.yaml"), visual=False)
+    seconds, fresh = compiled.compile_report()
+    assert seconds > 0.0 and isinstance(fresh, bool)
+    assert compiled.warm_up() == 0.0  # once per process
