@@ -14,7 +14,6 @@ import time
 import numpy as np
 from pydrake.planning import LinearDistanceAndInterpolationProvider, SceneGraphCollisionChecker
 
-from lazyground.drake import sphere_kernels as kernels
 from lazyground.drake.compiled import COLLIDES, CompiledCertifier
 from lazyground.drake.coordinates import Coordinates
 from lazyground.drake.parallel import parallel_batch
@@ -62,7 +61,6 @@ class DrakeChecker:
         # in compiled code (lazyground.drake.compiled)
         self.certifier = sphere_certifier(self.drake) if certify else None
         self.compiled = CompiledCertifier(self.certifier) if self.certifier is not None else None
-        self._weights = np.ascontiguousarray(coordinates.plant_weights())
         self._orders = {}  # bisection order of an edge's steps, by step count (_bisection)
         self.certified = 0  # configurations the certifier proved free
         self._pairs = {}  # the certifier's pairs as SceneGraph's (id, id, padding), as they come up (_pair)
@@ -242,7 +240,7 @@ class DrakeChecker:
     def _certified_edge(self, a: np.ndarray, b: np.ndarray, resolution: float, fraction: bool):
         """Drake's ``CheckEdgeCollisionFree`` (``fraction``: ``MeasureEdgeCollisionFree``'s free fraction) at
         ``resolution``, with the certifier: the same steps (q_k = qa + k / n (qb - qa), k = 0..n, n =
-        max(1, ceil(||(qb - qa) .* w|| / resolution)) as Drake's linear interpolation), certified in one compiled
+        max(1, ceil(Drake's distance / resolution)) as Drake's linear interpolation), certified in one compiled
         call in bisection order (sequentially for the fraction) up to the first one it cannot prove, which
         SceneGraph decides (:meth:`_open_free`) unless it proves a collision there; then on from there. So the answer is Drake's: a step is
         called colliding by Drake or by a proof of it, and every other step is proven free."""
@@ -252,7 +250,8 @@ class DrakeChecker:
         a = np.asarray(a, float)
         qa = self.coordinates.full(a)
         qb = self.coordinates.full(a + self.coordinates.space.difference(a, b))
-        n = max(1, int(np.ceil(kernels.edge_steps(qa, qb, self._weights) / resolution)))
+        # Drake's own distance: a sum in another order can differ in the last bit, and so the step count
+        n = max(1, int(np.ceil(self.drake.ComputeConfigurationDistance(qa, qb) / resolution)))
         order = np.arange(n + 1) if fraction else self._bisection(n)
         begin, out = 0, (1.0 if fraction else True)
         while True:

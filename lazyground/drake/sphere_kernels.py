@@ -313,13 +313,3 @@ def first_open(qa, qb, n, order, begin, fd, idata, work, pairs):
             pairs[-1] = c
             return p
     return -1
-
-
-@njit(cache=True)
-def edge_steps(qa, qb, w):
-    """Drake's step count numerator: the weighted distance ||(qb - qa) .* w|| (LinearDistanceAndInterpolationProvider)."""
-    s = 0.0
-    for j in range(len(qa)):
-        d = (qb[j] - qa[j]) * w[j]
-        s += d * d
-    return np.sqrt(s)
