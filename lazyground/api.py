@@ -65,6 +65,7 @@ def plan(
         SceneError: the scene file is invalid.
         GroundingError: the request does not ground in the scene.
     """
+    t_call = time.perf_counter()
     if not isinstance(scene, Scene):
         scene = load_scene(scene)
     seed = scene.planner.seed if seed is None else coerce_setting("seed", seed)
@@ -75,4 +76,4 @@ def plan(
     worlds = Worlds(scene, world)
     outcome = tasks.run(scene, g, settings, np.random.default_rng(seed), worlds, seed=seed, keep_tree=keep_tree)
     return PlanReport(request, scene.name, seed, settings, g, outcome.result, outcome.joint_names, grounding_s,
-                      worlds.setup_s, outcome)
+                      worlds.setup_s, outcome, total_s=time.perf_counter() - t_call - worlds.setup_s)
