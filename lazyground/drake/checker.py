@@ -240,7 +240,8 @@ class DrakeChecker:
     def _certified_edge(self, a: np.ndarray, b: np.ndarray, resolution: float, fraction: bool):
         """Drake's ``CheckEdgeCollisionFree`` (``fraction``: ``MeasureEdgeCollisionFree``'s free fraction) at
         ``resolution``, with the certifier: the same steps (q_k = qa + k / n (qb - qa), k = 0..n, n =
-        max(1, ceil(Drake's distance / resolution)) as Drake's linear interpolation), certified in one compiled
+        max(1, ceil(Drake's distance / resolution)); the certifier's margin covers the last bit by which Drake's
+        interpolation may differ, and a step it leaves open is Drake's interpolation), certified in one compiled
         call in bisection order (sequentially for the fraction) up to the first one it cannot prove, which
         SceneGraph decides (:meth:`_open_free`) unless it proves a collision there; then on from there. So the answer is Drake's: a step is
         called colliding by Drake or by a proof of it, and every other step is proven free."""
@@ -259,7 +260,8 @@ class DrakeChecker:
             if p < 0:
                 break
             k = int(order[p])
-            q = qa if k == 0 else qb if k == n else qa + (k / n) * (qb - qa)
+            # Drake's own interpolation: ours differs in the last bit, which decides a step on the boundary
+            q = qa if k == 0 else qb if k == n else self.drake.InterpolateBetweenConfigurations(qa, qb, k / n)
             if code == COLLIDES or not self._open_free(q, pairs):
                 out = max(0.0, (k - 1) / n) if fraction else False
                 break
