@@ -98,8 +98,12 @@ class DrakeChecker:
             return self.config_free(q)
         t0 = time.perf_counter()
         q_full = self.coordinates.full(q)
-        code = self.compiled.certify_one(q_full)[0] if self.compiled is not None else -1
-        free = code == 0 or code != COLLIDES and not self._penetrates(q_full)
+        if self.compiled is None:
+            free = not self._penetrates(q_full)
+        else:  # what the certifier leaves open: the open pairs' penetration (no other pair comes within the padding)
+            code, pairs = self.compiled.certify_one(q_full)
+            free = code == 0 or code != COLLIDES and (
+                self._open_free(q_full, pairs, unpadded=True) if code > 0 else not self._penetrates(q_full))
         self.check_time += time.perf_counter() - t0
         self.checks += 1
         return free
@@ -160,7 +164,7 @@ class DrakeChecker:
             return False
         return self._open_free(q_full, pairs)
 
-    def _open_free(self, q_full: np.ndarray, pairs: np.ndarray | None) -> bool:
+    def _open_free(self, q_full: np.ndarray, pairs: np.ndarray | None, unpadded: bool = False) -> bool:
         """Drake's answer at ``q_full``, which the certifier left open, from SceneGraph's signed distance of its
         open pairs only (None: too many to list, Drake's own check).
 
@@ -169,7 +173,8 @@ class DrakeChecker:
         the open pairs decide. SceneGraph's distance of one pair is the computation its all-pairs query makes
         for that pair (the same narrow-phase callback and request; the same numbers bit for bit on ~97k pairs
         of near-contact Fetch and Panda configurations, #16). A pair SceneGraph cannot measure alone (it
-        throws) sends the configuration to the checker's own check.
+        throws) sends the configuration to the checker's own check. ``unpadded``: whether they penetrate
+        (distance <= 0), for :meth:`config_unpadded_free`.
         """
         if pairs is None:
             return self._free(q_full)
@@ -177,7 +182,7 @@ class DrakeChecker:
         try:
             for k in pairs:
                 a, b, padding = self._pair(k)
-                if self._query.ComputeSignedDistancePairClosestPoints(a, b).distance <= padding:
+                if self._query.ComputeSignedDistancePairClosestPoints(a, b).distance <= (0.0 if unpadded else padding):
                     return False
         except RuntimeError:
             return bool(self.drake.CheckConfigCollisionFree(q_full))
