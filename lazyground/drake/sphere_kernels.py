@@ -106,7 +106,7 @@ def _forward(q, fd, idata, Rs, ps, Rb, pb):
 
 
 @njit(cache=True)
-def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, gap, pairs, cap):
+def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap):
     """Open pairs of one configuration into ``pairs``; returns their count (0: certified; -1: more than ``cap``;
     COLLIDES: a pair proven closer than Drake's padding, by a sphere inside a moving geometry reaching into the
     exact solid of the other side, ``below`` under the pair's threshold)."""
@@ -186,6 +186,9 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, gap, pairs, cap):
                 x1 = oR[o, 0, 1] * vx + oR[o, 1, 1] * vy + oR[o, 2, 1] * vz
                 x2 = oR[o, 0, 2] * vx + oR[o, 1, 2] * vy + oR[o, 2, 2] * vz
                 if _solid_distance(x0, x1, x2, ohalf[o, 0], ohalf[o, 1], ohalf[o, 2], oround[o], ocyl[o]) - sr[s] - thr <= 0.0:
+                    _solid_axes(Rb, node[g], gR, g, A)
+                    if _box_gap(A, centre[g], ghalf[g], oR[o], oo[o], ohalf[o]) - ground[g] - oround[o] - thr > 0.0:
+                        break  # the two boxes around the solids are apart: clear
                     if count >= cap:
                         return -1
                     pairs[count] = g * O + o
@@ -227,12 +230,55 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, gap, pairs, cap):
             x1 = W[0, 1] * vx + W[1, 1] * vy + W[2, 1] * vz
             x2 = W[0, 2] * vx + W[1, 2] * vy + W[2, 2] * vz
             if _solid_distance(x0, x1, x2, ghalf[h, 0], ghalf[h, 1], ghalf[h, 2], ground[h], gcyl[h]) - sr[s] - thr <= 0.0:
+                _solid_axes(Rb, node[g], gR, g, A)
+                if _box_gap(A, centre[g], ghalf[g], W, centre[h], ghalf[h]) - ground[g] - ground[h] - thr > 0.0:
+                    break
                 if count >= cap:
                     return -1
                 pairs[count] = G * O + k
                 count += 1
                 break
     return count
+
+
+@njit(cache=True, inline="always")
+def _solid_axes(Rb, b, gR, g, A):
+    """World axes (columns) of geometry g's solid on body b: Rb[b] @ gR[g], into A."""
+    for r in range(3):
+        for c in range(3):
+            A[r, c] = Rb[b, r, 0] * gR[g, 0, c] + Rb[b, r, 1] * gR[g, 1, c] + Rb[b, r, 2] * gR[g, 2, c]
+
+
+@njit(cache=True)
+def _box_gap(A, ca, ha, B, cb, hb):
+    """A lower bound of the distance between two boxes (world axes as the columns of A and B, centres, half
+    extents): the largest gap along the 15 axes of the separating-axis test. Along any unit axis L the boxes
+    span intervals of half widths sum_i h_i |L . axis_i| about L . centre, and two points of them are at least
+    the gap between the intervals apart. A cylinder's box (r, r, h) and a rounded box's core enclose them,
+    so the bound holds for the solids less their rounding."""
+    dx, dy, dz = cb[0] - ca[0], cb[1] - ca[1], cb[2] - ca[2]
+    best = -np.inf
+    for k in range(15):
+        if k < 3:
+            lx, ly, lz = A[0, k], A[1, k], A[2, k]
+        elif k < 6:
+            lx, ly, lz = B[0, k - 3], B[1, k - 3], B[2, k - 3]
+        else:
+            i, j = (k - 6) // 3, (k - 6) % 3
+            lx = A[1, i] * B[2, j] - A[2, i] * B[1, j]
+            ly = A[2, i] * B[0, j] - A[0, i] * B[2, j]
+            lz = A[0, i] * B[1, j] - A[1, i] * B[0, j]
+            norm = np.sqrt(lx * lx + ly * ly + lz * lz)
+            if norm < 1e-6:
+                continue
+            lx, ly, lz = lx / norm, ly / norm, lz / norm
+        g = abs(lx * dx + ly * dy + lz * dz)
+        for c in range(3):
+            g -= ha[c] * abs(lx * A[0, c] + ly * A[1, c] + lz * A[2, c])
+            g -= hb[c] * abs(lx * B[0, c] + ly * B[1, c] + lz * B[2, c])
+        if g > best:
+            best = g
+    return best
 
 
 @njit(cache=True, inline="always")
@@ -246,7 +292,7 @@ def _spheres(g, b, Rb, pb, sc, start, sph):
 def work_size(idata: np.ndarray) -> int:
     """Floats of scratch space a call needs (see _views)."""
     m, n, G, S = idata[_M], idata[_N], idata[_G], idata[_S]
-    return int(12 * (m + 1) + 12 * n + 4 * G + 3 * S + 9 + idata[_O])
+    return int(12 * (m + 1) + 12 * n + 4 * G + 3 * S + 18 + idata[_O])
 
 
 @njit(cache=True)
@@ -271,44 +317,46 @@ def _views(idata, work):
     a += G
     W = work[a:a + 9].reshape((3, 3))
     a += 9
+    A = work[a:a + 9].reshape((3, 3))
+    a += 9
     gap = work[a:a + idata[_O]]
     Rs[0] = 0.0
     Rs[0, 0, 0] = Rs[0, 1, 1] = Rs[0, 2, 2] = 1.0
     ps[0] = 0.0
-    return Rs, ps, Rb, pb, centre, sph, done, W, gap
+    return Rs, ps, Rb, pb, centre, sph, done, W, A, gap
 
 
 @njit(cache=True)
 def certify_rows(Q, fd, idata, work, pairs):
     """Per row of plant positions Q: the count of its open pairs (0: certified, -1: more than pairs.shape[1],
     COLLIDES: proven colliding), the pairs in ``pairs[row]``."""
-    Rs, ps, Rb, pb, centre, sph, done, W, gap = _views(idata, work)
+    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = _views(idata, work)
     out = np.empty(Q.shape[0], np.int64)
     cap = pairs.shape[1]
     for r in range(Q.shape[0]):
-        out[r] = _row(Q[r], fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, gap, pairs[r], cap)
+        out[r] = _row(Q[r], fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs[r], cap)
     return out
 
 
 @njit(cache=True)
 def certify_one(q, fd, idata, work, pairs):
     """:func:`certify_rows` of one configuration; its open pairs in ``pairs[:-1]``."""
-    Rs, ps, Rb, pb, centre, sph, done, W, gap = _views(idata, work)
-    return _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, gap, pairs, len(pairs) - 1)
+    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = _views(idata, work)
+    return _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, len(pairs) - 1)
 
 
 @njit(cache=True)
 def first_open(qa, qb, n, order, begin, fd, idata, work, pairs):
     """The first position p >= ``begin`` of ``order`` whose configuration qa + (order[p] / n) (qb - qa) is not
     certified (its code in ``pairs[-1]``, its open pairs before), or -1 when all are."""
-    Rs, ps, Rb, pb, centre, sph, done, W, gap = _views(idata, work)
+    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = _views(idata, work)
     q = np.empty(len(qa))
     cap = len(pairs) - 1
     for p in range(begin, len(order)):
         t = order[p] / n
         for j in range(len(qa)):
             q[j] = qa[j] + t * (qb[j] - qa[j])
-        c = _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, gap, pairs, cap)
+        c = _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap)
         if c != 0:
             pairs[-1] = c
             return p
