@@ -53,19 +53,7 @@ class CompiledCertifier:
     def __init__(self, cert):
         assert PRISMATIC == kernels.PRISMATIC_KIND
         warm_up()
-        tree, solids, obstacles, pairs = cert.tree, cert._solids, cert._obstacles, cert._self
-        G, O = cert._env_threshold.shape
-        istart, ic, ir, gexact, oexact = cert.inside
-        self.fd, self.idata = kernels.pack(dict(
-            counts=dict(m=len(tree.kinds), n=len(tree.slot), G=G, S=cert.spheres, O=O, P=len(pairs.mover),
-                        I=len(ir)),
-            ic=ic, ir=ir, below=[cert.collide_below], istart=istart, gexact=gexact, oexact=oexact,
-            K=tree.K[:, :3, :], F=tree.F[:, :3, :], gR=solids.R, go=solids.o, ghalf=solids.half,
-            ground=solids.rounding, grad=solids.radius, sc=cert._centers, sr=cert._radii, oR=obstacles.R,
-            oo=obstacles.o, ohalf=obstacles.half, oround=obstacles.rounding, ac=cert._aabb_centre.T,
-            ah=cert._aabb_half.T, reach2=cert._env_reach2, env=cert._env_threshold, self_thr=pairs.threshold, parent=tree.parent,
-            kinds=tree.kinds, index=tree.index, slot=tree.slot, node=cert._node, start=cert._start,
-            gcyl=solids.cylinder, ocyl=obstacles.cylinder, mover=pairs.mover, other=pairs.other))
+        self.fd, self.idata = kernels.pack(cert.kernel_blocks())
         self._open = np.zeros(CAP + 1, np.int64)
         self._work = np.zeros(kernels.work_size(self.idata))
 

@@ -137,6 +137,21 @@ class SphereCertifier:
         self._pair_count = np.bincount(sides, minlength=len(node))
         self._pair_start = np.cumsum(self._pair_count) - self._pair_count
 
+    def kernel_blocks(self) -> dict:
+        """Every array the compiled test needs (lazyground.drake.sphere_kernels.pack's blocks)."""
+        tree, solids, obstacles, pairs = self.tree, self._solids, self._obstacles, self._self
+        G, O = self._env_threshold.shape
+        istart, ic, ir, gexact, oexact = self.inside
+        return dict(
+            counts=dict(m=len(tree.kinds), n=len(tree.slot), G=G, S=self.spheres, O=O, P=len(pairs.mover), I=len(ir)),
+            K=tree.K[:, :3, :], F=tree.F[:, :3, :], gR=solids.R, go=solids.o, ghalf=solids.half,
+            ground=solids.rounding, grad=solids.radius, sc=self._centers, sr=self._radii, oR=obstacles.R,
+            oo=obstacles.o, ohalf=obstacles.half, oround=obstacles.rounding, ac=self._aabb_centre.T,
+            ah=self._aabb_half.T, reach2=self._env_reach2, env=self._env_threshold, self_thr=pairs.threshold,
+            ic=ic, ir=ir, below=[self.collide_below], parent=tree.parent, kinds=tree.kinds, index=tree.index,
+            slot=tree.slot, node=self._node, start=self._start, gcyl=solids.cylinder, ocyl=obstacles.cylinder,
+            mover=pairs.mover, other=pairs.other, istart=istart, gexact=gexact, oexact=oexact)
+
     @property
     def spheres(self) -> int:
         return len(self._radii)

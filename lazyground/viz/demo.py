@@ -44,7 +44,7 @@ def run_demo(out_dir: Path, seed: int, say: Callable[[str], None]) -> int:
     out_dir.mkdir(parents=True, exist_ok=True)
     all_solved = True
     if compiled.warm_up() and compiled.compile_report()[1]:  # before any request, so no request's time holds it
-        print(f"compiled the collision kernels in {compiled.compile_report()[0]:.0f} s (once per machine: numba caches them)\n")
+        say(f"compiled the collision kernels in {compiled.compile_report()[0]:.0f} s (once per machine: numba caches them)\n")
     for demo in DEMOS:
         scene_path = SCENES / demo.scene
         if not scene_path.exists():
