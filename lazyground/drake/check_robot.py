@@ -21,14 +21,12 @@ from pydrake.geometry import Role
 from pydrake.planning import RobotDiagramBuilder, SceneGraphCollisionChecker
 
 from lazyground.drake.coordinates import unbounded_positions
-from lazyground.drake.robot_model import add_robot, allow_collisions
+from lazyground.drake.robot_model import add_robot, allow_collisions, weld_base
 from lazyground.robots.defaults import defaults_for_model
 from lazyground.robots.srdf import read_srdf
 from lazyground.scene.typed_yaml import SceneError
 
 PADDING = 0.0  # m: self-collision at named poses is reported at contact, as MoveIt does
-UNSUPPORTED_URDF = {"transmission": "transmissions (actuation) are ignored", "gazebo": "gazebo extensions are ignored",
-                    "ros2_control": "ros2_control blocks are ignored"}
 
 
 @dataclass(frozen=True)
@@ -69,7 +67,7 @@ class RobotCheck:
 
     def lines(self) -> list[str]:
         """The human report, verdict last."""
-        out = [f"model: {self.model} (base {self.base_link} welded to the world)", f"DOF: {self.dof}", "joints:"]
+        out = [f"model: {self.model} (base {self.base_link})", f"DOF: {self.dof}", "joints:"]
         for j in self.joints:
             limits = ", ".join(f"[{lo:.4g}, {hi:.4g}]" for lo, hi in zip(j.lower, j.upper))
             speed = ", ".join(f"{v:.4g}" for v in j.velocity)
@@ -90,11 +88,13 @@ class RobotCheck:
         return out
 
 
-def check_robot(model: str | Path, srdf: str | Path | None = None, packages: dict[str, Path] | None = None) -> RobotCheck:
+def check_robot(model: str | Path, srdf: str | Path | None = None, packages: dict[str, Path] | None = None,
+                xacro_args: dict | None = None) -> RobotCheck:
     """Load ``model`` and check it (see module docstring).
 
     Args:
-        model: a URDF or SDF file.
+        model: a URDF, SDF or xacro file.
+        xacro_args: ``arg`` values of a xacro file.
         srdf: a MoveIt SRDF (default: the robot.yaml's, if any).
         packages: package folders by name, for ``package://`` URIs.
     Returns:
@@ -108,17 +108,17 @@ def check_robot(model: str | Path, srdf: str | Path | None = None, packages: dic
         srdf = defaults.path(defaults.srdf)
     builder = RobotDiagramBuilder(time_step=0.0)
     plant = builder.plant()
-    instance, prepared = add_robot(builder.parser(), model, packages, "check-robot")
-    base = defaults.base_link if defaults is not None else plant.get_body(plant.GetBodyIndices(instance)[0]).name()
-    if not plant.HasBodyNamed(base, instance):
+    instance, prepared = add_robot(builder.parser(), model, packages, "check-robot", xacro_args)
+    base = defaults.base_link if defaults is not None else "base_link"  # as a scene without robot.base_link
+    if defaults is not None and not plant.HasBodyNamed(base, instance):
         raise SceneError(f"check-robot: {model}: no base link {base!r}")
-    try:
-        plant.WeldFrames(plant.world_frame(), plant.GetFrameByName(base, instance))
-    except RuntimeError:  # already jointed to the world (a planar car): check it as it is
-        pass
+    weld_note = weld_base(plant, instance, base, None, "check-robot")  # what plan does without robot.base
+    if weld_note is None:
+        base = "none: the model joints itself to the world"
     problems: list[str] = []
-    notes: list[str] = []
+    notes: list[str] = list(prepared.notes) + ([weld_note] if weld_note else [])
     unsupported = _unsupported_urdf(prepared.text) if prepared.file_type == "urdf" else []
+    unsupported += [f"<{tag}> x{n} removed before loading (planning does not use it)" for tag, n in sorted(prepared.stripped.items())]
     poses = dict(defaults.named_poses) if defaults is not None else {}
     if srdf is not None:
         parsed = read_srdf(srdf)
@@ -205,8 +205,7 @@ def _colliding_pairs(checker, q: np.ndarray) -> list[tuple[str, str]]:
 
 def _unsupported_urdf(text: str) -> list[str]:
     root = ET.fromstring(text)
-    found = Counter(child.tag for child in root)
-    out = [f"{what} (x{found[tag]})" for tag, what in UNSUPPORTED_URDF.items() if found[tag]]
+    out = []
     if any(j.find("mimic") is not None for j in root.iter("joint")):
         out.append("mimic joints are planned as independent joints")
     return out

@@ -25,11 +25,14 @@ class Coordinates:
         space: limits, wrapping and metric weights of the planned coordinates.
         planned: indices of the planned coordinates in the plant's position vector.
         q_full: the plant's position vector at the start (unplanned positions stay here).
+        turns: per planned coordinate, whether it is a revolute angle that does not wrap in the
+            space, where q + 2 pi k is the same configuration (goals prefer the nearest, planning/turns.py).
     """
 
     space: ConfigSpace
     planned: tuple[int, ...]
     q_full: np.ndarray
+    turns: np.ndarray | None = None
 
     @property
     def start(self) -> np.ndarray:
@@ -76,6 +79,10 @@ def coordinates_from_plant(plant, robot, scene: Scene) -> Coordinates:
     lower = plant.GetPositionLowerLimits().copy()
     upper = plant.GetPositionUpperLimits().copy()
     wrap, joint_of = _joint_layout(plant, robot)
+    revolute = np.zeros(plant.num_positions(), bool)
+    for ji in plant.GetJointIndices(robot):
+        if isinstance(plant.get_joint(ji), RevoluteJoint):
+            revolute[plant.get_joint(ji).position_start()] = True
     planned = spec.planned_joints
     if planned is not None:
         unknown = [j for j in planned if j not in joint_of and j not in names]
@@ -101,7 +108,7 @@ def coordinates_from_plant(plant, robot, scene: Scene) -> Coordinates:
             raise SceneError(f"{source}: robot.limits: position {names[i]!r} is unbounded; give its limits")
     weights = np.array([spec.weights.get(names[i], 1.0) for i in idx])
     space = ConfigSpace(tuple(names[i] for i in idx), lower[idx], upper[idx], weights, wrap[idx])
-    return Coordinates(space, tuple(idx), q_full)
+    return Coordinates(space, tuple(idx), q_full, revolute[idx] & ~wrap[idx])
 
 
 def unbounded_positions(plant, robot) -> list[str]:

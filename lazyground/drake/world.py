@@ -50,7 +50,9 @@ class DrakeWorld:
         self.scene = scene
         self.attached = attached
         self.padding = scene.planner.collision_padding if padding is None else padding
-        diagram, self.robot = build_diagram(scene, attached, visual, extend_builder)
+        notes: list[str] = []
+        diagram, self.robot = build_diagram(scene, attached, visual, extend_builder, notes)
+        self.model_notes = tuple(notes)  # what was done to the robot model that the scene did not say
         self.coordinates = coordinates_from_plant(diagram.plant(), self.robot, scene)
         self.checker = DrakeChecker(diagram, self.robot, self.coordinates, self.padding, edge_resolution)
         self.plant = self.checker.drake.plant()

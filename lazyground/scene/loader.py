@@ -75,7 +75,10 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
     # imported here: lazyground.robots reads robot.yaml through this package's typed_yaml
     from lazyground.robots.complete import complete_robot
 
-    robot = replace(scene.robot, model=str(model), **(robot_overrides or {}))
+    overrides = dict(robot_overrides or {})
+    if "xacro_args" in overrides:  # --xacro-arg wins key by key over the scene's robot.xacro_args
+        overrides["xacro_args"] = {**scene.robot.xacro_args, **overrides["xacro_args"]}
+    robot = replace(scene.robot, model=str(model), **overrides)
     robot = complete_robot(robot, scene_dir, source)
     return replace(scene, robot=robot, obstacles=_absolute_meshes(scene.obstacles, scene_dir), source=source)
 

@@ -167,6 +167,7 @@ class RobotSpec:
     packages: dict[str, str] = field(default_factory=dict)  # package:// NAME -> folder (relative to the scene)
     srdf: str | None = None  # MoveIt SRDF: disable_collisions pairs and group_state named poses
     allowed_collisions: tuple[tuple[str, str], ...] = ()  # link pairs never checked against each other
+    xacro_args: dict[str, str | bool | int | float] = field(default_factory=dict)  # a .xacro model's arg values
 
     def validate(self) -> str | None:
         for name, (lo, hi) in self.limits.items():

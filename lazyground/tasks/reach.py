@@ -43,5 +43,5 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     stops = None if space.linear_edges or not result.solved else space.cusp_indices(result.path)
     result, motion = motion_for_world(world, result, settings, rng, stops=stops, car=None if stops is None else space)
     motion = with_car_shortcut(motion, cut)
-    notes = (motion.note,) if motion is not None and motion.note else ()
+    notes = world.model_notes + ((motion.note,) if motion is not None and motion.note else ())
     return Outcome(result, (Step(grounding.action, result, setup_s, motion=motion),), world.space.names, notes)
