@@ -1,0 +1,110 @@
+"""Issue #28: descriptions as they come plan "pick up a cup" unedited (tests/drake/robot_corpus.py).
+
+Each feature's robot plans over seeds (a success rate, iteration-capped), every shortened path
+re-checked at a tenth of the planner's edge resolution and no joint swept more than pi.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+pytest.importorskip("pydrake")
+
+from lazyground.api import plan  # noqa: E402
+from lazyground.drake.world import DrakeWorld  # noqa: E402
+from lazyground.planning import path_is_valid  # noqa: E402
+from lazyground.planning.turns import sweeps  # noqa: E402
+from lazyground.scene import load_scene  # noqa: E402
+from lazyground.scene.typed_yaml import SceneError  # noqa: E402
+from tests.drake import robot_corpus as corpus  # noqa: E402
+
+SEEDS = (0, 1, 2)
+MAX_ITERATIONS = 3000
+
+
+def _plans(scene, min_rate: float = 2 / 3):
+    world = DrakeWorld(scene, visual=False)
+    fine = scene.planner.edge_resolution / 10
+    solved, notes = 0, set()
+    for seed in SEEDS:
+        report = plan(scene, "pick up a cup", seed=seed, world=world, max_iterations=MAX_ITERATIONS)
+        notes.update(report.notes)
+        if not report.result.solved:
+            continue
+        solved += 1
+        assert path_is_valid(world.space, world, report.result.path, fine) == -1, f"seed {seed}: path collides at {fine:g}"
+        path = report.outcome.steps[0].motion.shortcut.path
+        assert path_is_valid(world.space, world, path, fine) == -1, f"seed {seed}: shortened path collides at {fine:g}"
+        assert sweeps(path).max() <= np.pi, f"seed {seed}: a joint sweeps {sweeps(path).max():.2f} rad"
+    assert solved / len(SEEDS) >= min_rate, f"{solved} of {len(SEEDS)} seeds solved"
+    return notes
+
+
+def test_xacro_with_required_argument_and_find_plans(tmp_path):
+    model = corpus.xacro_arm(tmp_path)
+    with pytest.raises(SceneError, match="xacro argument 'name' is required.*--xacro-arg name=VALUE"):
+        load_and_build = load_scene(corpus.cup_scene(tmp_path, model, "xacro_missing"))
+        DrakeWorld(load_and_build, visual=False)
+    scene = load_scene(corpus.cup_scene(tmp_path, model, "xacro_arm", xacro_args={"name": "my_arm", "tcp_offset": 0.125}))
+    _plans(scene)
+
+
+def test_xacro_expansion_is_cached_by_content(tmp_path, monkeypatch):
+    from lazyground.robots import xacro_file
+
+    monkeypatch.setenv("LAZYGROUND_CACHE", str(tmp_path / "cache"))
+    model = corpus.xacro_arm(tmp_path)
+    packages = {corpus.PACKAGE: model.parents[1]}
+    first = xacro_file.expand_xacro(model, {"name": "a"}, packages)
+    calls = []
+    monkeypatch.setattr(xacro_file, "_run_xacro", lambda *a: calls.append(a) or ("", []))
+    assert xacro_file.expand_xacro(model, {"name": "a"}, packages) == first and not calls  # a hit
+    macro = model.parent / "arm_macro.xacro"
+    macro.write_text(macro.read_text().replace("0.076", "0.077"))  # an included file changed: expanded again
+    xacro_file.expand_xacro(model, {"name": "a"}, packages)
+    assert len(calls) == 1
+
+
+def test_sdf_with_undeclared_drake_prefix_plans(tmp_path):
+    model = corpus.sdf_arm(tmp_path)
+    assert "xmlns:drake" not in model.read_text()
+    _plans(load_scene(corpus.cup_scene(tmp_path, model, "sdf_arm")))
+
+
+def test_mimic_finger_joints_plan(tmp_path):
+    _plans(load_scene(corpus.cup_scene(tmp_path, corpus.mimic_arm(tmp_path), "mimic_arm")))
+
+
+def test_continuous_joints_with_huge_limits_wrap(tmp_path):
+    scene = load_scene(corpus.cup_scene(tmp_path, corpus.continuous_arm(tmp_path), "continuous_arm"))
+    world = DrakeWorld(scene, visual=False)
+    wrapped = dict(zip(world.space.names, world.space.wrap))
+    assert wrapped["shoulder_pan_joint"] and wrapped["wrist_3_joint"] and not wrapped["elbow_joint"]
+    assert any("continuous joints wrap" in n for n in world.model_notes)
+    _plans(scene)
+
+
+def test_floating_base_is_welded_at_the_origin_with_a_note(tmp_path):
+    scene = load_scene(corpus.cup_scene(tmp_path, corpus.self_colliding_arm(tmp_path).with_name("hand_collides.urdf"),
+                                        "floating", floating=True,
+                                        allowed_collisions=[["wrist_3_link", "gripper_palm"]]))
+    notes = _plans(scene)
+    assert any("not welded to the world: base_link welded at the origin" in n for n in notes)
+
+
+def test_unloadable_visual_meshes_do_not_block_planning(tmp_path):
+    scene = load_scene(corpus.cup_scene(tmp_path, corpus.visual_meshes_arm(tmp_path), "visual_meshes"))
+    world = DrakeWorld(scene, visual=True)  # the viewer's world: visuals drawn from collision geometry
+    assert any("drawn from their collision geometry" in n for n in world.model_notes)
+    _plans(scene)
+
+
+def test_duplicate_transmissions_and_ros_tags_are_stripped(tmp_path):
+    _plans(load_scene(corpus.cup_scene(tmp_path, corpus.transmission_arm(tmp_path), "transmissions")))
+
+
+def test_self_colliding_hand_plans_with_allowed_pairs(tmp_path):
+    model = corpus.self_colliding_arm(tmp_path)
+    scene = load_scene(corpus.cup_scene(tmp_path, model, "hand", allowed_collisions=[["wrist_3_link", "gripper_palm"]]))
+    _plans(scene)
