@@ -88,6 +88,10 @@ def build_parser() -> argparse.ArgumentParser:
     c = sub.add_parser("check-robot", help="load a robot model (URDF/SDF) and report what lazyground makes of it")
     c.add_argument("model", help="a URDF, SDF or xacro file, or a bundled robot name (fetch, panda, ur5e)")
     _add_robot_source_options(c)
+    c.add_argument("--write-allowed", metavar="FILE", help="sample configurations and write the link pairs to stop "
+                   "checking (adjacent, always and never touching) as robot.allowed_collisions YAML, or an SRDF (.srdf)")
+    c.add_argument("--samples", type=int, metavar="N", help="configurations to sample (default 200; 1000 with --write-allowed)")
+    c.add_argument("--seed", type=int, default=0, help="seed of the sampled configurations (default 0)")
     c.add_argument("--debug", action="store_true", help="show tracebacks")
 
     d = sub.add_parser("demo", help="plan the bundled demo requests and write the visualisations")
@@ -246,7 +250,10 @@ def cmd_check_robot(args) -> int:
     _import_drake()
     from lazyground.drake.check_robot import check_robot
 
-    report = check_robot(model, args.srdf, parse_package_args(args.package), parse_xacro_args(args.xacro_arg))
+    if args.samples is not None and args.samples < 1:
+        raise UsageError(f"--samples {args.samples}: must be at least 1")
+    report = check_robot(model, args.srdf, parse_package_args(args.package), parse_xacro_args(args.xacro_arg),
+                         args.write_allowed, args.samples, args.seed)
     for line in report.lines():
         print(line)
     return EXIT_OK if report.ok else EXIT_BAD_INPUT

@@ -22,11 +22,14 @@ from pydrake.planning import RobotDiagramBuilder, SceneGraphCollisionChecker
 
 from lazyground.drake.coordinates import unbounded_positions
 from lazyground.drake.robot_model import add_robot, allow_collisions, weld_base
+from lazyground.drake.self_collision import ALWAYS, DEFAULT_SAMPLES, sample_pairs
+from lazyground.drake.self_collision import write_allowed as write_allowed_file
 from lazyground.robots.defaults import defaults_for_model
 from lazyground.robots.srdf import read_srdf
 from lazyground.scene.typed_yaml import SceneError
 
 PADDING = 0.0  # m: self-collision at named poses is reported at contact, as MoveIt does
+CHECK_SAMPLES = 200  # configurations sampled for always-touching link pairs (a few hundred ms)
 
 
 @dataclass(frozen=True)
@@ -89,12 +92,18 @@ class RobotCheck:
 
 
 def check_robot(model: str | Path, srdf: str | Path | None = None, packages: dict[str, Path] | None = None,
-                xacro_args: dict | None = None) -> RobotCheck:
+                xacro_args: dict | None = None, write_allowed: str | Path | None = None, samples: int | None = None,
+                seed: int = 0) -> RobotCheck:
     """Load ``model`` and check it (see module docstring).
 
     Args:
         model: a URDF, SDF or xacro file.
         xacro_args: ``arg`` values of a xacro file.
+        write_allowed: write the pairs to stop checking (adjacent, always and never touching) to this
+            file (.srdf, else YAML for robot.allowed_collisions); their always-touching pairs are then
+            not problems.
+        samples: configurations sampled for always-touching pairs (default CHECK_SAMPLES, or
+            self_collision.DEFAULT_SAMPLES when writing); ``seed`` seeds them.
         srdf: a MoveIt SRDF (default: the robot.yaml's, if any).
         packages: package folders by name, for ``package://`` URIs.
     Returns:
@@ -138,6 +147,18 @@ def check_robot(model: str | Path, srdf: str | Path | None = None, packages: dic
     if unbounded:  # planning refuses them without limits, which a scene may give: a note, not a problem
         notes.append(f"unbounded positions {', '.join(unbounded)} (no limits in the model): a scene that plans them "
                      f"must give robot.limits, e.g. limits: {{{unbounded[0]}: [lower, upper]}}")
+    rng = np.random.default_rng(seed)
+    n = samples or (DEFAULT_SAMPLES if write_allowed else CHECK_SAMPLES)
+    counts = sample_pairs(checker, diagram, instance, n, rng, seed)
+    always = counts.always()
+    if write_allowed:
+        written = write_allowed_file(write_allowed, plant.GetModelInstanceName(instance), counts)
+        notes.append(f"wrote {written} allowed pairs ({len(counts.adjacent)} adjacent, {len(always)} always, "
+                     f"{len(counts.never())} never touching over {n} samples, seed {seed}) to {write_allowed}")
+    elif always:
+        problems.append(f"{len(always)} link pair(s) touch in at least {ALWAYS:.0%} of {n} sampled configurations "
+                        f"(e.g. {always[0][0]}-{always[0][1]}), so nothing can plan: write the pairs to allow with "
+                        "check-robot MODEL --write-allowed allowed.yaml (or .srdf)")
     collisions = {}
     for name, pose in poses.items():
         q, problem = _pose_vector(plant, instance, pose, name)

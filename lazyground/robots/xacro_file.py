@@ -93,7 +93,7 @@ def expand_xacro(path: str | os.PathLike, args: dict | None = None, packages: di
     packages = {k: str(Path(v).resolve()) for k, v in (packages or {}).items()}
     key = _digest(path.read_bytes(), str(path).encode(), json.dumps(args, sort_keys=True).encode(),
                   json.dumps(packages, sort_keys=True).encode())
-    cached = _cache_dir() / f"{path.name}-{key}"
+    cached = _cache_dir() / f"{path.name.replace('.', '_')}-{key}"  # no dots: with_suffix adds .xml/.json
     text = _cached(cached)
     if text is not None:
         return text

@@ -63,16 +63,19 @@ def _urdf(root: Path, name: str, text: str) -> Path:
     return path
 
 
-def mimic_arm(root: Path) -> Path:
-    """Fingers on prismatic joints, the right one a ``<mimic>`` of the left."""
-    text = ur5e_text()
+def _moving_fingers(text: str, mimic: bool) -> str:
+    """Fingers on prismatic joints (finger_joint, right_finger_joint), the right one a ``<mimic>`` of the left if asked."""
     for side, sign in (("left", ""), ("right", "-")):
-        old = f'<joint name="gripper-{side}_finger" type="fixed">'
         joint = "finger_joint" if side == "left" else "right_finger_joint"
         extra = (f'<axis xyz="0 {sign}1 0"/><limit lower="-0.04" upper="0" effort="10" velocity="0.1"/>'
-                 + ('<mimic joint="finger_joint" multiplier="1" offset="0"/>' if side == "right" else ""))
-        text = text.replace(old, f'<joint name="{joint}" type="prismatic">{extra}')
-    return _urdf(root, "mimic.urdf", text)
+                 + ('<mimic joint="finger_joint" multiplier="1" offset="0"/>' if mimic and side == "right" else ""))
+        text = text.replace(f'<joint name="gripper-{side}_finger" type="fixed">', f'<joint name="{joint}" type="prismatic">{extra}')
+    return text
+
+
+def mimic_arm(root: Path) -> Path:
+    """Fingers on prismatic joints, the right one a ``<mimic>`` of the left."""
+    return _urdf(root, "mimic.urdf", _moving_fingers(ur5e_text(), mimic=True))
 
 
 def continuous_arm(root: Path) -> Path:
@@ -107,8 +110,12 @@ def transmission_arm(root: Path) -> Path:
 
 
 def self_colliding_arm(root: Path) -> Path:
-    """The hand without its Drake filter group (a ROS package has none): wrist 3 and the palm touch in every pose."""
-    return _urdf(root, "hand_collides.urdf", _without_filter_groups(ur5e_text()))
+    """Moving fingers whose knuckles (inside the palm) overlap each other in every pose, no Drake filter group (a ROS package has none)."""
+    text = _moving_fingers(_without_filter_groups(ur5e_text()), mimic=False)
+    for side, y in (("left", -0.0425), ("right", 0.0425)):
+        knuckle = f'<collision name="knuckle"><origin xyz="0 {y} -0.05"/><geometry><box size="0.03 0.14 0.02"/></geometry></collision>'
+        text = text.replace(f'<link name="gripper_{side}_finger">', f'<link name="gripper_{side}_finger">{knuckle}')
+    return _urdf(root, "hand_collides.urdf", text)
 
 
 def sdf_arm(root: Path) -> Path:

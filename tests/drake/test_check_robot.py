@@ -78,7 +78,9 @@ def test_unknown_package_names_it_and_the_fix(tmp_path, capsys):
     assert code == 2 and "\n" not in err
     assert f"unknown package 'arm_meshes' (known: {PACKAGE})" in err and "--package arm_meshes=DIR" in err
     code, lines, _ = _run(capsys, str(pkg / "urdf" / "my_arm.urdf"), "--package", f"arm_meshes={pkg}")
-    assert code == 0 and lines[-1].startswith("ok: my_arm.urdf loads with 6 DOF")
+    assert "DOF: 6" in lines  # it loads; without its SRDF the sensor link overlaps wrist 2 in every pose (#28)
+    assert code == 2 and lines[-1].startswith("1 problem(s): 1 link pair(s) touch in at least 95% of 200 sampled")
+    assert "fts_robotside-wrist_2_link" in lines[-1]
 
 
 def test_not_a_model_is_one_line(tmp_path, capsys):

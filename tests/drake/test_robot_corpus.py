@@ -57,6 +57,7 @@ def test_xacro_expansion_is_cached_by_content(tmp_path, monkeypatch):
     model = corpus.xacro_arm(tmp_path)
     packages = {corpus.PACKAGE: model.parents[1]}
     first = xacro_file.expand_xacro(model, {"name": "a"}, packages)
+    assert 'name="b"' in xacro_file.expand_xacro(model, {"name": "b"}, packages)  # other arguments: another entry
     calls = []
     monkeypatch.setattr(xacro_file, "_run_xacro", lambda *a: calls.append(a) or ("", []))
     assert xacro_file.expand_xacro(model, {"name": "a"}, packages) == first and not calls  # a hit
@@ -85,12 +86,14 @@ def test_continuous_joints_with_huge_limits_wrap(tmp_path):
     _plans(scene)
 
 
-def test_floating_base_is_welded_at_the_origin_with_a_note(tmp_path):
-    scene = load_scene(corpus.cup_scene(tmp_path, corpus.self_colliding_arm(tmp_path).with_name("hand_collides.urdf"),
-                                        "floating", floating=True,
-                                        allowed_collisions=[["wrist_3_link", "gripper_palm"]]))
-    notes = _plans(scene)
-    assert any("not welded to the world: base_link welded at the origin" in n for n in notes)
+def test_floating_base_is_welded_at_the_origin_with_a_note(tmp_path, capsys):
+    from lazyground.cli import main
+
+    model = corpus.mimic_arm(tmp_path)  # no link named world, no robot.base: the model floats
+    notes = _plans(load_scene(corpus.cup_scene(tmp_path, model, "floating", floating=True)))
+    note = "the model is not welded to the world: base_link welded at the origin"
+    assert any(note in n for n in notes)
+    assert main(["check-robot", str(model)]) == 0 and note in capsys.readouterr().out  # check-robot says what plan does
 
 
 def test_unloadable_visual_meshes_do_not_block_planning(tmp_path):
@@ -104,7 +107,22 @@ def test_duplicate_transmissions_and_ros_tags_are_stripped(tmp_path):
     _plans(load_scene(corpus.cup_scene(tmp_path, corpus.transmission_arm(tmp_path), "transmissions")))
 
 
-def test_self_colliding_hand_plans_with_allowed_pairs(tmp_path):
+def test_self_colliding_hand_is_reported_then_allowed_pairs_written_and_it_plans(tmp_path, capsys):
+    import yaml
+
+    from lazyground.cli import main
+
     model = corpus.self_colliding_arm(tmp_path)
-    scene = load_scene(corpus.cup_scene(tmp_path, model, "hand", allowed_collisions=[["wrist_3_link", "gripper_palm"]]))
-    _plans(scene)
+    assert main(["check-robot", str(model)]) == 2
+    assert "1 link pair(s) touch in at least 95%" in capsys.readouterr().out.splitlines()[-1]
+    scene = load_scene(corpus.cup_scene(tmp_path, model, "hand_start"))
+    report = plan(scene, "pick up a cup", seed=0, max_iterations=200)
+    assert not report.result.solved  # every configuration collides: nothing plans
+    allowed = tmp_path / "allowed.yaml"
+    assert main(["check-robot", str(model), "--write-allowed", str(allowed), "--samples", "300", "--seed", "1"]) == 0
+    pairs = yaml.safe_load(allowed.read_text())["allowed_collisions"]
+    assert ["gripper_left_finger", "gripper_right_finger"] in pairs
+    assert main(["check-robot", str(model), "--write-allowed", str(tmp_path / "hand.srdf"), "--samples", "50"]) == 0
+    assert 'link1="gripper_left_finger" link2="gripper_right_finger" reason="Always"' in (tmp_path / "hand.srdf").read_text()
+    _plans(load_scene(corpus.cup_scene(tmp_path, model, "hand", allowed_collisions=pairs)))
+    _plans(load_scene(corpus.cup_scene(tmp_path, model, "hand_srdf", srdf=str(tmp_path / "hand.srdf"))))
