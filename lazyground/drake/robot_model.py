@@ -23,7 +23,7 @@ from lazyground.scene.typed_yaml import SceneError
 
 
 def add_robot(parser: Parser, model: str | Path, packages: dict[str, Path] | None = None, where: str = "robot.model",
-              xacro_args: dict | None = None, visual: bool = True):
+              xacro_args: dict | None = None, visual: bool = True, base_link: str | None = None):
     """Parse the robot model into the parser's plant.
 
     Args:
@@ -33,13 +33,14 @@ def add_robot(parser: Parser, model: str | Path, packages: dict[str, Path] | Non
         where: what to name in an error (e.g. ``scene.yaml: robot.model``).
         xacro_args: ``arg`` values of a xacro file.
         visual: also load visual geometry (a viewer); planning needs collision geometry only.
+        base_link: the link a scene's ``robot.base`` welds (the model's own weld of it to ``world`` is dropped).
     Returns:
         (model instance, the PreparedModel: meshes resolved and converted).
     Raises:
         SceneError: one line, naming the file and what to do.
     """
     try:
-        prepared: PreparedModel = prepare_model(model, packages, xacro_args=xacro_args, visual=visual)
+        prepared: PreparedModel = prepare_model(model, packages, xacro_args=xacro_args, visual=visual, base_link=base_link)
     except SceneError as exc:
         raise SceneError(f"{where}: {exc}") from None
     for name, folder in prepared.packages.items():
@@ -94,7 +95,7 @@ def add_scene_robot(builder, scene, visual: bool = True):
         SceneError: the model cannot be loaded or welded, or ``allowed_collisions`` names an unknown link.
     """
     robot, prepared = add_robot(builder.parser(), scene.robot.model, scene.robot.packages, f"{scene.source}: robot.model",
-                                scene.robot.xacro_args, visual)
+                                scene.robot.xacro_args, visual, scene.robot.base_link if scene.robot.base is not None else None)
     plant, scene_graph = builder.plant(), builder.scene_graph()
     pose = rigid_transform(scene.robot.base.pose()) if scene.robot.base is not None else None
     note = weld_base(plant, robot, scene.robot.base_link, pose, f"{scene.source}: robot.base")

@@ -38,7 +38,28 @@ def nearest_turns(q: np.ndarray, start: np.ndarray, lower: np.ndarray, upper: np
     return shift
 
 
-def sweeps(path: np.ndarray) -> np.ndarray:
-    """Per joint, the largest distance it is from its first value anywhere along ``path`` (rows)."""
-    path = np.asarray(path, float)
-    return np.abs(path - path[0]).max(axis=0) if len(path) else np.zeros(0)
+def sweeps(path: np.ndarray, wrap: np.ndarray | None = None) -> np.ndarray:
+    """Per joint, the largest distance it is from its first value anywhere along ``path`` (rows).
+
+    ``wrap`` marks angles the space wraps: they are unwrapped first (a step across the seam is short).
+    """
+    path = np.array(path, float)
+    if not len(path):
+        return np.zeros(0)
+    if wrap is not None and np.any(wrap):
+        path[:, wrap] = np.unwrap(path[:, wrap], axis=0)
+    return np.abs(path - path[0]).max(axis=0)
+
+
+def sweep_note(path: np.ndarray, names, wrap: np.ndarray | None = None, turns: np.ndarray | None = None) -> str | None:
+    """A note when an angle (``wrap`` or ``turns``) turns more than half a turn along ``path`` (goals already take the nearest equivalent)."""
+    if path is None or len(path) < 2:
+        return None
+    angles = np.zeros(np.shape(path)[1], bool)
+    for mask in (wrap, turns):
+        angles |= np.zeros_like(angles) if mask is None else np.asarray(mask, bool)
+    swept = np.where(angles, sweeps(path, wrap), 0.0)
+    i = int(np.argmax(swept))
+    if swept[i] <= np.pi:
+        return None
+    return f"joint {names[i]} turns {swept[i]:.2f} rad along the path (more than half a turn)"

@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from lazyground.mesh_files import MeshFileError, mesh_from_triangles, obj_text, read_stl
-from lazyground.robots.lenient_xml import declare_prefixes, parse_lenient, strip_unused, unwrap_continuous_limits
+from lazyground.robots.lenient_xml import declare_prefixes, drop_world_weld, parse_lenient, strip_unused, unwrap_continuous_limits
 from lazyground.robots.xacro_file import expand_xacro
 from lazyground.scene.typed_yaml import SceneError
 
@@ -189,7 +189,7 @@ def model_file_type(path: Path) -> str:
 
 
 def prepare_model(path: str | os.PathLike, packages: dict[str, Path] | None = None, env: dict | None = None,
-                  xacro_args: dict | None = None, visual: bool = True) -> PreparedModel:
+                  xacro_args: dict | None = None, visual: bool = True, base_link: str | None = None) -> PreparedModel:
     """The model's text with every mesh reference resolved to a file Drake loads (see module docstring).
 
     Args:
@@ -198,6 +198,8 @@ def prepare_model(path: str | os.PathLike, packages: dict[str, Path] | None = No
         env: environment for ``ROS_PACKAGE_PATH`` (default: the process's).
         xacro_args: ``arg`` values for a xacro file.
         visual: keep visual geometry (for a viewer); without, only collision geometry is loaded.
+        base_link: a link the scene welds itself (``robot.base``): a URDF's own fixed joint from
+            ``world`` to it is removed.
     Returns:
         The rewritten text, its file type and what was resolved, converted, stripped or noted.
     Raises:
@@ -220,6 +222,8 @@ def prepare_model(path: str | os.PathLike, packages: dict[str, Path] | None = No
     notes: list[str] = []
     stripped = strip_unused(root) if file_type == "urdf" else {}
     notes += unwrap_continuous_limits(root) if file_type == "urdf" else []
+    dropped = drop_world_weld(root, base_link) if file_type == "urdf" and base_link else None
+    notes += [dropped] if dropped else []
     parent = {child: element for element in root.iter() for child in element}
     if not visual:
         for element in [e for e in root.iter() if _local(e.tag) == "visual"]:

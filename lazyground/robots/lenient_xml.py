@@ -75,3 +75,22 @@ def unwrap_continuous_limits(root: ET.Element) -> list[str]:
     if not changed:
         return []
     return [f"continuous joints wrap (their URDF position limits are ignored): {', '.join(changed)}"]
+
+
+def drop_world_weld(root: ET.Element, link: str) -> str | None:
+    """Remove a URDF's fixed joint from its ``world`` link to ``link`` (the scene's ``robot.base`` places it instead).
+
+    Returns:
+        A note when a joint was removed (the ``world`` link goes too when nothing else hangs on it).
+    """
+    welds = [j for j in root.findall("joint") if j.get("type") == "fixed"
+             and getattr(j.find("parent"), "get", lambda _: None)("link") == "world"
+             and getattr(j.find("child"), "get", lambda _: None)("link") == link]
+    if not welds:
+        return None
+    for joint in welds:
+        root.remove(joint)
+    if not any(getattr(j.find("parent"), "get", lambda _: None)("link") == "world" for j in root.findall("joint")):
+        for world in [e for e in root.findall("link") if e.get("name") == "world"]:
+            root.remove(world)
+    return f"the model's fixed joint {welds[0].get('name')!r} from world to {link} is replaced by robot.base"

@@ -6,6 +6,7 @@ from lazyground.goals import goal_source_for
 from lazyground.motion.car_shortcut import shorten_car_result, with_car_shortcut
 from lazyground.motion.pipeline import motion_for_world
 from lazyground.planning.rrt import solve
+from lazyground.planning.turns import sweep_note
 from lazyground.robots.car import planning_space
 from lazyground.tasks.outcome import Outcome, Step
 
@@ -44,4 +45,7 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     result, motion = motion_for_world(world, result, settings, rng, stops=stops, car=None if stops is None else space)
     motion = with_car_shortcut(motion, cut)
     notes = world.model_notes + ((motion.note,) if motion is not None and motion.note else ())
+    swept = sweep_note(motion.shortcut.path, world.space.names, world.space.wrap, world.coordinates.turns) \
+        if motion is not None and result.solved and space.linear_edges else None
+    notes += (swept,) if swept else ()
     return Outcome(result, (Step(grounding.action, result, setup_s, motion=motion),), world.space.names, notes)

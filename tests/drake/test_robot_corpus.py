@@ -36,7 +36,8 @@ def _plans(scene, min_rate: float = 2 / 3):
         assert path_is_valid(world.space, world, report.result.path, fine) == -1, f"seed {seed}: path collides at {fine:g}"
         path = report.outcome.steps[0].motion.shortcut.path
         assert path_is_valid(world.space, world, path, fine) == -1, f"seed {seed}: shortened path collides at {fine:g}"
-        assert sweeps(path).max() <= np.pi, f"seed {seed}: a joint sweeps {sweeps(path).max():.2f} rad"
+        swept = sweeps(path, world.space.wrap).max()
+        assert swept <= np.pi, f"seed {seed}: a joint sweeps {swept:.2f} rad"
     assert solved / len(SEEDS) >= min_rate, f"{solved} of {len(SEEDS)} seeds solved"
     return notes
 
