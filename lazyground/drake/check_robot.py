@@ -115,6 +115,7 @@ def check_robot(model: str | Path, srdf: str | Path | None = None, packages: dic
     defaults = defaults_for_model(model)
     if srdf is None and defaults is not None and defaults.srdf:
         srdf = defaults.path(defaults.srdf)
+    xacro_args = {**(defaults.xacro_args if defaults is not None else {}), **(xacro_args or {})}
     builder = RobotDiagramBuilder(time_step=0.0)
     plant = builder.plant()
     instance, prepared = add_robot(builder.parser(), model, packages, "check-robot", xacro_args)

@@ -59,6 +59,7 @@ def complete_robot(robot, scene_dir: Path | None, source: str):
         base_link=robot.base_link or (defaults.base_link if defaults else "base_link"),
         planned_joints=robot.planned_joints if robot.planned_joints is not None else (defaults.planned_joints if defaults else None),
         end_effector=robot.end_effector if robot.end_effector is not None else (defaults.end_effector if defaults else None),
+        xacro_args={**(defaults.xacro_args if defaults else {}), **robot.xacro_args},
     )
     try:
         poses = named_poses(robot, defaults)

@@ -127,3 +127,37 @@ def test_self_colliding_hand_is_reported_then_allowed_pairs_written_and_it_plans
     assert 'link1="gripper_left_finger" link2="gripper_right_finger" reason="Always"' in (tmp_path / "hand.srdf").read_text()
     _plans(load_scene(corpus.cup_scene(tmp_path, model, "hand", allowed_collisions=pairs)))
     _plans(load_scene(corpus.cup_scene(tmp_path, model, "hand_srdf", srdf=str(tmp_path / "hand.srdf"))))
+
+
+def test_a_xacro_robot_with_a_robot_yaml_plans_and_imports_moveit_scenes(tmp_path, capsys):
+    import textwrap
+
+    import yaml
+
+    from lazyground.cli import main
+
+    model = corpus.xacro_arm(tmp_path)
+    (model.parent / "robot.yaml").write_text(yaml.safe_dump({
+        "model": model.name, "base_link": "base_link", "planned_joints": corpus.ARM, "end_effector": corpus.END_EFFECTOR,
+        "start": "ready", "named_poses": {"ready": corpus.READY}, "xacro_args": {"name": "from_robot_yaml"}}))
+    scene = tmp_path / "scene.yaml"
+    scene.write_text(yaml.safe_dump({"name": "s", "robot": {"model": str(model), "base": {"xyz": [0, 0, 0]}},
+                                     "planner": {"max_iterations": 3000, "time_limit": 120.0},
+                                     "objects": yaml.safe_load(corpus.cup_scene(tmp_path, model, "x").read_text())["objects"]}))
+    assert main(["plan", str(scene), "pick up a cup", "--seed", "0", "--xacro-arg", "tcp_offset=0.125"]) == 0
+    assert main(["check-robot", str(model)]) == 0 and "(base none" not in capsys.readouterr().out
+    source = tmp_path / "moveit.yaml"
+    source.write_text(textwrap.dedent("""\
+        name: s
+        world:
+          collision_objects:
+            - id: wall
+              header: {frame_id: base_link}
+              primitives: [{type: box, dimensions: [0.1, 1.0, 1.0]}]
+              primitive_poses: [{position: {x: 1.5, y: 0.0, z: 0.5}, orientation: {x: 0, y: 0, z: 0, w: 1}}]
+        """))
+    out = tmp_path / "imported.yaml"
+    assert main(["import-moveit", str(source), "-o", str(out), "--robot", str(model), "--xacro-arg", "name=imported"]) == 0
+    assert yaml.safe_load(out.read_text())["robot"]["xacro_args"] == {"name": "imported"}
+    assert main(["check-robot", str(model), "--xacro-arg", "tcp_offset=oops"]) == 2
+    assert "xacro" in capsys.readouterr().err
