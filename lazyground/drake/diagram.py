@@ -45,7 +45,7 @@ def drake_shape(g: Geometry):
 
 
 def build_diagram(scene: Scene, attached: Attachment | None = None, visual: bool = True, extend_builder=None,
-                  notes: list | None = None):
+                  notes: list | None = None, mimic: list | None = None):
     """The scene's RobotDiagram and the robot's model instance.
 
     Args:
@@ -55,6 +55,7 @@ def build_diagram(scene: Scene, attached: Attachment | None = None, visual: bool
         extend_builder: called with the RobotDiagramBuilder just before Build().
         notes: gains what was done to the model that the scene did not say (a floating base
             welded, continuous limits dropped, visuals drawn from collision geometry).
+        mimic: gains the model's mimic joints (lazyground.robots.tools.Mimic).
 
     Returns:
         (diagram, robot): the built RobotDiagram and the robot's ModelInstanceIndex.
@@ -64,9 +65,11 @@ def build_diagram(scene: Scene, attached: Attachment | None = None, visual: bool
     """
     builder = RobotDiagramBuilder(time_step=0.0)
     plant = builder.plant()
-    robot, model_notes = add_scene_robot(builder, scene, visual)  # xacro, package:// URIs, meshes, base weld, SRDF pairs
+    robot, model_notes, model_mimic = add_scene_robot(builder, scene, visual)  # xacro, package://, meshes, tools, base, SRDF
     if notes is not None:
         notes.extend(model_notes)
+    if mimic is not None:
+        mimic.extend(model_mimic)
     _add_environment(plant, scene, attached, visual)
     if attached is not None:
         _attach(plant, robot, attached, visual)

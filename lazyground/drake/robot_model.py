@@ -19,11 +19,12 @@ from pydrake.multibody.parsing import Parser
 
 from lazyground.robots.description import PreparedModel, prepare_model
 from lazyground.robots.srdf import read_srdf
+from lazyground.robots.tools import mimic_joints, mount_tools
 from lazyground.scene.typed_yaml import SceneError
 
 
 def add_robot(parser: Parser, model: str | Path, packages: dict[str, Path] | None = None, where: str = "robot.model",
-              xacro_args: dict | None = None, visual: bool = True, base_link: str | None = None):
+              xacro_args: dict | None = None, visual: bool = True, base_link: str | None = None, tools=()):
     """Parse the robot model into the parser's plant.
 
     Args:
@@ -34,6 +35,7 @@ def add_robot(parser: Parser, model: str | Path, packages: dict[str, Path] | Non
         xacro_args: ``arg`` values of a xacro file.
         visual: also load visual geometry (a viewer); planning needs collision geometry only.
         base_link: the link a scene's ``robot.base`` welds (the model's own weld of it to ``world`` is dropped).
+        tools: ``ToolSpec``s mounted on the model before Drake parses it (lazyground/robots/tools.py).
     Returns:
         (model instance, the PreparedModel: meshes resolved and converted).
     Raises:
@@ -43,6 +45,14 @@ def add_robot(parser: Parser, model: str | Path, packages: dict[str, Path] | Non
         prepared: PreparedModel = prepare_model(model, packages, xacro_args=xacro_args, visual=visual, base_link=base_link)
     except SceneError as exc:
         raise SceneError(f"{where}: {exc}") from None
+    mounted = []
+    for i, tool in enumerate(tools):
+        try:
+            mounted.append((prepare_model(tool.model, packages, xacro_args=tool.xacro_args, visual=visual), tool.parent,
+                            tool.pose.xyz, tool.pose.rpy))
+        except SceneError as exc:
+            raise SceneError(f"{where.rsplit(':', 1)[0]}: robot.tools[{i}].model: {exc}") from None
+    prepared = mount_tools(prepared, mounted, f"{where.rsplit(':', 1)[0]}: robot.tools")
     for name, folder in prepared.packages.items():
         if not parser.package_map().Contains(name):
             parser.package_map().Add(name, folder)
@@ -90,19 +100,20 @@ def add_scene_robot(builder, scene, visual: bool = True):
     """A scene's robot: parsed (packages, meshes), its base welded, its SRDF pairs and allowed collisions filtered.
 
     Returns:
-        (model instance, notes: what was done that the scene did not say).
+        (model instance, notes: what was done that the scene did not say, the model's mimic joints).
     Raises:
         SceneError: the model cannot be loaded or welded, or ``allowed_collisions`` names an unknown link.
     """
     robot, prepared = add_robot(builder.parser(), scene.robot.model, scene.robot.packages, f"{scene.source}: robot.model",
-                                scene.robot.xacro_args, visual, scene.robot.base_link if scene.robot.base is not None else None)
+                                scene.robot.xacro_args, visual, scene.robot.base_link if scene.robot.base is not None else None,
+                                scene.robot.tools)
     plant, scene_graph = builder.plant(), builder.scene_graph()
     pose = rigid_transform(scene.robot.base.pose()) if scene.robot.base is not None else None
     note = weld_base(plant, robot, scene.robot.base_link, pose, f"{scene.source}: robot.base")
     if scene.robot.srdf:
         allow_collisions(scene_graph, plant, robot, read_srdf(scene.robot.srdf).disabled_collisions, scene.robot.srdf, strict=False)
     allow_collisions(scene_graph, plant, robot, scene.robot.allowed_collisions, f"{scene.source}: robot.allowed_collisions")
-    return robot, prepared.notes + ((note,) if note else ())
+    return robot, prepared.notes + ((note,) if note else ()), mimic_joints(prepared.text, prepared.file_type)
 
 
 def rigid_transform(pose) -> RigidTransform:

@@ -67,7 +67,7 @@ def _moving_fingers(text: str, mimic: bool) -> str:
     """Fingers on prismatic joints (finger_joint, right_finger_joint), the right one a ``<mimic>`` of the left if asked."""
     for side, sign in (("left", ""), ("right", "-")):
         joint = "finger_joint" if side == "left" else "right_finger_joint"
-        extra = (f'<axis xyz="0 {sign}1 0"/><limit lower="-0.04" upper="0" effort="10" velocity="0.1"/>'
+        extra = (f'<axis xyz="0 {sign}1 0"/><limit lower="-0.04" upper="0.01" effort="10" velocity="0.1"/>'
                  + ('<mimic joint="finger_joint" multiplier="1" offset="0"/>' if mimic and side == "right" else ""))
         text = text.replace(f'<joint name="gripper-{side}_finger" type="fixed">', f'<joint name="{joint}" type="prismatic">{extra}')
     return text
@@ -162,6 +162,7 @@ def cup_scene(root: Path, model: Path, name: str, floating: bool = False, **robo
     """A tabletop with one red cup in reach of ``model``'s arm; ``robot`` keys override the robot block."""
     block = {"model": str(model), "base_link": "base_link", "planned_joints": ARM, "end_effector": END_EFFECTOR,
              "start": READY, **robot}
+    block = {k: v for k, v in block.items() if v is not None}
     if not floating:
         block["base"] = {"xyz": [0.0, 0.0, 0.0]}
     scene = {
@@ -178,3 +179,30 @@ def cup_scene(root: Path, model: Path, name: str, floating: bool = False, **robo
     path = root / f"{name}.yaml"
     path.write_text(yaml.safe_dump(scene, sort_keys=False))
     return path
+
+
+def arm_and_gripper(root: Path) -> tuple[Path, Path]:
+    """The arm without its gripper (one package) and the gripper alone (another, with a robot.yaml naming its TCP).
+
+    The gripper's fingers are prismatic, the right one a ``<mimic>`` of the left.
+    """
+    text = _moving_fingers(_without_filter_groups(ur5e_text()), mimic=True)
+    urdf = ET.fromstring(text.replace("drake:", "drake_"))
+    hand = {"gripper_palm", "gripper_left_finger", "gripper_right_finger", "tool_tcp"}
+    arm, gripper = ET.Element("robot", {"name": "arm"}), ET.Element("robot", {"name": "gripper"})
+    for element in urdf:
+        name = element.get("name")
+        child = element.find("child")
+        in_hand = name in hand if element.tag == "link" else (child is not None and child.get("link") in hand)
+        (gripper if in_hand else arm).append(element)
+    for joint in list(gripper.findall("joint")):
+        if joint.find("parent").get("link") == "tool0":  # the mount: the scene's robot.tools says it
+            gripper.remove(joint)
+    arm_path = _urdf(root, "arm_only.urdf", ET.tostring(arm, encoding="unicode"))
+    pkg = root / "corpus_gripper_description"
+    (pkg / "urdf").mkdir(parents=True, exist_ok=True)
+    (pkg / "package.xml").write_text("<package format='3'><name>corpus_gripper_description</name></package>")
+    gripper_path = pkg / "urdf" / "gripper.urdf"
+    gripper_path.write_text(ET.tostring(gripper, encoding="unicode"))
+    (pkg / "urdf" / "robot.yaml").write_text(yaml.safe_dump({"model": "gripper.urdf", "end_effector": END_EFFECTOR}))
+    return arm_path, gripper_path

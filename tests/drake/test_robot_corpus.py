@@ -161,3 +161,18 @@ def test_a_xacro_robot_with_a_robot_yaml_plans_and_imports_moveit_scenes(tmp_pat
     assert yaml.safe_load(out.read_text())["robot"]["xacro_args"] == {"name": "imported"}
     assert main(["check-robot", str(model), "--xacro-arg", "tcp_offset=oops"]) == 2
     assert "xacro" in capsys.readouterr().err
+
+
+def test_a_gripper_from_its_own_package_mounts_on_the_flange_with_its_end_effector_and_mimic(tmp_path):
+    arm, gripper = corpus.arm_and_gripper(tmp_path)
+    scene = load_scene(corpus.cup_scene(tmp_path, arm, "tools", end_effector=None,
+                                        tools=[{"model": str(gripper), "parent": "tool0", "pose": {"xyz": [0, 0, 0]}}],
+                                        start={**corpus.READY, "finger_joint": 0.005}))  # 5 mm wider open
+    assert scene.robot.end_effector.frame == "tool_tcp"  # from the gripper's robot.yaml
+    world = DrakeWorld(scene, visual=False)
+    names = list(world.plant.GetPositionNames(world.robot, add_model_instance_prefix=False, always_add_suffix=False))
+    assert world.q_full[names.index("right_finger_joint")] == pytest.approx(0.005)  # the mimic follows its leader
+    _plans(scene)
+    bad = corpus.cup_scene(tmp_path, arm, "tools_bad", tools=[{"model": str(gripper), "parent": "flange_x"}])
+    with pytest.raises(SceneError, match=r"robot.tools\[0\].parent: no link 'flange_x' in the robot model"):
+        DrakeWorld(load_scene(bad), visual=False)
