@@ -11,7 +11,6 @@ failures (a missing mesh, an unknown package) raise ``SceneError`` with one line
 
 from __future__ import annotations
 
-import xml.etree.ElementTree as ET
 from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,11 +20,12 @@ from pydrake.geometry import Role
 from pydrake.planning import RobotDiagramBuilder, SceneGraphCollisionChecker
 
 from lazyground.drake.coordinates import unbounded_positions
-from lazyground.drake.robot_model import add_robot, allow_collisions, weld_base
+from lazyground.drake.robot_model import add_robot, allow_collisions, floating_link, weld_base
 from lazyground.drake.self_collision import ALWAYS, DEFAULT_SAMPLES, sample_pairs
 from lazyground.drake.self_collision import write_allowed as write_allowed_file
 from lazyground.robots.defaults import defaults_for_model
 from lazyground.robots.srdf import read_srdf
+from lazyground.robots.tools import mimic_joints
 from lazyground.scene.typed_yaml import SceneError
 
 PADDING = 0.0  # m: self-collision at named poses is reported at contact, as MoveIt does
@@ -122,12 +122,16 @@ def check_robot(model: str | Path, srdf: str | Path | None = None, packages: dic
     base = defaults.base_link if defaults is not None else "base_link"  # as a scene without robot.base_link
     if defaults is not None and not plant.HasBodyNamed(base, instance):
         raise SceneError(f"check-robot: {model}: no base link {base!r}")
+    floating = floating_link(plant, instance, base)
     weld_note = weld_base(plant, instance, base, None, "check-robot")  # what plan does without robot.base
-    if weld_note is None:
-        base = "none: the model joints itself to the world"
+    base = f"{floating} welded at the origin" if floating else "none: the model joints itself to the world"
     problems: list[str] = []
     notes: list[str] = list(prepared.notes) + ([weld_note] if weld_note else [])
-    unsupported = _unsupported_urdf(prepared.text) if prepared.file_type == "urdf" else []
+    unsupported = []
+    mimic = mimic_joints(prepared.text, prepared.file_type)
+    if mimic:
+        notes.append(f"mimic joints follow their leader at the start and are not planned unless named: "
+                     + ", ".join(f"{m.joint} = {m.multiplier:g} x {m.leader} + {m.offset:g}" for m in mimic))
     unsupported += [f"<{tag}> x{n} removed before loading (planning does not use it)" for tag, n in sorted(prepared.stripped.items())]
     poses = dict(defaults.named_poses) if defaults is not None else {}
     if srdf is not None:
@@ -224,10 +228,3 @@ def _colliding_pairs(checker, q: np.ndarray) -> list[tuple[str, str]]:
             pairs.add(tuple(sorted((plant.get_body(a).name(), plant.get_body(b).name()))))
     return sorted(pairs)
 
-
-def _unsupported_urdf(text: str) -> list[str]:
-    root = ET.fromstring(text)
-    out = []
-    if any(j.find("mimic") is not None for j in root.iter("joint")):
-        out.append("mimic joints are planned as independent joints")
-    return out

@@ -127,6 +127,13 @@ def root_bodies(plant, robot) -> list[str]:
     return [plant.get_body(b).name() for b in plant.GetBodyIndices(robot) if b not in children]
 
 
+def floating_link(plant, robot, base_link: str | None) -> str | None:
+    """The link :func:`weld_base` welds at the origin when no pose is given: ``base_link`` if it floats, else the first
+    floating root; None when the model joints itself to the world."""
+    roots = root_bodies(plant, robot)
+    return (base_link if base_link in roots else roots[0]) if roots else None
+
+
 def weld_base(plant, robot, base_link: str | None, X_WB=None, where: str = "robot.base") -> str | None:
     """Weld the robot's base to the world as planning does; one note when the model floated and no pose was given.
 
@@ -147,10 +154,9 @@ def weld_base(plant, robot, base_link: str | None, X_WB=None, where: str = "robo
         except RuntimeError:  # e.g. the link already hangs on a joint to the world (a planar car)
             raise SceneError(f"{where}: cannot weld {base_link!r} to the world: it is already jointed to it") from None
         return None
-    roots = root_bodies(plant, robot)
-    if not roots:
+    link = floating_link(plant, robot, base_link)
+    if link is None:
         return None
-    link = base_link if base_link in roots else roots[0]
     plant.WeldFrames(plant.world_frame(), plant.GetFrameByName(link, robot), RigidTransform())
     return (f"the model is not welded to the world: {link} welded at the origin "
             f"(give robot.base: {{xyz: [x, y, z]}} to place it)")

@@ -4,7 +4,7 @@ Drake's URDF/SDF readers (tinyxml2, sdformat) ignore XML namespaces, so Drake's 
 files use ``drake:`` without declaring it; ElementTree refuses such a file ("unbound
 prefix"). :func:`parse_lenient` declares every undeclared prefix first. Tags planning does
 not need and that can stop Drake's parser (a ``<transmission>`` whose actuator name repeats,
-``<gazebo>``, ``<ros2_control>``, a joint's ``<safety_controller>``) are removed by
+``<gazebo>``, ``<ros2_control>``, a joint's ``<safety_controller>`` and ``<dynamics>``) are removed by
 :func:`strip_unused`; a URDF ``continuous`` joint's position limits are dropped by
 :func:`unwrap_continuous_limits` (a continuous joint turns freely; Drake would keep them).
 """
@@ -17,7 +17,7 @@ from collections import Counter
 
 KNOWN_NAMESPACES = {"drake": "http://drake.mit.edu"}
 UNUSED_TOP = ("transmission", "gazebo", "ros2_control")  # children of <robot>
-UNUSED_IN_JOINT = ("safety_controller",)
+UNUSED_IN_JOINT = ("safety_controller", "dynamics")  # dynamics: damping/friction Drake warns about; planning has no use
 _PREFIX = re.compile(r"</?([A-Za-z_][\w.-]*):[A-Za-z_]|\s([A-Za-z_][\w.-]*):[A-Za-z_][\w.-]*\s*=")
 _DECLARED = re.compile(r"xmlns:([A-Za-z_][\w.-]*)\s*=")
 _ROOT = re.compile(r"<(?![?!])[A-Za-z_][\w.:-]*")
