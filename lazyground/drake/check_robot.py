@@ -26,7 +26,7 @@ from lazyground.drake.self_collision import write_allowed as write_allowed_file
 from lazyground.robots.defaults import defaults_for_model
 from lazyground.robots.srdf import read_srdf
 from lazyground.robots.tools import mimic_joints
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 PADDING = 0.0  # m: self-collision at named poses is reported at contact, as MoveIt does
 CHECK_SAMPLES = 200  # configurations sampled for always-touching link pairs (a few hundred ms)

@@ -20,7 +20,7 @@ import numpy as np
 import yaml
 from pydrake.geometry import Role
 
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 ALWAYS = 0.95  # the share of samples a pair must touch in to count as always colliding (MoveIt's default)
 DEFAULT_SAMPLES = 1000

@@ -32,7 +32,7 @@ import numpy as np
 from lazyground.mesh_files import MeshFileError, mesh_from_triangles, obj_text, read_stl
 from lazyground.robots.lenient_xml import declare_prefixes, drop_world_weld, parse_lenient, strip_unused, unwrap_continuous_limits
 from lazyground.robots.xacro_file import expand_xacro
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 DRAKE_MESHES = (".obj", ".gltf", ".glb", ".vtk")
 CONVERTED = (".stl", ".dae")

@@ -15,7 +15,7 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass, replace
 
 from lazyground.robots.lenient_xml import parse_lenient
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 
 @dataclass(frozen=True)

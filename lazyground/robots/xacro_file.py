@@ -3,7 +3,7 @@
 ``expand_xacro(path, args, packages)`` runs the PyPI ``xacro`` package (a core dependency:
 a pure-Python wheel, and most ROS 2 descriptions ship only as ``.urdf.xacro``) with the
 given ``arg`` values; ``$(find pkg)`` resolves through the same package map as
-``package://`` (there is no ament index outside ROS). The expansion is cached by content
+``package://`` (there is no ament index outside ROS: xacro's look-up is answered by ours). The expansion is cached by content
 hash (the file, every file it included, the arguments and the package folders) under
 ``$LAZYGROUND_CACHE/xacro``. Every problem is one ``SceneError`` line: a missing required
 argument names it and says how to give it. No pydrake.
@@ -16,10 +16,12 @@ import hashlib
 import io
 import json
 import os
+import sys
 import threading
+import types
 from pathlib import Path
 
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 XACRO_SUFFIXES = (".xacro",)
 _LOCK = threading.Lock()  # xacro keeps its state in module globals
@@ -127,7 +129,6 @@ def _store(base: Path, text: str, includes: list[str]) -> None:
 def _run_xacro(path: Path, args: dict[str, str], packages: dict[str, str]) -> tuple[str, list[str]]:
     try:
         import xacro
-        from xacro import substitution_args
     except ImportError:  # a core dependency; a broken install still gets one line
         raise SceneError(f"{path}: expanding xacro needs the xacro package (pip install xacro)") from None
 
@@ -138,8 +139,7 @@ def _run_xacro(path: Path, args: dict[str, str], packages: dict[str, str]) -> tu
                              f"robot.packages: {{{name}: DIR}} in the scene, --package {name}=DIR, or ROS_PACKAGE_PATH")
         return packages[name]
 
-    with _LOCK, _patched(substitution_args, "_eval_find", find), _patched_dict(substitution_args._eval_dict, "find", find), \
-            contextlib.redirect_stderr(io.StringIO()), contextlib.redirect_stdout(io.StringIO()):
+    with _LOCK, _ament_index(find), contextlib.redirect_stderr(io.StringIO()), contextlib.redirect_stdout(io.StringIO()):
         xacro.all_includes.clear()
         try:
             doc = xacro.process_file(str(path), mappings=dict(args))
@@ -169,20 +169,19 @@ def _one_line(path: Path, exc: Exception, args: dict[str, str]) -> str:
 
 
 @contextlib.contextmanager
-def _patched(module, name: str, value):
-    old = getattr(module, name)
-    setattr(module, name, value)
+def _ament_index(find):
+    """xacro resolves ``$(find pkg)`` by ``ament_index_python.packages.get_package_share_directory``: ours, while expanding."""
+    names = ("ament_index_python", "ament_index_python.packages")
+    saved = {name: sys.modules.get(name) for name in names}
+    index, packages = types.ModuleType(names[0]), types.ModuleType(names[1])
+    packages.get_package_share_directory = find
+    index.packages = packages
+    sys.modules.update(zip(names, (index, packages)))
     try:
         yield
     finally:
-        setattr(module, name, old)
-
-
-@contextlib.contextmanager
-def _patched_dict(mapping: dict, key: str, value):
-    old = mapping.get(key)
-    mapping[key] = value
-    try:
-        yield
-    finally:
-        mapping[key] = old
+        for name, module in saved.items():
+            if module is None:
+                sys.modules.pop(name, None)
+            else:
+                sys.modules[name] = module

@@ -7,7 +7,7 @@ from lazyground.motion.car_shortcut import shorten_car_result, with_car_shortcut
 from lazyground.motion.pipeline import motion_for_world
 from lazyground.planning.rrt import solve
 from lazyground.planning.turns import sweep_note
-from lazyground.robots.car import planning_space
+from lazyground.tasks.car_space import planning_space
 from lazyground.tasks.outcome import Outcome, Step
 
 

@@ -16,7 +16,7 @@ from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.planning import path_is_valid  # noqa: E402
 from lazyground.planning.turns import sweeps  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
-from lazyground.scene.typed_yaml import SceneError  # noqa: E402
+from lazyground.typed_yaml import SceneError  # noqa: E402
 from tests.drake import robot_corpus as corpus  # noqa: E402
 
 SEEDS = (0, 1, 2)

@@ -7,7 +7,7 @@ import pytest
 from lazyground.robots.description import prepare_model
 from lazyground.robots.lenient_xml import drop_world_weld, parse_lenient, strip_unused, unwrap_continuous_limits
 from lazyground.robots.xacro_file import parse_xacro_arg, xacro_value
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 URDF = """<robot name="r"><link name="world"/><link name="base_link"/><link name="a"/>
 <joint name="fix" type="fixed"><parent link="world"/><child link="base_link"/></joint>
