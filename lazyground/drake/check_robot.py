@@ -154,11 +154,11 @@ def check_robot(model: str | Path, srdf: str | Path | None = None, packages: dic
                      f"must give robot.limits, e.g. limits: {{{unbounded[0]}: [lower, upper]}}")
     rng = np.random.default_rng(seed)
     n = samples or (DEFAULT_SAMPLES if write_allowed else CHECK_SAMPLES)
-    counts = sample_pairs(checker, diagram, instance, n, rng, seed)
+    counts = sample_pairs(checker, diagram, instance, n, rng, seed, mimic)
     always = counts.always()
     if write_allowed:
         written = write_allowed_file(write_allowed, plant.GetModelInstanceName(instance), counts)
-        notes.append(f"wrote {written} allowed pairs ({len(counts.adjacent)} adjacent, {len(always)} always, "
+        notes.append(f"wrote {written} allowed pairs ({len(counts.adjacent)} adjacent, {len(counts.default)} at the default pose, {len(always)} always, "
                      f"{len(counts.never())} never touching over {n} samples, seed {seed}) to {write_allowed}")
     elif always:
         problems.append(f"{len(always)} link pair(s) touch in at least {ALWAYS:.0%} of {n} sampled configurations "

@@ -5,7 +5,7 @@ and unbounded angles over one turn; a seeded generator) with the environment abs
 counts, for every pair of links with collision geometry the checker does not filter
 already, how often they touch. :func:`allowed_pairs` turns the counts into MoveIt's three
 reasons: ``Adjacent`` (links next to each other in the tree, links without geometry
-skipped), ``Always`` (touching in at least ALWAYS of the samples: a modelling overlap, never
+skipped), ``Default`` (touching at the model's default configuration), ``Always`` (touching in at least ALWAYS of the samples: a modelling overlap, never
 a real collision) and ``Never`` (never touching). :func:`write_allowed` writes them as a
 scene's ``robot.allowed_collisions`` (YAML) or as an SRDF's ``disable_collisions``.
 """
@@ -34,6 +34,7 @@ class PairCounts:
     seed: int
     counts: dict[tuple[str, str], int]  # every candidate pair (unfiltered, both with geometry) -> touching samples
     adjacent: tuple[tuple[str, str], ...]
+    default: tuple[tuple[str, str], ...] = ()  # touching at the model's default configuration (mimic joints followed)
 
     def always(self) -> list[tuple[str, str]]:
         return sorted(p for p, n in self.counts.items() if n >= ALWAYS * self.samples)
@@ -68,8 +69,9 @@ def adjacent_pairs(plant, instance, links: set[str]) -> list[tuple[str, str]]:
     return sorted(out)
 
 
-def sample_pairs(checker, diagram, instance, samples: int, rng: np.random.Generator, seed: int) -> PairCounts:
-    """Count touching link pairs over ``samples`` random configurations (see module docstring)."""
+def sample_pairs(checker, diagram, instance, samples: int, rng: np.random.Generator, seed: int, mimic=()) -> PairCounts:
+    """Count touching link pairs over ``samples`` random configurations (see module docstring); ``mimic`` joints
+    (``Mimic``) follow their leader in every sample, as the hardware's linkage holds them."""
     plant = checker.plant()
     links = _links_with_geometry(diagram, plant, instance)
     bodies = {n: plant.GetBodyByName(n, instance) for n in links}
@@ -79,22 +81,27 @@ def sample_pairs(checker, diagram, instance, samples: int, rng: np.random.Genera
     lower, upper = plant.GetPositionLowerLimits(), plant.GetPositionUpperLimits()
     lower = np.where(np.isfinite(lower), lower, -np.pi)
     upper = np.where(np.isfinite(upper), upper, np.pi)
-    for _ in range(samples):
-        q = lower + (upper - lower) * rng.random(len(lower))
+    follow = [(plant.GetJointByName(m.joint, instance).position_start(), plant.GetJointByName(m.leader, instance).position_start(),
+               m.multiplier, m.offset) for m in mimic if plant.HasJointNamed(m.joint, instance) and plant.HasJointNamed(m.leader, instance)]
+
+    def touching(q: np.ndarray) -> set[tuple[str, str]]:
+        for i, j, multiplier, offset in follow:
+            q[i] = multiplier * q[j] + offset
         clearance = checker.CalcRobotClearance(q, 0.0)
-        touching = set()
-        for a, b, d in zip(clearance.robot_indices(), clearance.other_indices(), clearance.distances()):
-            if d <= 0.0:
-                touching.add(_pair(plant.get_body(a).name(), plant.get_body(b).name()))
-        for p in touching:
-            if p in counts:
-                counts[p] += 1
-    return PairCounts(samples, seed, counts, tuple(adjacent_pairs(plant, instance, links)))
+        return {_pair(plant.get_body(a).name(), plant.get_body(b).name())
+                for a, b, d in zip(clearance.robot_indices(), clearance.other_indices(), clearance.distances()) if d <= 0.0} & set(counts)
+
+    for _ in range(samples):
+        for p in touching(lower + (upper - lower) * rng.random(len(lower))):
+            counts[p] += 1
+    default = touching(plant.GetPositions(plant.CreateDefaultContext()).copy())
+    return PairCounts(samples, seed, counts, tuple(adjacent_pairs(plant, instance, links)), tuple(sorted(default)))
 
 
 def allowed_pairs(counts: PairCounts) -> list[tuple[str, str, str]]:
-    """(link, link, reason) for every pair to stop checking: Adjacent, Always, Never."""
+    """(link, link, reason) for every pair to stop checking: Adjacent, Default, Always, Never."""
     out = {p: "Adjacent" for p in counts.adjacent}
+    out.update({p: "Default" for p in counts.default if p not in out})
     out.update({p: "Always" for p in counts.always() if p not in out})
     out.update({p: "Never" for p in counts.never() if p not in out})
     return sorted((a, b, r) for (a, b), r in out.items())
@@ -116,7 +123,7 @@ def write_allowed(path: str | Path, robot_name: str, counts: PairCounts) -> int:
         lines += [f'  <disable_collisions link1="{a}" link2="{b}" reason="{r}"/>' for a, b, r in pairs]
         text = "\n".join(lines + ["</robot>", ""])
     else:
-        by_reason = {r: [[a, b] for a, b, rr in pairs if rr == r] for r in ("Adjacent", "Always", "Never")}
+        by_reason = {r: [[a, b] for a, b, rr in pairs if rr == r] for r in ("Adjacent", "Default", "Always", "Never")}
         text = (f"# {header}\n# paste under the scene's robot: block; "
                 + ", ".join(f"{len(v)} {k.lower()}" for k, v in by_reason.items()) + "\n"
                 + yaml.safe_dump({"allowed_collisions": [p for v in by_reason.values() for p in v]}, default_flow_style=None))

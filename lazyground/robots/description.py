@@ -7,7 +7,9 @@ mesh reference rewritten to an absolute path of a file Drake loads (OBJ):
   from a scene's ``robot.packages`` or ``--package NAME=DIR``), the package the model file
   itself sits in (the nearest ``package.xml`` above it), its sibling packages, and
   ``ROS_PACKAGE_PATH`` (every folder below it holding a ``package.xml``), as ROS does;
-* ``file://`` and plain paths resolve against the model file's folder;
+* ``file://`` and plain paths resolve against the model file's folder; an absolute path into
+  another machine's install space (``/home/u/ws/install/NAME/share/NAME/meshes/a.dae``, as
+  URDFs generated there carry) that does not exist here is read in the known package NAME;
 * STL (binary or ASCII) is converted to OBJ here with numpy (the format is a list of
   triangles; no dependency needed), DAE through ``trimesh`` (+ ``pycollada``) when
   installed (an optional dependency: ``pip install 'lazyground[meshes]'``); other formats
@@ -126,8 +128,23 @@ def resolve_uri(uri: str, base: Path, packages: dict[str, Path], model: Path) ->
         path = Path(uri)
     path = path if path.is_absolute() else base / path
     if not path.is_file():
-        raise SceneError(f"{model}: mesh {uri!r}: file {path} not found; check the path or the package's folder")
+        path = _installed_share(path, packages) or path
+    if not path.is_file():
+        share = [b for a, b in zip(path.parts, path.parts[1:]) if a == "share"]
+        hint = (f"; if it is package {share[-1]!r} of another machine's install space, give its folder with "
+                f"--package {share[-1]}=DIR or robot.packages") if share and share[-1] not in packages else ""
+        raise SceneError(f"{model}: mesh {uri!r}: file {path} not found; check the path or the package's folder{hint}")
     return path.resolve()
+
+
+def _installed_share(path: Path, packages: dict[str, Path]) -> Path | None:
+    """A missing absolute path into some workspace's ``.../share/NAME/rest`` (a URDF generated on another machine)
+    read as ``rest`` in the known package NAME, or None."""
+    parts = path.parts
+    for i in range(len(parts) - 2, 0, -1):
+        if parts[i - 1] == "share" and parts[i] in packages:
+            return packages[parts[i]].joinpath(*parts[i + 1:])
+    return None
 
 
 def _cache_dir() -> Path:

@@ -124,17 +124,16 @@ def test_self_colliding_hand_is_reported_then_allowed_pairs_written_and_it_plans
     pairs = yaml.safe_load(allowed.read_text())["allowed_collisions"]
     assert ["gripper_left_finger", "gripper_right_finger"] in pairs
     assert main(["check-robot", str(model), "--write-allowed", str(tmp_path / "hand.srdf"), "--samples", "50"]) == 0
-    assert 'link1="gripper_left_finger" link2="gripper_right_finger" reason="Always"' in (tmp_path / "hand.srdf").read_text()
+    assert 'link1="gripper_left_finger" link2="gripper_right_finger" reason="Default"' in (tmp_path / "hand.srdf").read_text()
     _plans(load_scene(corpus.cup_scene(tmp_path, model, "hand", allowed_collisions=pairs)))
     _plans(load_scene(corpus.cup_scene(tmp_path, model, "hand_srdf", srdf=str(tmp_path / "hand.srdf"))))
 
 
 def test_a_xacro_robot_with_a_robot_yaml_plans_and_imports_moveit_scenes(tmp_path, capsys):
-    import textwrap
-
     import yaml
 
     from lazyground.cli import main
+    from tests.unit.test_moveit_import import ONE_WALL
 
     model = corpus.xacro_arm(tmp_path)
     (model.parent / "robot.yaml").write_text(yaml.safe_dump({
@@ -147,15 +146,7 @@ def test_a_xacro_robot_with_a_robot_yaml_plans_and_imports_moveit_scenes(tmp_pat
     assert main(["plan", str(scene), "pick up a cup", "--seed", "0", "--xacro-arg", "tcp_offset=0.125"]) == 0
     assert main(["check-robot", str(model)]) == 0 and "(base none" not in capsys.readouterr().out
     source = tmp_path / "moveit.yaml"
-    source.write_text(textwrap.dedent("""\
-        name: s
-        world:
-          collision_objects:
-            - id: wall
-              header: {frame_id: base_link}
-              primitives: [{type: box, dimensions: [0.1, 1.0, 1.0]}]
-              primitive_poses: [{position: {x: 1.5, y: 0.0, z: 0.5}, orientation: {x: 0, y: 0, z: 0, w: 1}}]
-        """))
+    source.write_text(ONE_WALL)
     out = tmp_path / "imported.yaml"
     assert main(["import-moveit", str(source), "-o", str(out), "--robot", str(model), "--xacro-arg", "name=imported"]) == 0
     assert yaml.safe_load(out.read_text())["robot"]["xacro_args"] == {"name": "imported"}
@@ -176,3 +167,19 @@ def test_a_gripper_from_its_own_package_mounts_on_the_flange_with_its_end_effect
     bad = corpus.cup_scene(tmp_path, arm, "tools_bad", tools=[{"model": str(gripper), "parent": "flange_x"}])
     with pytest.raises(SceneError, match=r"robot.tools\[0\].parent: no link 'flange_x' in the robot model"):
         DrakeWorld(load_scene(bad), visual=False)
+
+
+def test_mimic_joints_follow_their_leader_in_the_self_collision_samples(tmp_path):
+    # both fingers slide along +y, the right one a mimic of the left, their pads overlapping: held together by the
+    # linkage they touch in every pose; sampled independently over 0.2 m they would seldom touch
+    text = corpus._without_filter_groups(corpus.ur5e_text())
+    text = text.replace('<joint name="gripper-left_finger" type="fixed">',
+                        '<joint name="finger_joint" type="prismatic"><axis xyz="0 1 0"/><limit lower="0" upper="0.2" effort="1" velocity="1"/>')
+    text = text.replace('<joint name="gripper-right_finger" type="fixed">',
+                        '<joint name="right_finger_joint" type="prismatic"><axis xyz="0 1 0"/>'
+                        '<limit lower="0" upper="0.2" effort="1" velocity="1"/><mimic joint="finger_joint"/>')
+    text = text.replace('<origin xyz="0 -0.0425 0.08" rpy="0 0 0"/>', '<origin xyz="0 0.05 0.08" rpy="0 0 0"/>')
+    from lazyground.drake.check_robot import check_robot
+
+    report = check_robot(corpus._urdf(tmp_path, "linkage.urdf", text), samples=100)
+    assert not report.ok and "gripper_left_finger-gripper_right_finger" in report.problems[0]
