@@ -25,8 +25,8 @@ class Coordinates:
         space: limits, wrapping and metric weights of the planned coordinates.
         planned: indices of the planned coordinates in the plant's position vector.
         q_full: the plant's position vector at the start (unplanned positions stay here).
-        turns: per planned coordinate, whether it is a revolute angle that does not wrap in the
-            space, where q + 2 pi k is the same configuration (goals prefer the nearest, planning/turns.py).
+        turns: per planned coordinate, whether it is a revolute joint's angle, where q + 2 pi k is the
+            same configuration (goals prefer the nearest within the limits, planning/turns.py).
     """
 
     space: ConfigSpace
@@ -115,7 +115,7 @@ def coordinates_from_plant(plant, robot, scene: Scene, mimic=()) -> Coordinates:
             raise SceneError(f"{source}: robot.limits: position {names[i]!r} is unbounded; give its limits")
     weights = np.array([spec.weights.get(names[i], 1.0) for i in idx])
     space = ConfigSpace(tuple(names[i] for i in idx), lower[idx], upper[idx], weights, wrap[idx])
-    return Coordinates(space, tuple(idx), q_full, revolute[idx] & ~wrap[idx])
+    return Coordinates(space, tuple(idx), q_full, revolute[idx])
 
 
 def unbounded_positions(plant, robot) -> list[str]:

@@ -51,14 +51,12 @@ def sweeps(path: np.ndarray, wrap: np.ndarray | None = None) -> np.ndarray:
     return np.abs(path - path[0]).max(axis=0)
 
 
-def sweep_note(path: np.ndarray, names, wrap: np.ndarray | None = None, turns: np.ndarray | None = None) -> str | None:
-    """A note when an angle (``wrap`` or ``turns``) turns more than half a turn along ``path`` (goals already take the nearest equivalent)."""
+def sweep_note(path: np.ndarray, names, wrap: np.ndarray | None, turns: np.ndarray) -> str | None:
+    """A note when a revolute joint (``turns``) turns more than half a turn along ``path`` (goals already take the
+    nearest equivalent); ``wrap`` angles are measured across their seam."""
     if path is None or len(path) < 2:
         return None
-    angles = np.zeros(np.shape(path)[1], bool)
-    for mask in (wrap, turns):
-        angles |= np.zeros_like(angles) if mask is None else np.asarray(mask, bool)
-    swept = np.where(angles, sweeps(path, wrap), 0.0)
+    swept = np.where(np.asarray(turns, bool), sweeps(path, wrap), 0.0)
     i = int(np.argmax(swept))
     if swept[i] <= np.pi:
         return None

@@ -28,6 +28,6 @@ def test_sweeps_unwrap_wrapped_angles_and_the_note_names_the_joint():
     path = np.array([[0.0, 3.0, 0.0], [0.0, -3.0, 4.0]])
     assert np.allclose(sweeps(path), [0, 6, 4])
     assert np.allclose(sweeps(path, np.array([False, True, False])), [0, TWO_PI - 6, 4])
-    wrap, turns = np.array([False, True, False]), np.array([False, False, True])
-    assert sweep_note(path, ["a", "b", "c"], wrap) is None  # c is not an angle: metres are not turns
-    assert sweep_note(path, ["a", "b", "c"], wrap, turns) == "joint c turns 4.00 rad along the path (more than half a turn)"
+    wrap = np.array([False, True, False])
+    assert sweep_note(path, ["a", "b", "c"], wrap, np.array([False, True, False])) is None  # c is not an angle: metres are not turns
+    assert sweep_note(path, ["a", "b", "c"], wrap, np.array([False, True, True])) == "joint c turns 4.00 rad along the path (more than half a turn)"
