@@ -1,7 +1,10 @@
-"""Robot descriptions as they come: URDF/SDF files with ``package://`` meshes in STL, DAE or OBJ.
+"""Robot descriptions as they come: URDF/SDF/xacro files with ``package://`` meshes in STL, DAE or OBJ.
 
-``prepare_model(path, packages)`` reads a URDF or SDF file and returns its text with every
-mesh reference rewritten to an absolute path of a file Drake loads (OBJ):
+``prepare_model(path, packages)`` reads a URDF or SDF file (a xacro file expanded first,
+robots/xacro_file.py; undeclared prefixes, unused tags and continuous limits handled by
+robots/lenient_xml.py) and returns its text with every mesh reference rewritten to an
+absolute path of a file Drake loads (OBJ); visuals are dropped for planning, and
+unloadable visual meshes are drawn from the link's collision geometry:
 
 * ``package://NAME/rel`` resolves through, in order, the given ``packages`` ({NAME: DIR},
   from a scene's ``robot.packages`` or ``--package NAME=DIR``), the package the model file
