@@ -37,11 +37,14 @@ def _add_robot_source_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--package", action="append", metavar="NAME=DIR",
                    help="folder of the ROS package NAME for package://NAME/... URIs in the robot model (repeatable)")
     p.add_argument("--srdf", metavar="FILE", help="MoveIt SRDF: disabled collision pairs and named poses")
+    p.add_argument("--xacro-arg", action="append", metavar="NAME=VALUE",
+                   help="an argument of a .xacro robot model, e.g. ur_type=ur5e (repeatable; wins over robot.xacro_args)")
 
 
 def _robot_overrides(args) -> dict:
-    """The scene robot keys that --package/--srdf replace (paths made absolute: they are relative to the cwd)."""
+    """The scene robot keys that --package/--srdf/--xacro-arg replace (paths made absolute: they are relative to the cwd)."""
     from lazyground.robots.description import parse_package_args
+    from lazyground.robots.xacro_file import parse_xacro_args
 
     out: dict = {}
     packages = parse_package_args(getattr(args, "package", None))
@@ -49,6 +52,9 @@ def _robot_overrides(args) -> dict:
         out["packages"] = {name: str(folder.resolve()) for name, folder in packages.items()}
     if getattr(args, "srdf", None):
         out["srdf"] = str(Path(args.srdf).resolve())
+    xacro_args = parse_xacro_args(getattr(args, "xacro_arg", None))
+    if xacro_args:
+        out["xacro_args"] = xacro_args
     return out
 
 
@@ -79,8 +85,12 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--debug", action="store_true", help="show tracebacks")
 
     c = sub.add_parser("check-robot", help="load a robot model (URDF/SDF) and report what lazyground makes of it")
-    c.add_argument("model", help="a URDF or SDF file, or a bundled robot name (fetch, panda, ur5e)")
+    c.add_argument("model", help="a URDF, SDF or xacro file, or a bundled robot name (fetch, panda, ur5e)")
     _add_robot_source_options(c)
+    c.add_argument("--write-allowed", metavar="FILE", help="sample configurations and write the link pairs to stop "
+                   "checking (adjacent, always and never touching) as robot.allowed_collisions YAML, or an SRDF (.srdf)")
+    c.add_argument("--samples", type=int, metavar="N", help="configurations to sample (default 200; 1000 with --write-allowed)")
+    c.add_argument("--seed", type=int, default=0, help="seed of the sampled configurations (default 0)")
     c.add_argument("--debug", action="store_true", help="show tracebacks")
 
     d = sub.add_parser("demo", help="plan the bundled demo requests and write the visualisations")
@@ -230,16 +240,20 @@ def cmd_demo(args) -> int:
 def cmd_check_robot(args) -> int:
     """Exit 0 when the robot is fine, 2 with the problems (the last line says which)."""
     from lazyground.robots.description import parse_package_args
+    from lazyground.robots.xacro_file import parse_xacro_args
     from lazyground.scene.loader import resolve_model
     from lazyground.typed_yaml import SceneError
 
     model = resolve_model(args.model, Path.cwd())
     if model is None:
-        raise SceneError(f"check-robot: no model file {args.model!r} (give a .urdf/.sdf path or a bundled robot name)")
+        raise SceneError(f"check-robot: no model file {args.model!r} (give a .urdf/.sdf/.xacro path or a bundled robot name)")
     _import_drake()
     from lazyground.drake.check_robot import check_robot
 
-    report = check_robot(model, args.srdf, parse_package_args(args.package))
+    if args.samples is not None and args.samples < 1:
+        raise UsageError(f"--samples {args.samples}: must be at least 1")
+    report = check_robot(model, args.srdf, parse_package_args(args.package), parse_xacro_args(args.xacro_arg),
+                         args.write_allowed, args.samples, args.seed)
     for line in report.lines():
         print(line)
     return EXIT_OK if report.ok else EXIT_BAD_INPUT
