@@ -14,7 +14,7 @@ from lazyground.robots.complete import complete_robot
 from lazyground.scene.file_kind import FileKind, kind_of_mapping, kind_of_text
 from lazyground.scene.robot_fill import fill_from_robot_defaults
 from lazyground.scene.schema import Scene, SceneObject
-from lazyground.typed_yaml import SceneError, load_dataclass, load_yaml
+from lazyground.typed_yaml import SceneError, line_of, load_dataclass, load_yaml
 
 MAX_SCENE_BYTES = 5 * 1024 * 1024
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -66,7 +66,8 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
         data = fill_from_robot_defaults(data, lambda model: resolve_model(model, scene_dir))
         scene = load_dataclass(data, Scene, "")
     except SceneError as exc:
-        raise SceneError(f"{source}: {exc}") from None
+        line = line_of(text, str(exc).split(": ", 1)[0])
+        raise SceneError(f"{source}: {exc}" + (f" (line {line})" if line else "")) from None
     model = resolve_model(scene.robot.model, scene_dir)
     if model is None:
         raise SceneError(f"{source}: robot.model: model file {scene.robot.model!r} not found (bundled: {_bundled()})")
