@@ -22,7 +22,7 @@ import sys
 import time
 from pathlib import Path
 
-from lazyground.bench import arms
+from lazyground.bench import arms, families
 from lazyground.bundled import bundled_scene, scene_names as bundled_names
 from lazyground.bench.runner import ALGORITHMS, FIELDS, RunSpec, execute, row_key, Progress
 from lazyground.settings import BY_NAME, Algorithm, Kinematics, Strategy, from_scene
@@ -52,7 +52,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--table", type=int, choices=sorted(TABLES), help="the paper's Table I (parking) or II (Fetch)")
     p.add_argument("--dof-sweep", action="store_true", help=f"generated planar arms of {', '.join(map(str, arms.DOFS))} DOF")
     p.add_argument("--nn-scaling", action="store_true", help="time per iteration from 1,000 to 100,000 tree nodes")
-    p.add_argument("--scenes", help="comma list: scene files, names in yaml_scenes/, or arm:<dof>")
+    p.add_argument("--scenes", help="comma list: scene files, names in yaml_scenes/, arm:<dof>, or generated families "
+                   "lot:<free>:<reachable>[:<seed>] and rack:<panda|fetch>:<objects>:<reachable>[:<seed>]")
     p.add_argument("--strategies", help=f"comma list of {BY_NAME['strategy'].allowed()}")
     p.add_argument("--biases", help=f"comma list of goal biases in {BY_NAME['goal_bias'].allowed()}")
     p.add_argument("--algorithms", help=f"comma list of {BY_NAME['algorithm'].allowed()} (default: rrt, the paper's Algorithm 1)")
@@ -87,6 +88,11 @@ def resolve_scene(name: str) -> str | None:
     """A scene key: ``arm:<dof>``, a file path, or a name in yaml_scenes/; None when missing."""
     if arms.parse_arm_key(name) is not None:
         return name
+    try:
+        if families.parse_key(name) is not None:
+            return name
+    except ValueError as exc:
+        raise BenchUsageError(f"--scenes: {exc}") from None
     if Path(name).is_file():
         return name
     bundled = bundled_scene(name)  # a bare name, from any directory (installed or source tree)
@@ -161,7 +167,7 @@ def _check_request(key: str, request: str | None) -> None:
     from grounding.model import GroundingError
     from lazyground.scene import load_scene
 
-    scene = load_scene(key)
+    scene = families.load_family_scene(key) if families.parse_key(key) is not None else load_scene(key)
     try:
         from_scene(scene.planner)
     except ValueError as exc:
@@ -178,6 +184,8 @@ def _check_request(key: str, request: str | None) -> None:
 def _scene_time_limit(key: str) -> float:
     if arms.parse_arm_key(key) is not None:
         return 10.0
+    if families.parse_key(key) is not None:
+        return families.load_family_scene(key).planner.time_limit
     from lazyground.scene import load_scene
 
     return load_scene(key).planner.time_limit

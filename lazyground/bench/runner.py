@@ -19,7 +19,7 @@ from typing import Callable, Iterable, Iterator
 
 import numpy as np
 
-from lazyground.bench import arms
+from lazyground.bench import arms, families
 from lazyground.bench.sscbirrt_peer import PLANNER
 from lazyground.settings import Algorithm
 
@@ -61,6 +61,8 @@ class RunSpec:
         dof = arms.parse_arm_key(self.scene)
         if dof is not None:
             return f"arm_{dof}"
+        if self.scene.split(":")[0] in families.FAMILIES:
+            return self.scene.replace(":", "_")
         from pathlib import Path
 
         return Path(self.scene).stem
@@ -111,7 +113,7 @@ def load_problem(key: str) -> Problem:
     else:
         from lazyground.scene import load_scene
 
-        scene = load_scene(key)
+        scene = families.load_family_scene(key) if families.parse_key(key) is not None else load_scene(key)
         request = scene.expect[0].request if scene.expect else None
         problem = Problem(scene.name, scene, DrakeWorld(scene, visual=False), request)
     return problem
