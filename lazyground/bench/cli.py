@@ -23,6 +23,7 @@ import time
 from pathlib import Path
 
 from lazyground.bench import arms, families
+from lazyground.bench.baselines import BASELINES, planner_name
 from lazyground.bundled import bundled_scene, scene_names as bundled_names
 from lazyground.bench.runner import ALGORITHMS, FIELDS, RunSpec, execute, row_key, Progress
 from lazyground.settings import BY_NAME, Algorithm, Kinematics, Strategy, from_scene
@@ -62,6 +63,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--request", help="the request (default: each scene's first expectation)")
     p.add_argument("--kinematics", choices=BY_NAME["kinematics"].choices, help="car scenes: holonomic (the paper's), reeds-shepp or dubins "
                    "(default: each scene's)")
+    p.add_argument("--baselines", help="comma list of what users do instead (issue #33), each on every --algorithms planner: "
+                   "nearest-first, multiplexer, eager, independent (see lazyground/bench/baselines.py)")
     p.add_argument("--peers", action="store_true", help="also run OMPL RRT and RRTConnect and sscbirrt's CBiRRT (pip install .[bench])")
     p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="worker processes (default: cores)")
     p.add_argument("--cluster", metavar="ADDRESS", help="run on this Dask scheduler instead (pip install .[cluster])")
@@ -131,6 +134,11 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
         _check_request(key, args.request or preset.get("requests", {}).get(Path(key).stem))
     algorithms = _checked("algorithms", "algorithm", _csv_list(args.algorithms, preset.get("algorithms", (Algorithm.RRT,))))
     configs = [(ALGORITHMS[a], s, b) for a in algorithms for b in biases for s in strategies]
+    for name in _csv_list(getattr(args, "baselines", None), ()):
+        if name not in BASELINES:
+            raise BenchUsageError(f"--baselines: unknown {name!r} (known: {', '.join(BASELINES)})")
+        configs += [(planner_name(name, a is Algorithm.BIDIRECTIONAL), Strategy.CONSECUTIVE.value, b)
+                    for a in algorithms for b in biases]
     kinematics = getattr(args, "kinematics", None)  # absent from Namespaces built by hand (tests)
     if args.peers and kinematics not in (None, Kinematics.HOLONOMIC):
         raise BenchUsageError("--peers plan holonomic paths only; leave out --kinematics or --peers")
