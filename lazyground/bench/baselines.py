@@ -185,7 +185,7 @@ def parse_planner(planner: str) -> tuple[str, bool] | None:
     return (name, planner.endswith("-bidirectional")) if name in BASELINES else None
 
 
-def run_baseline(name: str, scene, world, regions, space, settings, seed: int) -> tuple:
+def run_baseline(name: str, scene, world, regions, space, settings, seed: int, call_budget: float = CALL_BUDGET) -> tuple:
     """Run baseline ``name``: (PlanResult of the call that ended it, total seconds, iterations, goal attempts)."""
     rng = np.random.default_rng(seed)
     t0 = time.perf_counter()
@@ -205,7 +205,7 @@ def run_baseline(name: str, scene, world, regions, space, settings, seed: int) -
             left = settings.time_limit - (time.perf_counter() - t0)
             if left <= 0:
                 break
-            call = replace(settings, time_limit=min(CALL_BUDGET, left))
+            call = replace(settings, time_limit=min(call_budget, left))
             r = solve(space, world, goal_source_for(g, world), world.start, call, rng, seed=seed)
             iters += r.iterations
             attempts += sum(st.attempts for st in r.region_stats)
