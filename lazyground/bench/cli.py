@@ -52,6 +52,9 @@ def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog="lazyground bench", description="Benchmark goal-selection strategies (and OMPL / sscbirrt peers).")
     p.add_argument("--table", type=int, choices=sorted(TABLES), help="the paper's Table I (parking) or II (Fetch)")
     p.add_argument("--dof-sweep", action="store_true", help=f"generated planar arms of {', '.join(map(str, arms.DOFS))} DOF")
+    p.add_argument("--family-sweep", metavar="NAMES", help="comma list of generated sweeps (issue #33): lot, rack-panda, rack-fetch, "
+                   "lot-fraction; time to the first solution against N (family_sweep.png)")
+    p.add_argument("--sizes", help="--family-sweep: the sizes (N, or k for lot-fraction) instead of the sweep's own")
     p.add_argument("--nn-scaling", action="store_true", help="time per iteration from 1,000 to 100,000 tree nodes")
     p.add_argument("--scenes", help="comma list: scene files, names in yaml_scenes/, arm:<dof>, or generated families "
                    "lot:<free>:<reachable>[:<seed>] and rack:<panda|fetch>:<objects>:<reachable>[:<seed>]")
@@ -109,6 +112,15 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
     if args.dof_sweep:
         preset = dict(scenes=tuple(arms.arm_key(d) for d in arms.DOFS), strategies=ALL_STRATEGIES, biases=(0.05,), runs=10,
                       title="Generated planar arms: time (s) against DOF")
+    if getattr(args, "family_sweep", None):
+        from lazyground.bench.sweep import sweep_keys
+
+        try:
+            sizes = [int(n) for n in _csv_list(args.sizes, ())]
+            keys = [k for name in _csv_list(args.family_sweep, ()) for k in sweep_keys(name, sizes)]
+        except ValueError as exc:
+            raise BenchUsageError(f"--family-sweep / --sizes: {exc}") from None
+        preset = dict(preset, scenes=tuple(keys), title="Time to the first solution against the number of interpretations")
     scene_names = _csv_list(args.scenes, preset.get("scenes", ("parking_1",)))
     strategies = _checked("strategies", "strategy", _csv_list(args.strategies, preset.get("strategies", ALL_STRATEGIES)))
     try:
@@ -307,6 +319,11 @@ def write_outputs(rows: list[dict], out: Path, title: str, notes: list[str], tot
         from lazyground.bench.compare import strategy_table
 
         md += ["## Strategies against consecutive (Mann-Whitney U, two-sided)\n", strategy_table(rows)]
+    from lazyground.bench.sweep import size_of, sweep_plot, sweep_table
+
+    family = [r for r in rows if size_of(r["scene"]) is not None]
+    if family:
+        md += ["## Against the number of interpretations (generated families)\n", sweep_table(family)]
     motion = tables.motion_table(rows)
     if motion:
         md += ["## Shortening and timing after the solve (solved runs, medians)\n", motion]
@@ -318,6 +335,8 @@ def write_outputs(rows: list[dict], out: Path, title: str, notes: list[str], tot
     tables.box_plots(rows, out / "boxplots.png")
     if dof_sweep:
         tables.dof_plot(rows, out / "dof_sweep.png")
+    if family:
+        sweep_plot(family, out / "family_sweep.png")
     for scene in tables.scenes_of(rows):
         srows = [r for r in rows if r["scene"] == scene]
         limit = max(float(r["time_limit"]) for r in srows)

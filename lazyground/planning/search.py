@@ -141,12 +141,12 @@ class Search:
         (with ``only_if_all_stuck``, only once every live sample's weight is below the threshold)."""
         self.samples[gi].penalties += 1
         wants_more = self.selector.penalize(gi)
-        if wants_more and only_if_all_stuck:
+        if wants_more and only_if_all_stuck and not getattr(self.selector, "resample_alone", False):
             threshold = self.settings.resample_threshold
             wants_more = all(self.selector.weight(i) < threshold for i in range(len(self.samples)) if i not in self.dead)
         if wants_more:
             self.resamplings += 1
-            self.draw(self.settings.resample_count)
+            self.draw(getattr(self.selector, "batch", self.settings.resample_count))
 
     def first_invalid_segment(self, path: np.ndarray) -> int:
         """The fine re-check every returned path passes (-1: valid); counts rejections.
