@@ -7,11 +7,16 @@ all of them per penalty). Both leave most regions without a sample for a long ti
 source hands samples out region by region, so the reachable region's turn comes after about
 N / resample_count resamplings.
 
-:class:`Cover` keeps the reward-penalty weights but (1) asks for one new sample whenever a
-sample it penalises falls below the threshold, whatever the others' weights (a region whose
-goal tree stays blocked makes room for the next region at once), and (2) never resets the old
+:class:`Cover` keeps the reward-penalty weights but (1) asks for more samples whenever a sample it
+penalises falls below the threshold, whatever the others' weights (a region whose goal tree
+stays blocked makes room for the next regions at once), half as many as it holds, so that the
+regions are covered after O(log N) stuck samples while the goal-sampling work stays within a
+constant factor of what the search has rejected so far, and (2) never resets the old
 weights: a new sample enters at weight 1 on a lazily updated max-heap, so select, reward and
-penalty cost O(log N), not O(N).
+penalty cost O(log N), not O(N). (3) It asks the search for one goal sample per iteration until
+there are as many samples as goal regions (the goal source hands them out region by region):
+coverage paced by the search, one draw (at most ``attempts_per_sample`` attempts) per
+iteration, instead of all regions up front (eager) or one region per resampling round.
 """
 
 from __future__ import annotations
@@ -26,13 +31,19 @@ from lazyground.planning.strategies import StrategySettings, penalty_weight, rew
 class Cover:
     """Reward-penalty weights on a lazy max-heap; a stuck sample asks for one more sample at once."""
 
+    covers_regions = True  # the search draws one more sample per iteration until samples outnumber regions
     resample_alone = True  # a stuck sample asks for samples even while other samples progress
-    batch = 1  # samples drawn per request
+    growth = 0.5  # each request draws this fraction of the samples held: their number grows geometrically
 
     def __init__(self, settings: StrategySettings = StrategySettings()):
         self._threshold = settings.resample_threshold
         self._w: dict[int, float] = {}
         self._heap: list[tuple[float, int]] = []  # (-weight, index); stale entries skipped
+
+    @property
+    def batch(self) -> int:
+        """Samples drawn per request: half as many as held (at least one)."""
+        return max(1, int(self.growth * len(self._w)))
 
     def add(self, indices: list[int]) -> None:
         for i in indices:

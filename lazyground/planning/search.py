@@ -98,6 +98,7 @@ class Search:
         self.dead: set[int] = set()  # samples whose approach segment failed the fine re-check
         self._verified: set[bytes] = set()  # segments (endpoint bytes) that passed the fine re-check
         self.selector = make_strategy(settings.strategy, StrategySettings(resample_threshold=settings.resample_threshold))
+        self._covers = bool(getattr(self.selector, "covers_regions", False))
         self.trees: list[Tree] = []  # the planner's trees, start tree first (for the result)
         self.failed_from: list[tuple[int, int]] = []  # (tree, node) of failed goal-directed extensions
         self.iterations = self.resamplings = self.rejected = 0
@@ -116,9 +117,14 @@ class Search:
         self.selector.add(list(range(first, len(self.samples))))
 
     def have_samples(self) -> bool:
-        """Whether any goal sample exists yet; draws a batch when none does."""
+        """Whether any goal sample exists yet; draws a batch when none does.
+
+        A strategy that paces coverage (``covers_regions``) gets one more sample each iteration
+        until there are as many samples as goal regions (lazyground.planning.cover)."""
         if not self.samples:
             self.draw(self.settings.initial_goal_samples)
+        elif self._covers and len(self.samples) < len(self.goals.regions):
+            self.draw(1)
         return bool(self.samples)
 
     def select(self) -> int | None:
