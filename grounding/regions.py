@@ -1,4 +1,4 @@
-"""Goal regions from per-type definitions (``types.yaml``): grasps, placements, parking.
+"""Goal regions from per-type definitions (``lazyground/scene/types.yaml``): grasps, placements, parking.
 
 ``regions_for(obj, role, interpretation, scene)`` turns one scene object into
 the goal regions of one role (``pick``, ``support``, ``park``). The numbers
@@ -9,52 +9,19 @@ from __future__ import annotations
 
 import difflib
 import math
-from functools import lru_cache
 from pathlib import Path
-
-import yaml
 
 from grounding.grasps import GRASP_TEMPLATES, make_region
 from grounding.model import GroundingError
 from lazyground.geometry import Pose
 from lazyground.regions import ConfigRegion, GoalRegion, PlacementRegion
 from lazyground.robots.end_effector import LEGACY_FRAME, EndEffectorSpec, end_effector_of
-from lazyground.scene.schema import Geometry, Scene, SceneObject
-from lazyground.scene.typed_yaml import SceneError, load_dataclass
+from lazyground.scene.schema import Scene, SceneObject
+from lazyground.typed_yaml import line_of
+from lazyground.scene.types import type_definitions
 
-TYPES_FILE = Path(__file__).with_name("types.yaml")
 DEG = math.pi / 180
 END_EFFECTOR = LEGACY_FRAME  # the end effector when there is no scene
-
-
-@lru_cache(maxsize=1)
-def default_types() -> dict:
-    return yaml.safe_load(TYPES_FILE.read_text())
-
-
-def type_definitions(scene: Scene | None) -> dict:
-    """The bundled definitions with the scene's ``grasp_types`` overrides applied per type."""
-    types = dict(default_types())
-    if scene is not None and scene.grasp_types:
-        types.update(scene.grasp_types)
-    return types
-
-
-def occupant_geometry(obj: SceneObject, scene: Scene | None = None) -> Geometry | None:
-    """What an occupied ``obj`` holds: its own ``occupant``, else its type's; None if neither says.
-
-    Raises:
-        GroundingError: the type's ``occupant`` entry is not a geometry.
-    """
-    if obj.occupant is not None:
-        return obj.occupant
-    spec = type_definitions(scene).get(obj.type, {}).get("occupant")
-    if spec is None:
-        return None
-    try:
-        return load_dataclass(spec, Geometry, f"{obj.type}.occupant")
-    except SceneError as exc:
-        raise GroundingError(f"grounding/types.yaml: {exc}") from None
 
 
 def check_types(scene: Scene) -> None:
@@ -66,24 +33,47 @@ def check_types(scene: Scene) -> None:
         GroundingError: the first undefined type, with the closest defined names.
     """
     known = type_definitions(scene)
-    for obj in scene.objects:
+    for i, obj in enumerate(scene.objects):
         if obj.type not in known:
-            close = difflib.get_close_matches(obj.type, sorted(known), n=2, cutoff=0.6)
+            close = difflib.get_close_matches(obj.type, sorted(known), n=2, cutoff=0.6) or _by_synonym(obj.type, known)
             hint = f"did you mean {' or '.join(repr(c) for c in close)}? " if close else ""
-            raise GroundingError(f"object {obj.id!r}: unknown type {obj.type!r}; {hint}(types: grounding/types.yaml; "
-                                 f"a scene declares its own under grasp_types, e.g. 'grasp_types: {{{obj.type}: {{}}}}')")
+            raise GroundingError(f"object {obj.id!r}: unknown type {obj.type!r}; {hint}(types: lazyground/scene/types.yaml; "
+                                 f"a scene declares its own under grasp_types, e.g. 'grasp_types: {{{obj.type}: {{}}}}')"
+                                 f"{_where(scene, f'objects[{i}].type')}")
 
 
-def regions_for(obj: SceneObject, role: str, interpretation: str, scene: Scene | None = None) -> tuple[GoalRegion, ...]:
+def _by_synonym(type_name: str, known: dict) -> list[str]:
+    """Types whose lexicon words are close to a misspelt type ("mugg" -> "mug", a word for cup)."""
+    from grounding.lexicon import load_lexicon  # the word table, read once
+
+    words = {str(w).lower(): t for t, ws in (load_lexicon().data.get("nouns") or {}).items() for w in ws or [] if t in known}
+    close = difflib.get_close_matches(type_name.lower().replace("_", " "), sorted(words), n=2, cutoff=0.7)
+    return list(dict.fromkeys(words[w] for w in close))
+
+
+def _where(scene: Scene, path: str) -> str:
+    """" (scene.yaml line 12)" for a key of the scene's file, "" when the file cannot be read."""
+    try:
+        line = line_of(Path(scene.source).read_text(), path) if scene.source else None
+    except (OSError, UnicodeDecodeError):
+        line = None
+    return f" ({scene.source} line {line})" if line else ""
+
+
+def regions_for(obj: SceneObject, role: str, interpretation: str, scene: Scene | None = None,
+                ee: EndEffectorSpec | None = None) -> tuple[GoalRegion, ...]:
     """Goal regions for ``obj`` in ``role`` ("pick", "support" or "park").
+
+    ``ee``: the scene robot's end effector when the caller has it already (it is read from the robot's files).
 
     Raises:
         GroundingError: the type has no definition for that role.
     """
     definition = type_definitions(scene).get(obj.type, {}).get(role)
     if not definition:
-        raise GroundingError(f"no {role} definition for type {obj.type!r} (see grounding/types.yaml)")
-    ee = end_effector_of(scene.robot) if scene is not None else EndEffectorSpec(frame=END_EFFECTOR)
+        raise GroundingError(f"no {role} definition for type {obj.type!r} (see lazyground/scene/types.yaml)")
+    if ee is None:
+        ee = end_effector_of(scene.robot) if scene is not None else EndEffectorSpec(frame=END_EFFECTOR)
     out: list[GoalRegion] = []
     try:
         for spec in definition:

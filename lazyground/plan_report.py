@@ -5,7 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from grounding.model import Grounding, Interpretation
-from lazyground.planning.problem import PlannerSettings, PlanResult, PlanStatus
+from lazyground.planning.problem import PlanResult, PlanStatus
+from lazyground.settings import RunSettings
 from lazyground.tasks.outcome import Outcome, Step
 
 
@@ -20,7 +21,7 @@ class PlanReport:
     request: str
     scene: str
     seed: int
-    settings: PlannerSettings
+    settings: RunSettings  # the run's: settings.planner, .goal_sampling, .motion, .task
     grounding: Grounding
     result: PlanResult
     joint_names: tuple[str, ...]
@@ -44,6 +45,12 @@ class PlanReport:
         if self.outcome is None or len(self.outcome.steps) != 1:
             return None
         return self.outcome.steps[0].motion
+
+    @property
+    def cusps(self) -> int | None:
+        """A car's gear changes along its path (its motion's; None: not a car, or not solved)."""
+        motion = self.motion
+        return motion.cusps if motion is not None else None
 
     @property
     def status(self) -> PlanStatus:

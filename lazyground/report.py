@@ -26,10 +26,10 @@ def report_to_json(report: PlanReport) -> dict:
         "request": report.request,
         "scene": report.scene,
         "seed": report.seed,
-        "strategy": report.settings.strategy,
-        "algorithm": report.settings.algorithm,
-        "goal_bias": report.settings.goal_bias,
-        "kinematics": report.settings.kinematics,
+        "strategy": report.settings.planner.strategy,
+        "algorithm": report.settings.planner.algorithm,
+        "goal_bias": report.settings.planner.goal_bias,
+        "kinematics": report.settings.planner.kinematics,
         "action": report.grounding.action,
         "ambiguous": report.grounding.ambiguous,
         "interpretations": [i.to_json() for i in report.grounding.interpretations],
@@ -44,7 +44,7 @@ def report_to_json(report: PlanReport) -> dict:
         "joint_names": list(report.joint_names),
         "path": res.path.round(9).tolist() if res.path is not None else None,
         "path_length": _r(res.path_length),
-        "cusps": res.cusps,  # car kinematics: gear changes along the path (path_length is then the driven length)
+        "cusps": report.cusps,  # car kinematics: gear changes along the path (path_length is then the driven length)
         "time_s": _r(report.time_s),
         "time_split_s": {
             "grounding": _r(report.grounding_s),
@@ -94,7 +94,7 @@ def report_lines(report: PlanReport) -> list[str]:
     """A short human summary."""
     res = report.result
     g = report.grounding
-    lines = [f"request: {report.request!r} on scene {report.scene} (seed {report.seed}, {_planner_label(report.settings)})"]
+    lines = [f"request: {report.request!r} on scene {report.scene} (seed {report.seed}, {_planner_label(report.settings.planner)})"]
     kinds = "ambiguous: " if g.ambiguous else ""
     lines.append(f"interpretations ({kinds}{len(g.interpretations)}): " + ", ".join(i.id for i in g.interpretations))
     for note in g.notes + report.notes:
@@ -103,7 +103,7 @@ def report_lines(report: PlanReport) -> list[str]:
         lines.append(
             f"reached: {report.chosen.id} via goal region {res.goal_region.id}"
         )
-        driven = "" if res.cusps is None else f" driven, {res.cusps} gear change(s)"
+        driven = "" if report.cusps is None else f" driven, {report.cusps} gear change(s)"
         lines.append(
             f"path: {len(res.path)} waypoints, length {res.path_length:.3f}{driven}; time {report.time_s:.3f} s "
             f"(goal sampling {res.goal_sampling_s:.3f}, collision {res.collision_s:.3f}); "

@@ -1,13 +1,11 @@
 """One planning query's bookkeeping, shared by the tree planners.
 
-The clock and deadline, the goal samples drawn so far and the goal-selection
+The stop condition (:mod:`lazyground.planning.stop`), the goal samples drawn so far and the goal-selection
 strategy over them (reward, penalty, resampling on demand), the counters, the
 fine re-check of a candidate path, and the PlanResult.
 """
 
 from __future__ import annotations
-
-import time
 
 import numpy as np
 
@@ -20,6 +18,7 @@ from lazyground.planning.problem import (
     ValidityChecker,
 )
 from lazyground.planning.space import ConfigSpace
+from lazyground.planning.stop import StopCondition
 from lazyground.planning.strategies import StrategySettings, make_strategy
 from lazyground.planning.tree import Tree
 
@@ -52,30 +51,6 @@ def _checks(checker: ValidityChecker) -> int:
     return int(getattr(checker, "checks", 0))
 
 
-def edge_free(space: ConfigSpace, checker: ValidityChecker, a: np.ndarray, b: np.ndarray, resolution: float) -> bool:
-    """Whether the edge a -> b is free: the checker's own edge check for straight edges,
-    the space's samples along the curve otherwise (Drake's edge check interpolates linearly)."""
-    if space.linear_edges:
-        return checker.edge_free(a, b, resolution)
-    return bool(np.all(checker.configs_free(space.discretize(a, b, resolution, skip_first=True))))
-
-
-def edge_fraction(space: ConfigSpace, checker: ValidityChecker, a: np.ndarray, b: np.ndarray, resolution: float) -> float:
-    """The largest checked fraction t such that a -> interpolate(a, b, t) is free (the free prefix)."""
-    if space.linear_edges:
-        return checker.edge_fraction(a, b, resolution)
-    qs = space.discretize(a, b, resolution, skip_first=True)
-    blocked = np.flatnonzero(~np.asarray(checker.configs_free(qs), bool))
-    if not len(blocked):
-        return 1.0
-    if blocked[0] == 0:
-        return 0.0
-    # samples need not be evenly spaced (a car samples each segment on its own): the fraction of the
-    # distance to the last free sample, which interpolate maps back to it (a shortest path's prefix
-    # is the shortest path to its end)
-    return space.distance(a, qs[blocked[0] - 1]) / space.distance(a, b)
-
-
 class Search:
     def __init__(
         self,
@@ -86,11 +61,14 @@ class Search:
         rng: np.random.Generator,
         seed: int | None,
         keep_tree: bool,
+        stop: StopCondition | None = None,
     ):
         self.space, self.checker, self.goals, self.settings, self.rng = space, checker, goals, settings, rng
-        self.seed, self.keep_tree = seed, keep_tree
-        self.t0 = time.perf_counter()
-        self.deadline = self.t0 + settings.time_limit
+        if stop is None:  # the settings' own limits, from now
+            stop = StopCondition.after(settings.time_limit, max_iterations=settings.max_iterations)
+        self.seed, self.keep_tree, self.stop = seed, keep_tree, stop
+        self.motion = space.motion_validator(checker)  # edges as the space moves along them (OMPL's MotionValidator)
+        self.t0 = stop.now()
         self._check_t0, self._sample_t0 = checker.check_time, goals.sample_time
         self._sampling_checks = 0.0  # collision checks made by the goal sampler count as goal sampling
         self._checks0, self._sampling_count = _checks(checker), 0
@@ -104,12 +82,13 @@ class Search:
         self.iterations = self.resamplings = self.rejected = 0
 
     def time_left(self) -> bool:
-        return time.perf_counter() < self.deadline and self.iterations < self.settings.max_iterations
+        """Whether the stop condition lets the search go on (one clock reading)."""
+        return not self.stop.should_stop(self.iterations)
 
     def draw(self, n: int) -> None:
         """Draw up to n more goal samples and hand them to the strategy."""
         c0, n0 = self.checker.check_time, _checks(self.checker)
-        new = self.goals.draw(n, self.rng, self.deadline)
+        new = self.goals.draw(n, self.rng, self.stop)
         self._sampling_checks += self.checker.check_time - c0
         self._sampling_count += _checks(self.checker) - n0
         first = len(self.samples)
@@ -177,10 +156,9 @@ class Search:
         for i, sample in enumerate(self.samples):
             sample.weight = self.selector.weight(i)
         goal = self.samples[gi] if gi is not None else None
-        length, cusps = (self.space.path_length(path) if path is not None else 0.0), None
-        if path is not None and not self.space.linear_edges:  # a car: return the curves it drives, densely
-            path = self.space.densify(path)
-            cusps = self.space.cusps(path)
+        length = self.space.path_length(path) if path is not None else 0.0
+        if path is not None:  # as the robot moves along it (a car: its curves, densely)
+            path = self.space.dense_path(path)
         return PlanResult(
             status=status,
             seed=self.seed,
@@ -191,7 +169,7 @@ class Search:
             tree_size=sum(len(t) for t in self.trees),
             goal_samples=self.samples,
             resamplings=self.resamplings,
-            time_s=time.perf_counter() - self.t0,
+            time_s=self.stop.now() - self.t0,
             goal_sampling_s=self.goals.sample_time - self._sample_t0,
             collision_s=self.checker.check_time - self._check_t0 - self._sampling_checks,
             message=message,
@@ -202,7 +180,6 @@ class Search:
             path_length=length,
             invalid_paths_rejected=self.rejected,
             collision_checks=_checks(self.checker) - self._checks0 - self._sampling_count,
-            cusps=cusps,
         )
 
     def region_summary(self) -> str:

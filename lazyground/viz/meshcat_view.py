@@ -26,6 +26,7 @@ import re
 import time
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 from pydrake.geometry import Box, Meshcat, MeshcatAnimation, MeshcatVisualizer, MeshcatVisualizerParams, Rgba, Sphere
@@ -70,18 +71,19 @@ def write_html(report, scene, path) -> int:
     return len(data)
 
 
-def show_live(report, scene, loop_once: bool, out) -> None:
-    """Serve ``report`` in a live Meshcat on localhost until Ctrl-C (or return at once with ``loop_once``)."""
+def show_live(report, scene, loop_once: bool, say: Callable[[str], None]) -> None:
+    """Serve ``report`` in a live Meshcat on localhost until Ctrl-C (or return at once with ``loop_once``);
+    ``say`` gets the address and the stop line (the CLI prints them)."""
     meshcat = Meshcat()
     seconds = draw(report, scene, meshcat)
-    print(f"meshcat: {meshcat.web_url()} (replay {seconds:.1f} s; press Ctrl-C to stop)", file=out, flush=True)
+    say(f"meshcat: {meshcat.web_url()} (replay {seconds:.1f} s; press Ctrl-C to stop)")
     if loop_once:
         return
     try:
         while True:
             time.sleep(0.5)
     except KeyboardInterrupt:
-        print("meshcat: stopped", file=out)
+        say("meshcat: stopped")
 
 
 def draw(report, scene, meshcat: Meshcat) -> float:
@@ -210,7 +212,8 @@ class _StepView:
             if hide_tree:  # a large tree covers the objects; the page's button shows it
                 self.meshcat.SetProperty(f"{path}/tree", "visible", False)
         if self.motion is not None:
-            car = self.report.result.cusps is not None  # a car's path is already its curves, densely sampled
+            motion = getattr(self.report, "motion", None)  # a report's or a step's Motion
+            car = motion is not None and motion.cusps is not None  # a car's path is already its curves, densely sampled
             qs = self.motion if car else resample_path(self.motion, 200, self.world.space.wrap)
             dense = self.points(qs)
             self.meshcat.SetLine(f"{path}/path", dense, 4.0, Rgba(*PATH_RGBA))

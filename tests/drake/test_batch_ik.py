@@ -1,6 +1,5 @@
-"""The batched damped-least-squares IK (lazyground.drake.batch_ik) and the goal source's batch mode (#19)."""
+"""The batched damped-least-squares IK (lazyground.drake.ik.batch) and the goal source's batch mode (#19)."""
 
-import math
 from dataclasses import replace
 from pathlib import Path
 
@@ -10,16 +9,17 @@ import pytest
 pytest.importorskip("pydrake")
 
 import grounding  # noqa: E402
-from lazyground.drake.batch_ik import SETTLE, BatchIKProblem, pose_errors, solve_batch  # noqa: E402
+from lazyground.drake.ik.batch import SETTLE, BatchIKProblem, pose_errors, solve_batch  # noqa: E402
 from lazyground.drake.chain import chain_to_frame  # noqa: E402
 from lazyground.drake.ik import IKGoalSource, IKSettings  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.geometry import Pose  # noqa: E402
+from lazyground.planning.stop import StopCondition  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 from lazyground.tolerance import accepted_error  # noqa: E402
 
 SCENES = Path(__file__).resolve().parents[2] / "yaml_scenes"
-NO_DEADLINE = math.inf
+NO_DEADLINE = StopCondition()  # bounded by attempts and restarts, never by the clock
 
 
 @pytest.fixture(scope="module")
@@ -90,7 +90,8 @@ def test_pose_errors_take_the_short_way_and_see_half_turns():
     T = np.array([Pose((0.1, 0.0, 0.0), (0.0, 0.0, 0.3)).matrix(), Pose(rpy=(np.pi, 0.0, 0.0)).matrix(),
                   Pose(rpy=(0.0, 0.0, -3.0)).matrix()])
     w, dp, angle = pose_errors(X, T)
-    np.testing.assert_allclose(w[0], [0, 0, 0.3], atol=1e-12) and np.testing.assert_allclose(dp[0], [0.1, 0, 0])
+    np.testing.assert_allclose(w[0], [0, 0, 0.3], atol=1e-12)
+    np.testing.assert_allclose(dp[0], [0.1, 0, 0], atol=1e-12)  # was after `and`, never run
     np.testing.assert_allclose(abs(w[1][0]), np.pi, atol=1e-9)  # a half turn: the axis is not lost (sin = 0)
     np.testing.assert_allclose(angle, [0.3, np.pi, 3.0], atol=1e-9)
     np.testing.assert_allclose(w[2], [0, 0, -3.0], atol=1e-9)
@@ -149,12 +150,12 @@ def test_a_plan_ends_where_its_batch_answers_say(cans1):
 
 
 def test_starts_near_the_target_are_distinct_reach_arms_whose_wrists_lie_near_it(cans1):
-    from lazyground.drake.reach import START_STRIDE, reach_map
+    from lazyground.drake.ik.reach import START_STRIDE, reach_map
 
     _, world, regions = cans1
     source = IKGoalSource(regions, world, IKSettings(attempt_budget=None))
     rng = np.random.default_rng(8)
-    X = np.array([source._target_matrix(r, r.sample(rng)) for r in regions])
+    X = np.array([source.target_poses(np.array([j]), r.sample(rng)[None])[0] for j, r in enumerate(regions)])
     m = reach_map(world, "gripper_link")
     configs = m.near_configs(X, 3, 64, rng)
     assert configs.shape == (len(X), 3, world.space.dim)

@@ -19,4 +19,4 @@ def test_api_plan_takes_a_bundled_scene_name(tmp_path, monkeypatch):
     assert res.solved, res.message
     assert report.chosen_object in {"spot_b1", "spot_t3", "spot_b9", "spot_t10"}
     world = DrakeWorld(load_scene("parking_1"))
-    assert path_is_valid(world.space, world, res.path, report.settings.resolution / 10) == -1
+    assert path_is_valid(world.space, world, res.path, report.settings.planner.resolution / 10) == -1

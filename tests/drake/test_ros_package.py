@@ -61,7 +61,7 @@ def test_ros_package_plans_pick_up_a_cup_without_edits(workspace):
             continue
         solved += 1
         res = report.result
-        fine = report.settings.resolution / 10
+        fine = report.settings.planner.resolution / 10
         assert path_is_valid(world.space, world, res.path, fine) == -1, f"seed {seed}: path collides at {fine:g}"
         z = world.frame_pose("tool_tcp", res.path[-1]).rotation()[:, 2]
         if res.goal_region.label == "top":

@@ -49,4 +49,4 @@ def test_tutorial_scenes_plan(scenes, name, request_text):
     report = api.plan(scenes[name], request_text, seed=0, world=world)
     res = report.result
     assert res.solved, res.message
-    assert path_is_valid(world.space, world, res.path, report.settings.resolution / 10) == -1
+    assert path_is_valid(world.space, world, res.path, report.settings.planner.resolution / 10) == -1

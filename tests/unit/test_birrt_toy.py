@@ -73,8 +73,8 @@ class _BadApproach:
     def __init__(self, inner):
         self.inner, self.regions, self.stats = inner, inner.regions, inner.stats
 
-    def draw(self, n, rng, deadline):
-        return [GoalSample(s.q, s.region, final=s.q + np.array([0.0, -1.5])) for s in self.inner.draw(n, rng, deadline)]
+    def draw(self, n, rng, stop):
+        return [GoalSample(s.q, s.region, final=s.q + np.array([0.0, -1.5])) for s in self.inner.draw(n, rng, stop)]
 
     def exhausted(self):
         return self.inner.exhausted()

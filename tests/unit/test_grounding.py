@@ -148,7 +148,9 @@ CASES = [
     ("kitchen", "grab the brown thing", pick("box_small")),
     ("kitchen", "pick up the can or the box", pick(*ALL_CANS, *BOXES)),
     # --- location: support relations, racks, left/right/top --------------------------------------
-    ("kitchen", "a can on the table", None),  # no verb: error (checked in the error tests)
+    ("kitchen", "a can on the table", pick("can_red", "can_blue")),  # a noun phrase alone: get it (#29)
+    ("kitchen", "the green soda, please", pick("can_green")),
+    ("lot", "bay c please", park("bay_c")),
     ("kitchen", "pick up a can on the table", pick("can_red", "can_blue")),
     ("kitchen", "grab the can on the desk", pick("can_red", "can_blue")),
     ("kitchen", "get a can from the shelf", pick("can_green", "can_plain", "can_red2")),
@@ -236,7 +238,7 @@ def test_interpretations_carry_goal_regions():
     g = ground("put the blue can on the table", scene("kitchen"))
     (i,) = g.interpretations
     assert (i.action, i.objects, i.target) == ("place", ("can_blue",), "table_1")
-    # a can: the top grasp and side grasps at two heights (grounding/types.yaml)
+    # a can: the top grasp and side grasps at two heights (lazyground/scene/types.yaml)
     assert [r.label for r in i.goal_regions] == ["top", "side 35%", "side 65%"]
     assert all(r.kind == "workspace" and r.object == "can_blue" for r in i.goal_regions)
     assert [r.kind for r in i.place_regions] == ["placement"] and i.place_regions[0].object == "table_1"

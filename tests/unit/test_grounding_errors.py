@@ -28,7 +28,7 @@ ERRORS = [
     ("lot", "park the can", None),
     # unknown words and verbs: name the word, list the verbs
     ("kitchen", "frobnicate the can", "unknown word 'frobnicate'; supported verbs: pick up, grab, take, get, fetch, lift, grasp, put, place, set, move, park (see docs/requests.md)"),
-    ("kitchen", "a can on the table", "a request starts with a verb, not 'a'; supported verbs:"),
+    ("kitchen", "on the table", "a request starts with a verb, not 'on'; supported verbs:"),
     ("kitchen", "pick up the widget", "unknown word 'widget'; objects here: table x1, can x5, box x3, shelf x5; verbs:"),
     ("kitchen", "pick up the can quietly", "unknown word 'quietly'; objects here:"),
     # unsupported forms
@@ -38,13 +38,13 @@ ERRORS = [
     ("kitchen", "grab every box", "not supported: 'every box' asks for several objects; the robot handles one at a time (try 'one of the boxes')"),
     ("kitchen", "pick up the cans", "not supported: 'the cans' asks for several objects; the robot handles one at a time (try 'one of the cans')"),
     ("kitchen", "pick up the can and the box", "not supported: 'and' joins two objects or actions"),
-    ("kitchen", "pick up a can that is not red", "not supported: negation ('not')"),
+    ("kitchen", "do not pick up the red can", "not supported: a negated action ('pick up' after 'not')"),
     ("kitchen", "pick it up", "not supported: 'it' (nothing to refer back to)"),
     ("kitchen", "pick up the can put the box", "not supported: a second verb 'put'"),
     # wrong roles
-    ("kitchen", "lift the table", "cannot pick up a table: type 'table' has no 'pick' definition in grounding/types.yaml"),
+    ("kitchen", "lift the table", "cannot pick up a table: type 'table' has no 'pick' definition in lazyground/scene/types.yaml"),
     ("kitchen", "put the can on the can", None),
-    ("kitchen", "put the red can on a box", "cannot put things on a box: type 'box' has no 'support' definition in grounding/types.yaml"),
+    ("kitchen", "put the red can on a box", "cannot put things on a box: type 'box' has no 'support' definition in lazyground/scene/types.yaml"),
     ("kitchen", "put a can", "'put' needs a place, e.g. 'put the can on the table'"),
     ("kitchen", "grab", "'grab' needs an object, e.g. 'grab a can'"),
     ("kitchen", "pick up the car", "cannot pick up 'the car': that is the robot"),

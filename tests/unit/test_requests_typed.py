@@ -60,7 +60,7 @@ ERRORS = [
     (CANS_1, "pikc up a can", "unknown word 'pikc'; did you mean 'pick'?"),
     (CANS_1, "pick up a cna", "unknown word 'cna'; did you mean 'can'?"),
     ("parking_1", "pakr", "unknown word 'pakr'; did you mean 'park'?"),
-    ("parking_1", "park in b1", "unknown word 'b1'; ids with 'b1': spot_b1, spot_b10, spot_b11;"),
+    ("parking_1", "park in b12", "unknown word 'b12'; ids here: spot_b0, spot_t0, spot_b1"),
     (CANS_1, "pick up can 7", "no 'can 7' in this scene; ids with 'can': Can1, Can2, Can3, Can4"),
     (CANS_1, "pick up the fifth can", "no fifth can: there are only 4 cans"),
     (CANS_1, "grab a can from the top shelf",
