@@ -59,12 +59,12 @@ class FirstRegionSource:
     def exhausted(self) -> bool:
         return self._current() is None
 
-    def draw(self, n, rng, deadline) -> list[GoalSample]:
-        while time.perf_counter() < deadline:
+    def draw(self, n, rng, stop) -> list[GoalSample]:
+        while not stop.should_stop():
             src = self._current()
             if src is None:
                 return []
-            out = src.draw(n, rng, deadline)
+            out = src.draw(n, rng, stop)
             if out:
                 for s in out:
                     s.region = self._j
@@ -87,13 +87,13 @@ class EagerSource:
     def exhausted(self) -> bool:
         return self._done
 
-    def draw(self, n, rng, deadline) -> list[GoalSample]:
+    def draw(self, n, rng, stop) -> list[GoalSample]:
         if self._done:
             return []
         out: list[GoalSample] = []
         todo = lambda: [j for j, st in enumerate(self.stats) if st.valid == 0 and not self._inner.region_exhausted(j)]
-        while todo() and time.perf_counter() < deadline:
-            out += self._inner.draw(len(self.regions), rng, deadline)
+        while todo() and not stop.should_stop():
+            out += self._inner.draw(len(self.regions), rng, stop)
         self._done = not todo()
         return out
 
