@@ -85,11 +85,11 @@ def test_api_rejects_an_unknown_setting():
 
 
 @pytest.mark.parametrize("planner, error", [
-    ("{step_size: -1}", "bad.yaml: planner.step_size: must be > 0, got -1"),
-    ("{algorithm: foo}", "bad.yaml: planner.algorithm: unknown algorithm 'foo' (known: rrt, bidirectional)"),
+    ("{step_size: -1}", "bad.yaml: planner.step_size: must be > 0, got -1 (line 3)"),
+    ("{algorithm: foo}", "bad.yaml: planner.algorithm: unknown algorithm 'foo' (known: rrt, bidirectional) (line 3)"),
     ("{per_algorithm: {rrt: {goal_extension: jump}}}",
-     "bad.yaml: planner.per_algorithm.rrt.goal_extension: unknown goal extension 'jump' (known: partial, extend, connect)"),
-    ("{per_algorithm: {prm: {}}}", "bad.yaml: planner.per_algorithm.prm: unknown algorithm (known: rrt, bidirectional)"),
+     "bad.yaml: planner.per_algorithm.rrt.goal_extension: unknown goal extension 'jump' (known: partial, extend, connect) (line 3)"),
+    ("{per_algorithm: {prm: {}}}", "bad.yaml: planner.per_algorithm.prm: unknown algorithm (known: rrt, bidirectional) (line 3)"),
 ])
 def test_scene_file_rejects_a_bad_setting(planner, error):
     with pytest.raises(SceneError) as info:
