@@ -187,7 +187,7 @@ def _run_baseline(problem: Problem, spec: RunSpec) -> dict:
     """A baseline of :mod:`lazyground.bench.baselines` on the same world, goal sampler and clock as ours."""
     from lazyground.api import planner_settings
     from lazyground.bench.baselines import run_baseline
-    from lazyground.robots.car import planning_space
+    from lazyground.tasks.car_space import planning_space
 
     name, bidirectional = parse_planner(spec.planner)
     algorithm = Algorithm.BIDIRECTIONAL if bidirectional else Algorithm.RRT

@@ -13,6 +13,7 @@ from lazyground.bench.families.lot import REACHABLE, spot_kinds
 from lazyground.drake.world import DrakeWorld
 from lazyground.goals import goal_source_for
 from lazyground.planning.search import path_is_valid
+from lazyground.planning.stop import StopCondition
 
 
 @pytest.mark.parametrize("key,request_,seeds,cap", [("lot:8:2:0", "park", 6, 3000),
@@ -43,5 +44,14 @@ def test_blocked_spots_have_valid_parked_poses():
         spot = next(s for s, k in kinds.items() if k == kind)
         mine = tuple(r for r in regions if r.object == spot)
         source = goal_source_for(mine, world)
-        samples = source.draw(3, np.random.default_rng(0), deadline=float("inf"))
+        samples = source.draw(3, np.random.default_rng(0), StopCondition.after(None))
         assert samples, f"{kind} spot {spot} has no collision-free parked pose"
+
+
+@pytest.mark.parametrize("planner", ["nearest-first-bidirectional", "multiplexer", "eager-bidirectional", "independent-bidirectional"])
+def test_bench_runs_each_baseline_on_a_family_key(planner):
+    from lazyground.bench.runner import RunSpec, run
+
+    row = run(RunSpec("lot:8:2", planner, "consecutive", 0.05, 0, 1.0))
+    assert row["status"] in ("solved", "timeout"), row["message"]
+    assert row["scene"] == "lot_8_2" and float(row["time_s"]) > 0
