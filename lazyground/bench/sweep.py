@@ -103,11 +103,13 @@ def sweep_plot(rows: list[dict], path: Path) -> None:
     if not data:
         return
     fig, axes = plt.subplots(1, len(data), figsize=(6 * len(data), 4.5), squeeze=False)
+    methods = sorted({m for by in data.values() for m in by})
+    colour = {m: plt.get_cmap("tab10")(i % 10) for i, m in enumerate(methods)}  # one colour per method in every panel
     for ax, ((fam, fixed), by) in zip(axes[0], sorted(data.items())):
         for method, pts in sorted(by.items()):
             pts = sorted(pts)
             xs, med, ok = [p[0] for p in pts], [p[1] for p in pts], [p[2] for p in pts]
-            line, = ax.plot(xs, med, marker="o", label=method)
+            line, = ax.plot(xs, med, marker="o", label=method, color=colour[method])
             for x, m, s in zip(xs, med, ok):
                 if s < 1:
                     ax.annotate(f"{s:.0%}", (x, m), textcoords="offset points", xytext=(3, 4), fontsize=7, color=line.get_color())
