@@ -9,8 +9,7 @@ follows), conflicts show when the grammar is built, and a parse takes well under
 words are retagged by their neighbours first, as a person reads them: "and" before a verb joins
 clauses (THEN), "or" and "to" between id numbers join ids ("spot 3 or 4", "spots 3 to 6").
 
-A noun-less phrase that only holds positions ("the can on the left") joins the phrase before it;
-"from the left" after an ordinal sets the side it counts from ("the third can from the left").
+A noun-less phrase that only holds positions ("the can on the left") joins the phrase before it.
 """
 
 from __future__ import annotations
@@ -382,8 +381,7 @@ def _negate(body, negated: bool):
 
 
 def _attach_positions(c: Clause) -> Clause:
-    """Noun-less position phrases ("on the left") narrow the phrase just before them; "from the left" after an
-    ordinal sets the side it counts from."""
+    """Noun-less position phrases ("on the left") narrow the phrase just before them."""
     groups: list[list[NounPhrase]] = [list(c.object)]
     preps: list[Token] = []
     for pp in c.pps:
@@ -391,23 +389,9 @@ def _attach_positions(c: Clause) -> Clause:
         if all(a.position_only for a in pp.alternatives) and prev:
             mods = tuple(m for a in pp.alternatives for m in a.modifiers)
             said = " or ".join(a.full() for a in pp.alternatives)
-            if pp.prep.text == "from" and len(mods) == 1 and mods[0].value in ORDER_SIDES and _has_ordinal(prev):
-                groups[-1] = [_order_from(a, mods[0].value, f"from {said}") for a in prev]
-            else:
-                groups[-1] = [replace(a, modifiers=a.modifiers + mods, text=f"{a.text} {pp.prep.text} {said}".strip()) for a in prev]
-        elif pp.prep.text == "from" and prev and _has_ordinal(prev) and all(a.head in ("person", "robot") for a in pp.alternatives):
-            groups[-1] = [_order_from(a, "near", f"from {pp.alternatives[0].full()}") for a in prev]
+            groups[-1] = [replace(a, modifiers=a.modifiers + mods, text=f"{a.text} {pp.prep.text} {said}".strip()) for a in prev]
         else:
             groups.append(list(pp.alternatives))
             preps.append(pp.prep)
     objects = ((tuple(groups[0]),) + c.objects[1:]) if c.objects else ()
     return replace(c, objects=objects, pps=tuple(PrepPhrase(p, tuple(g)) for p, g in zip(preps, groups[1:])))
-
-
-def _has_ordinal(alts: list[NounPhrase]) -> bool:
-    return any(m.kind == "ordinal" for a in alts for m in a.modifiers)
-
-
-def _order_from(np: NounPhrase, side: str, said: str) -> NounPhrase:
-    mods = tuple(replace(m, order=side) if m.kind == "ordinal" else m for m in np.modifiers)
-    return replace(np, modifiers=mods, text=f"{np.text} {said}")

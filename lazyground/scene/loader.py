@@ -66,7 +66,7 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
         data = fill_from_robot_defaults(data, lambda model: resolve_model(model, scene_dir))
         scene = load_dataclass(data, Scene, "")
     except SceneError as exc:
-        line = line_of(text, str(exc).split(": ", 1)[0])
+        line = line_of(text, str(exc).split(": ", 1)[0])  # where the bad key is
         raise SceneError(f"{source}: {exc}" + (f" (line {line})" if line else "")) from None
     model = resolve_model(scene.robot.model, scene_dir)
     if model is None:
