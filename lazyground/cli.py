@@ -103,6 +103,16 @@ def build_parser() -> argparse.ArgumentParser:
     cli_options.add_start_options(p)
     add_import_options(sub.add_parser("import-moveit", help="convert a MoveIt planning-scene YAML into a lazyground scene"))
 
+    gen = sub.add_parser("generate", help="write a generated scene: a parking lot or a rack of cubbies (issue #33)")
+    gen.add_argument("family", choices=("lot", "rack"))
+    gen.add_argument("--robot", default="panda", help="rack: panda or fetch (default: panda)")
+    gen.add_argument("--free", type=int, help="lot: free spots (default 64)")
+    gen.add_argument("--objects", type=int, help="rack: cans (default 16)")
+    gen.add_argument("--reachable", type=int, help="how many are reachable (default: lot 2, rack 1)")
+    gen.add_argument("--seed", type=int, default=0)
+    gen.add_argument("-o", "--output", metavar="FILE", help="write the scene YAML here (default: stdout)")
+    gen.add_argument("--debug", action="store_true", help="show tracebacks")
+
     b = sub.add_parser("bench", help="benchmark strategies and peers (see benchmarks/RESULTS.md)", add_help=False)
     b.add_argument("bench_args", nargs=argparse.REMAINDER)
     return parser
@@ -265,6 +275,28 @@ def cmd_import_moveit(args) -> int:
     return run(args)
 
 
+def cmd_generate(args) -> int:
+    from lazyground.bench.families import generate, parse_key, scene_yaml
+
+    if args.family == "lot":
+        key = f"lot:{64 if args.free is None else args.free}:{2 if args.reachable is None else args.reachable}:{args.seed}"
+    else:
+        key = f"rack:{args.robot}:{16 if args.objects is None else args.objects}:{1 if args.reachable is None else args.reachable}:{args.seed}"
+    try:
+        text = scene_yaml(generate(parse_key(key)))
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
+    if args.output is None:
+        sys.stdout.write(text)
+        return EXIT_OK
+    try:
+        Path(args.output).write_text(text)
+    except OSError as exc:
+        raise UsageError(f"cannot write {args.output}: {exc.strerror or exc}") from None
+    print(f"wrote {args.output}", file=sys.stderr)
+    return EXIT_OK
+
+
 def cmd_bench(args) -> int:
     from lazyground.bench.cli import main as bench_main
 
@@ -273,7 +305,7 @@ def cmd_bench(args) -> int:
 
 
 COMMANDS = {"plan": cmd_plan, "ground": cmd_ground, "demo": cmd_demo, "import-moveit": cmd_import_moveit, "bench": cmd_bench,
-            "check-robot": cmd_check_robot}
+            "generate": cmd_generate, "check-robot": cmd_check_robot}
 
 
 def main(argv: list[str] | None = None) -> int:
