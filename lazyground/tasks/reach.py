@@ -6,6 +6,7 @@ from lazyground.goals import goal_source_for
 from lazyground.motion.post import post_process
 from lazyground.planning.rrt import solve
 from lazyground.planning.stop import StopCondition
+from lazyground.planning.turns import sweep_note
 from lazyground.tasks.car_space import planning_space
 from lazyground.tasks.outcome import Outcome, Step
 
@@ -40,5 +41,8 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     stop = StopCondition.after(planner.time_limit, max_iterations=planner.max_iterations, clock=clock)
     result = solve(space, world, source, world.start, planner, rng, seed=seed, keep_tree=keep_tree, stop=stop)
     result, motion = post_process(space, world, result, settings, rng)  # shortened and timed, as the space chose
-    notes = (motion.note,) if motion is not None and motion.note else ()
+    notes = world.model_notes + ((motion.note,) if motion is not None and motion.note else ())
+    swept = sweep_note(motion.shortcut.path, world.space.names, world.space.wrap, world.coordinates.turns) \
+        if motion is not None and result.solved else None
+    notes += (swept,) if swept else ()
     return Outcome(result, (Step(grounding.action, result, setup_s, motion=motion),), world.space.names, notes)
