@@ -69,7 +69,7 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
     model = resolve_model(scene.robot.model, scene_dir)
     if model is None:
         raise SceneError(f"{source}: robot.model: model file {scene.robot.model!r} not found (bundled: {_bundled()})")
-    problem = _overlap_problem(scene.objects) or _mesh_problem(scene, scene_dir)
+    problem = _overlap_problem(scene) or _mesh_problem(scene, scene_dir)
     if problem:
         raise SceneError(f"{source}: {problem}")
     # imported here: lazyground.robots reads robot.yaml through this package's typed_yaml
@@ -129,20 +129,19 @@ def _bundled() -> str:
     return ", ".join(names) or "none"
 
 
-def _overlap_problem(objects: tuple[SceneObject, ...]) -> str | None:
-    """An object whose centre lies inside another solid object is a modelling error."""
-    solid = [o for o in objects if o.collides]
-    for i, a in enumerate(solid):
-        centre = np.asarray(a.pose.xyz)
-        for b in solid:
-            if b is a:
-                continue
+def _overlap_problem(scene: Scene) -> str | None:
+    """A solid (object or obstacle) whose centre lies inside another solid is a modelling error."""
+    solids = [(f"objects[{i}]", "object", o) for i, o in enumerate(scene.objects) if o.collides]
+    solids += [(f"obstacles[{i}]", "obstacle", o) for i, o in enumerate(scene.obstacles) if o.geometry.mesh is None]
+    hits = []  # (the larger one holds the centre, later solid first, message)
+    for n, (key, kind, a) in enumerate(solids):
+        centre = np.asarray(a.pose.xyz, dtype=float)
+        for _, other_kind, b in solids:
             X = b.pose.pose()
-            p_B = (centre - np.asarray(X.xyz)) @ X.rotation()
-            if np.all(np.abs(p_B) < np.asarray(b.geometry.half_extents()) - 1e-9) and b.geometry.volume() > a.geometry.volume():
-                idx = objects.index(a)
-                return f"objects[{idx}].pose: {a.id!r} is inside {b.id!r}"
-    return None
+            if b is not a and b.geometry.contains((centre - np.asarray(X.xyz)) @ X.rotation()):
+                message = f"{key}.pose: {kind} {a.id!r} has its centre inside {other_kind} {b.id!r}"
+                hits.append((a.geometry.volume() > b.geometry.volume(), -n, message))
+    return min(hits)[2] if hits else None
 
 
 def _mesh_path(file: str, scene_dir: Path | None) -> Path:
