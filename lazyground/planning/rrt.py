@@ -19,6 +19,9 @@ from lazyground.planning.space import ConfigSpace
 from lazyground.planning.tree import Tree
 from lazyground.settings import Algorithm, GoalExtension
 
+# What to try when an algorithm times out with goals in hand (issue 34: the README's one-tree line timed out with no hint).
+TRY_INSTEAD = {"rrt": "; the two-tree planner often finds one sooner: try --algorithm bidirectional"}
+
 __all__ = ["ALGORITHMS", "path_is_valid", "solve"]
 
 
@@ -68,7 +71,7 @@ def solve(
               else f"{settings.time_limit:g} s ({search.iterations} iterations)")
     if not search.samples:  # the limit came before goal sampling had tried every region: not proof there is no goal
         return search.result(PlanStatus.TIMEOUT, f"no valid goal configuration found within {within}: {search.region_summary()}")
-    return search.result(PlanStatus.TIMEOUT, f"no path within {within}")
+    return search.result(PlanStatus.TIMEOUT, f"no path within {within}{TRY_INSTEAD.get(settings.algorithm, '')}")
 
 
 def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:

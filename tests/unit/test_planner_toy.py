@@ -60,7 +60,16 @@ def test_reward_penalty_penalises_unreachable_samples_and_resamples():
 def test_an_iteration_limit_is_named_as_such():
     # audit8: max_iterations=5 said "no path within 10 s (5 iterations)" after a few milliseconds
     world, res = run([UNREACHABLE], 0, PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=5))
-    assert res.status is PlanStatus.TIMEOUT and res.message == "no path within 5 iterations (max_iterations)"
+    assert res.status is PlanStatus.TIMEOUT and res.message.startswith("no path within 5 iterations (max_iterations);")
+
+
+def test_a_one_tree_timeout_says_what_to_try():
+    # issue 34: the README's `--algorithm rrt` line timed out after 31 s with no hint that the default planner solves it
+    settings = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=5)
+    _, res = run([UNREACHABLE], 0, settings)
+    assert res.status is PlanStatus.TIMEOUT and res.message.endswith("try --algorithm bidirectional")
+    _, res = run([UNREACHABLE], 0, replace(settings, algorithm="bidirectional"))
+    assert res.status is PlanStatus.TIMEOUT and "try --algorithm" not in res.message
 
 
 def test_same_seed_same_path():
