@@ -20,7 +20,7 @@ from lazyground.planning.tree import Tree
 from lazyground.settings import Algorithm, GoalExtension
 
 # What to try when an algorithm times out with goals in hand (issue 34: the README's one-tree line timed out with no hint).
-TRY_INSTEAD = {"rrt": "; the two-tree planner often finds one sooner: try --algorithm bidirectional"}
+TRY_INSTEAD = {Algorithm.RRT: f"; the two-tree planner often finds one sooner: try --algorithm {Algorithm.BIDIRECTIONAL}"}
 
 __all__ = ["ALGORITHMS", "path_is_valid", "solve"]
 
