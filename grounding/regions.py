@@ -57,21 +57,39 @@ def occupant_geometry(obj: SceneObject, scene: Scene | None = None) -> Geometry 
         raise GroundingError(f"grounding/types.yaml: {exc}") from None
 
 
-def check_types(scene: Scene) -> None:
+def check_types(scene: Scene, source: str | None = None) -> None:
     """Every object type must be defined (``types.yaml``) or declared by the scene (``grasp_types: {pillar: {}}``).
 
     A misspelt type would otherwise turn a goal into a plain obstacle without a word.
+
+    Args:
+        source: the file the message names (default: the scene's own; "" for none).
 
     Raises:
         GroundingError: the first undefined type, with the closest defined names.
     """
     known = type_definitions(scene)
-    for obj in scene.objects:
+    source = scene.source if source is None else source
+    for i, obj in enumerate(scene.objects):
         if obj.type not in known:
-            close = difflib.get_close_matches(obj.type, sorted(known), n=2, cutoff=0.6)
-            hint = f"did you mean {' or '.join(repr(c) for c in close)}? " if close else ""
-            raise GroundingError(f"object {obj.id!r}: unknown type {obj.type!r}; {hint}(types: grounding/types.yaml; "
+            where = f"{source}: " if source else ""
+            raise GroundingError(f"{where}objects[{i}].type: object {obj.id!r}: unknown type {obj.type!r}; "
+                                 f"{_type_hint(obj.type, known)}(types: grounding/types.yaml; "
                                  f"a scene declares its own under grasp_types, e.g. 'grasp_types: {{{obj.type}: {{}}}}')")
+
+
+def _type_hint(name: str, known) -> str:
+    """"did you mean 'cup' (a 'mug' is one)? " for a misspelt type or a word naming one (the lexicon's nouns)."""
+    from grounding.lexicon import load_lexicon
+
+    nouns = {w.replace(" ", "_"): t for t, words in load_lexicon().data.get("nouns", {}).items() if t in known for w in words}
+    nouns.update({t: t for t in known})
+    close = difflib.get_close_matches(name.lower(), sorted(nouns), n=4, cutoff=0.6)
+    first = {}  # type -> the closest word naming it
+    for w in close:
+        first.setdefault(nouns[w], w)
+    said = [f"{t!r}" + (f" (a {w!r} is one)" if w != t else "") for t, w in list(first.items())[:2]]
+    return f"did you mean {' or '.join(said)}? " if said else ""
 
 
 def regions_for(obj: SceneObject, role: str, interpretation: str, scene: Scene | None = None) -> tuple[GoalRegion, ...]:

@@ -64,7 +64,7 @@ def solve(
         if found is not None:
             return found
     except KeyboardInterrupt:
-        return search.result(PlanStatus.INTERRUPTED, "interrupted")
+        return search.result(PlanStatus.INTERRUPTED, "stopped by Ctrl-C")
     if not search.samples and search.goals.exhausted():
         return search.no_goal()
     within = (f"{settings.max_iterations} iterations (max_iterations)" if search.iterations >= settings.max_iterations

@@ -74,7 +74,8 @@ def show_live(report, scene, loop_once: bool, out) -> None:
     """Serve ``report`` in a live Meshcat on localhost until Ctrl-C (or return at once with ``loop_once``)."""
     meshcat = Meshcat()
     seconds = draw(report, scene, meshcat)
-    print(f"meshcat: {meshcat.web_url()} (replay {seconds:.1f} s; press Ctrl-C to stop)", file=out, flush=True)
+    until = "drawn once (--loop-once): the server stops now" if loop_once else "press Ctrl-C to stop"
+    print(f"meshcat: {meshcat.web_url()} (replay {seconds:.1f} s; {until})", file=out, flush=True)
     if loop_once:
         return
     try:

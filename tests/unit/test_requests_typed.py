@@ -106,8 +106,18 @@ def test_undefined_object_type_is_an_error_with_a_suggestion():
     with pytest.raises(GroundingError) as info:
         ground("park", parse_scene(TYPO, "typo"))
     msg = str(info.value)
-    assert msg.startswith("object 'spot_b': unknown type 'parking_sopt'; did you mean 'parking_spot'?"), msg
+    assert msg.startswith("typo: objects[1].type: object 'spot_b': unknown type 'parking_sopt'; did you mean 'parking_spot'?"), msg
     assert "grasp_types: {parking_sopt: {}}" in msg
+
+
+@pytest.mark.parametrize("typo", ["mug", "muggg", "Mug"])
+def test_a_type_named_by_a_word_of_another_suggests_that_type(typo):
+    # issue 34: 'type: mug' said "unknown type 'mug'; (types: ...)", no file, no suggestion ('mug' is a word for a cup)
+    scene = parse_scene(TYPO.replace("parking_sopt", typo), "my_table.yaml")
+    with pytest.raises(GroundingError) as info:
+        ground("park", scene)
+    assert str(info.value).startswith(f"my_table.yaml: objects[1].type: object 'spot_b': unknown type {typo!r}; "
+                                      "did you mean 'cup' (a 'mug' is one)?"), str(info.value)
 
 
 def test_a_scene_declares_its_own_type():
@@ -115,6 +125,13 @@ def test_a_scene_declares_its_own_type():
     assert {i.id for i in ground("park", sc).interpretations} == {"park:spot_a"}
     with pytest.raises(GroundingError, match="has no 'park' definition"):
         ground("park in spot_b", sc)
+
+
+def test_a_type_starting_with_a_vowel_takes_an():
+    # issue 34: "cannot park in a exit: type 'exit' has no 'park' definition"
+    sc = parse_scene(TYPO.replace("parking_sopt", "exit") + "grasp_types: {exit: {}}\n", "typo")
+    with pytest.raises(GroundingError, match="^cannot park in an exit: type 'exit'"):
+        ground("park at the exit", sc)
 
 
 def test_every_bundled_scene_declares_its_types():

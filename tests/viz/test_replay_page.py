@@ -70,3 +70,15 @@ def test_pick_and_place_steps_are_labelled(tmp_path):
     meshcat_view.write_html(report, scene, out)
     text = " ".join(_panel(out.read_text()).split())
     assert re.search(r"Steps 1\. pick can1 \(0\.0-4\.0 s\) 2\. place can1 on table \(4\.5-8\.5 s\)", text), text
+
+
+def test_a_one_node_tree_is_one_node(parking):
+    # issue 34: the button said "(1 nodes)"
+    from pydrake.geometry import Meshcat
+
+    from lazyground.viz.replay_page import panel_html
+
+    scene, report = parking
+    layout = meshcat_view.draw_layout(report, scene, Meshcat())
+    text = " ".join(_panel(f'{panel_html(report, replace(layout, tree_nodes=1))}<style>').split())
+    assert "search tree (1 node)" in text
