@@ -2,7 +2,7 @@
 
 Pure Python (no pydrake). ``ground(request, scene)`` is the entry point; the
 words live in ``lexicon.yaml`` (extend it, or set $LAZYGROUND_LEXICON), the
-goal-region definitions per type in ``types.yaml``. The request language is
+goal-region definitions per type in ``lazyground/scene/types.yaml``. The request language is
 documented in docs/requests.md.
 """
 

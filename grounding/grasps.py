@@ -7,7 +7,7 @@ so the same templates serve the Fetch's x-forward gripper_link and a ROS-style
 z-forward tool frame. A grasp exists only where the object's width across the
 closing axis is within the gripper's ``opening`` less a clearance.
 
-Templates (their numbers live in grounding/types.yaml):
+Templates (their numbers live in lazyground/scene/types.yaml):
 
 - ``top``: from above, R on the top face, R.x down; one region per closing
   direction that fits (for a cylinder, any yaw).

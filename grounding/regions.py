@@ -1,4 +1,4 @@
-"""Goal regions from per-type definitions (``types.yaml``): grasps, placements, parking.
+"""Goal regions from per-type definitions (``lazyground/scene/types.yaml``): grasps, placements, parking.
 
 ``regions_for(obj, role, interpretation, scene)`` turns one scene object into
 the goal regions of one role (``pick``, ``support``, ``park``). The numbers
@@ -9,52 +9,18 @@ from __future__ import annotations
 
 import difflib
 import math
-from functools import lru_cache
-from pathlib import Path
-
-import yaml
 
 from grounding.grasps import GRASP_TEMPLATES, make_region
+from grounding.lexicon import load_lexicon
 from grounding.model import GroundingError
 from lazyground.geometry import Pose
 from lazyground.regions import ConfigRegion, GoalRegion, PlacementRegion
 from lazyground.robots.end_effector import LEGACY_FRAME, EndEffectorSpec, end_effector_of
-from lazyground.scene.schema import Geometry, Scene, SceneObject
-from lazyground.scene.typed_yaml import SceneError, load_dataclass
+from lazyground.scene.schema import Scene, SceneObject
+from lazyground.scene.types import type_definitions
 
-TYPES_FILE = Path(__file__).with_name("types.yaml")
 DEG = math.pi / 180
 END_EFFECTOR = LEGACY_FRAME  # the end effector when there is no scene
-
-
-@lru_cache(maxsize=1)
-def default_types() -> dict:
-    return yaml.safe_load(TYPES_FILE.read_text())
-
-
-def type_definitions(scene: Scene | None) -> dict:
-    """The bundled definitions with the scene's ``grasp_types`` overrides applied per type."""
-    types = dict(default_types())
-    if scene is not None and scene.grasp_types:
-        types.update(scene.grasp_types)
-    return types
-
-
-def occupant_geometry(obj: SceneObject, scene: Scene | None = None) -> Geometry | None:
-    """What an occupied ``obj`` holds: its own ``occupant``, else its type's; None if neither says.
-
-    Raises:
-        GroundingError: the type's ``occupant`` entry is not a geometry.
-    """
-    if obj.occupant is not None:
-        return obj.occupant
-    spec = type_definitions(scene).get(obj.type, {}).get("occupant")
-    if spec is None:
-        return None
-    try:
-        return load_dataclass(spec, Geometry, f"{obj.type}.occupant")
-    except SceneError as exc:
-        raise GroundingError(f"grounding/types.yaml: {exc}") from None
 
 
 def check_types(scene: Scene, source: str | None = None) -> None:
@@ -74,14 +40,12 @@ def check_types(scene: Scene, source: str | None = None) -> None:
         if obj.type not in known:
             where = f"{source}: " if source else ""
             raise GroundingError(f"{where}objects[{i}].type: object {obj.id!r}: unknown type {obj.type!r}; "
-                                 f"{_type_hint(obj.type, known)}(types: grounding/types.yaml; "
+                                 f"{_type_hint(obj.type, known)}(types: lazyground/scene/types.yaml; "
                                  f"a scene declares its own under grasp_types, e.g. 'grasp_types: {{{obj.type}: {{}}}}')")
 
 
 def _type_hint(name: str, known) -> str:
     """"did you mean 'cup' (a 'mug' is one)? " for a misspelt type or a word naming one (the lexicon's nouns)."""
-    from grounding.lexicon import load_lexicon
-
     nouns = {w.replace(" ", "_"): t for t, words in load_lexicon().data.get("nouns", {}).items() if t in known for w in words}
     nouns.update({t: t for t in known})
     close = difflib.get_close_matches(name.lower(), sorted(nouns), n=4, cutoff=0.6)
@@ -100,7 +64,7 @@ def regions_for(obj: SceneObject, role: str, interpretation: str, scene: Scene |
     """
     definition = type_definitions(scene).get(obj.type, {}).get(role)
     if not definition:
-        raise GroundingError(f"no {role} definition for type {obj.type!r} (see grounding/types.yaml)")
+        raise GroundingError(f"no {role} definition for type {obj.type!r} (see lazyground/scene/types.yaml)")
     ee = end_effector_of(scene.robot) if scene is not None else EndEffectorSpec(frame=END_EFFECTOR)
     out: list[GoalRegion] = []
     try:

@@ -103,7 +103,7 @@ class Resolver:
         bad = sorted({o.type for o in objs if not self.has_role(o.type, role)})
         if bad:
             word = np.word or bad[0]
-            raise GroundingError(f"cannot {verb} {'an' if word[:1] in 'aeiou' else 'a'} {word}: type {bad[0]!r} has no {role!r} definition in grounding/types.yaml")
+            raise GroundingError(f"cannot {verb} {'an' if word[:1] in 'aeiou' else 'a'} {word}: type {bad[0]!r} has no {role!r} definition in lazyground/scene/types.yaml")
         return self._free(objs, np) if role == "park" else self._ignore_states(objs, np)
 
     def _free(self, objs: list[SceneObject], np: NounPhrase) -> list[SceneObject]:

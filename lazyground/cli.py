@@ -19,8 +19,7 @@ import traceback
 from pathlib import Path
 
 from lazyground.interrupt import work_begins
-from lazyground.motion import cli_options as motion_options
-from lazyground.settings import add_cli_options, cli_values
+from lazyground import cli_options
 
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_PIPE_CLOSED = 0, 1, 2, 3, 130, 141
 
@@ -86,7 +85,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("plan", help="ground a request and plan to whichever interpretation is reachable")
     p.add_argument("scene")
     p.add_argument("request")
-    add_cli_options(p)
+    cli_options.add_cli_options(p)
     _add_robot_source_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--html", metavar="FILE", help="write a self-contained HTML replay (Meshcat)")
@@ -95,7 +94,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--plot", metavar="FILE", help="parking scenes: write a top-down PNG")
     p.add_argument("--animate", metavar="FILE", help="parking scenes: write a top-down GIF")
     p.add_argument("--debug", action="store_true", help="show tracebacks")
-    motion_options.add_arguments(p)
+    cli_options.add_motion_options(p)
 
     g = sub.add_parser("ground", help="print the interpretations of a request and their goal regions")
     g.add_argument("scene")
@@ -115,9 +114,8 @@ def build_parser() -> argparse.ArgumentParser:
     d.add_argument("--debug", action="store_true", help="show tracebacks")
 
     from lazyground.moveit.cli import add_import_options
-    from lazyground.moveit.start import add_start_options
 
-    add_start_options(p)
+    cli_options.add_start_options(p)
     add_import_options(sub.add_parser("import-moveit", help="convert a MoveIt planning-scene YAML into a lazyground scene"))
 
     b = sub.add_parser("bench", help="benchmark strategies and peers (see benchmarks/RESULTS.md)", add_help=False)
@@ -162,16 +160,16 @@ def _import_drake() -> None:
 
 def cmd_plan(args) -> int:
     from lazyground import api
-    from lazyground.moveit.start import override_scene_start, start_options
+    from lazyground.moveit.start import override_scene_start
     from lazyground.outputs import output_problem
     from lazyground.report import report_lines, report_to_json
     from lazyground.scene import load_scene
 
-    scene, start_warnings = override_scene_start(load_scene(args.scene, _robot_overrides(args)), start_options(args))
+    scene, start_warnings = override_scene_start(load_scene(args.scene, _robot_overrides(args)), cli_options.start_options(args))
     for line in start_warnings:
         print(f"warning: {line}", file=sys.stderr)
     try:
-        overrides = cli_values(args) | motion_options.overrides_from_args(args)
+        overrides = cli_options.cli_values(args) | cli_options.motion_overrides(args)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
     try:  # the scene's settings with the options, together (e.g. an edge_resolution too fine for the step)
@@ -204,7 +202,9 @@ def cmd_plan(args) -> int:
         from lazyground.motion.export import write_outputs
 
         flags = [f"{flag} {path}" for flag, path in (("--trajectory", args.trajectory), ("--ros-trajectory", args.ros_trajectory)) if path]
-        _writing(" / ".join(flags), lambda: write_outputs(report, args, sys.stderr if args.json else sys.stdout))
+        lines = _writing(" / ".join(flags), lambda: write_outputs(report, args.trajectory, args.ros_trajectory))
+        for line in lines:
+            print(line, file=sys.stderr if args.json else sys.stdout)
     return EXIT_OK if res.solved else EXIT_FAILED
 
 
@@ -234,7 +234,7 @@ def _write_visuals(report, scene, args) -> None:
             size = _writing(f"--html {args.html}", lambda: meshcat_view.write_html(report, scene, args.html))
             print(f"wrote {args.html} ({size / 1e6:.1f} MB)", file=out)
         if args.meshcat:
-            meshcat_view.show_live(report, scene, loop_once=args.loop_once, out=out)
+            meshcat_view.show_live(report, scene, loop_once=args.loop_once, say=lambda line: print(line, file=out, flush=True))
 
 
 def cmd_demo(args) -> int:
@@ -249,14 +249,14 @@ def cmd_demo(args) -> int:
     if problem:
         raise UsageError(f"--out {args.out}: {problem}")
     work_begins()
-    return run_demo(Path(args.out), seed=args.seed)
+    return run_demo(Path(args.out), seed=args.seed, say=print)
 
 
 def cmd_check_robot(args) -> int:
     """Exit 0 when the robot is fine, 2 with the problems (the last line says which)."""
     from lazyground.robots.description import parse_package_args
     from lazyground.scene.loader import resolve_model
-    from lazyground.scene.typed_yaml import SceneError
+    from lazyground.typed_yaml import SceneError
 
     model = resolve_model(args.model, Path.cwd())
     if model is None:
@@ -323,7 +323,7 @@ def _interrupted(exc: BaseException) -> bool:
 def _main(argv: list[str]) -> int:
     debug = "--debug" in argv
     from grounding.model import GroundingError
-    from lazyground.scene.typed_yaml import SceneError
+    from lazyground.typed_yaml import SceneError
 
     try:
         if argv[:1] == ["bench"]:  # argparse's REMAINDER drops leading options: hand them over untouched

@@ -6,7 +6,7 @@ import tempfile
 from pathlib import Path
 
 from lazyground.scene.schema import Scene
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 from lazyground.viz.trace import planar_indices
 
 HTML_SUFFIXES = (".html", ".htm")

@@ -5,7 +5,7 @@ Everything else derives from :data:`SETTINGS`:
 * :class:`PlannerSettings` (the planner's frozen settings; validated on construction),
 * the scene file's ``planner:`` block and its ``per_algorithm`` entries
   (:mod:`lazyground.scene.schema`),
-* the ``lazyground plan`` flags (:func:`add_cli_options`) and the ``bench`` sweep checks,
+* the ``lazyground plan`` flags (:func:`lazyground.cli_options.add_cli_options`) and the ``bench`` sweep checks,
 * the API's overrides (``api.plan(scene, "park", step_size=1.0)``),
 * the settings table in ``docs/scene_format.md`` (:func:`markdown_table`; a test keeps the
   file equal to it; ``python3 -m lazyground.settings`` prints it).
@@ -18,7 +18,6 @@ scipy or pydrake.
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 import enum
 import math
@@ -268,37 +267,6 @@ def from_scene(spec, **overrides) -> PlannerSettings:
     return PlannerSettings(**{**values, **given})
 
 
-# --- the CLI --------------------------------------------------------------------------------------
-
-def add_cli_options(parser: argparse.ArgumentParser) -> None:
-    """One ``--flag`` per CLI-layer setting; names are argparse choices, numbers are range-checked
-    by :func:`cli_values` (so the message reads ``--goal-bias must be in [0, 1], got 2``)."""
-    for s in declared(Layer.CLI):
-        parser.add_argument(s.flag, dest=s.name, type=str if s.choices else s.type, choices=s.choices,
-                            metavar=None if s.choices else s.name.upper(),
-                            help=f"{s.doc} ({'' if s.choices else s.allowed() + '; '}default: {_cli_default(s)})")
-
-
-def _cli_default(s: Setting) -> str:
-    return "the scene's" if Layer.SCENE in s.layers else f"{s.default:g}"
-
-
-def cli_values(args: argparse.Namespace) -> dict[str, Any]:
-    """The CLI-layer settings given on the command line, checked (None: not given).
-
-    Raises:
-        ValueError: one line naming the flag and its allowed values.
-    """
-    out = {}
-    for s in declared(Layer.CLI):
-        value = getattr(args, s.name)
-        problem = s.problem(value) if value is not None else None
-        if problem:
-            raise ValueError(f"{s.flag} {problem}")
-        out[s.name] = value
-    return out
-
-
 # --- the docs ---------------------------------------------------------------------------------------
 
 def markdown_table() -> str:
@@ -315,6 +283,3 @@ def markdown_table() -> str:
              f"`{{rrt: {{step_size: 2.65}}}}` (keys {keys}); the CLI's and API's own values still win."]
     return "\n".join(rows) + "\n"
 
-
-if __name__ == "__main__":
-    print(markdown_table(), end="")

@@ -67,7 +67,7 @@ def cpu_clock(monkeypatch):
 
     if importlib.util.find_spec("pydrake") is not None:
         import lazyground.drake.ik  # noqa: F401
-        import lazyground.place  # noqa: F401
+        import lazyground.tasks.place  # noqa: F401
     patched = [name for name, module in list(sys.modules.items())
                if name.split(".")[0] in ("lazyground", "grounding") and getattr(module, "time", None) is time]
     for name in patched:

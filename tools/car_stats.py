@@ -19,7 +19,7 @@ import numpy as np
 from lazyground import api
 from lazyground.drake.world import DrakeWorld
 from lazyground.planning import rrt
-from lazyground.robots.car import planning_space
+from lazyground.tasks.car_space import planning_space
 from lazyground.scene import load_scene
 from lazyground.settings import Kinematics, Strategy
 

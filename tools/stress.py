@@ -118,7 +118,7 @@ def check_report(report, scene, world) -> list[str]:
     res = report.result
     fine = report.settings.resolution / 10
     if report.steps:  # pick and place: both steps, the lift and the carried object
-        from lazyground.place import validate_pick_and_place
+        from lazyground.tasks.place import validate_pick_and_place
 
         return validate_pick_and_place(report, scene, fine) + _pick_and_place_trajectory_problems(report, scene, world, fine)
     problems = _trajectory_problems(report, world, world.start, fine)

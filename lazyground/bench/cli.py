@@ -192,7 +192,7 @@ def main(argv: list[str]) -> int:
         return EXIT_INTERRUPTED
     except Exception as exc:
         from grounding.model import GroundingError
-        from lazyground.scene.typed_yaml import SceneError
+        from lazyground.typed_yaml import SceneError
 
         if debug or not isinstance(exc, (BenchUsageError, SceneError, GroundingError, ImportError)):
             raise

@@ -24,7 +24,7 @@ from lazyground.drake.coordinates import unbounded_positions
 from lazyground.drake.robot_model import add_robot, allow_collisions
 from lazyground.robots.defaults import defaults_for_model
 from lazyground.robots.srdf import read_srdf
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 PADDING = 0.0  # m: self-collision at named poses is reported at contact, as MoveIt does
 UNSUPPORTED_URDF = {"transmission": "transmissions (actuation) are ignored", "gazebo": "gazebo extensions are ignored",

@@ -14,7 +14,7 @@ from pydrake.multibody.tree import PlanarJoint, RevoluteJoint
 
 from lazyground.planning.space import ConfigSpace
 from lazyground.scene.schema import Scene
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 
 @dataclass(frozen=True)

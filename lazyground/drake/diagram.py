@@ -1,8 +1,8 @@
 """Scene → Drake diagram: the robot model, the environment's geometry and a carried object.
 
-Only geometry is decided here; colours come from :mod:`lazyground.viz.style`
-and what an occupied parking spot holds from the type data
-(:func:`grounding.regions.occupant_geometry`).
+Only geometry is decided here; colours come from :mod:`lazyground.scene.colours`
+and what an occupied parking spot holds from the object types
+(:func:`lazyground.scene.types.occupant_geometry`).
 """
 
 from __future__ import annotations
@@ -15,12 +15,12 @@ from pydrake.math import RigidTransform, RollPitchYaw
 from pydrake.multibody.plant import CoulombFriction
 from pydrake.planning import RobotDiagramBuilder
 
-from grounding.regions import occupant_geometry
 from lazyground.drake.robot_model import add_scene_robot
 from lazyground.geometry import Pose
+from lazyground.scene.colours import OCCUPANT_RGBA, object_rgba, obstacle_rgba
 from lazyground.scene.schema import Geometry, Scene, SceneObject
-from lazyground.scene.typed_yaml import SceneError
-from lazyground.viz.style import OCCUPANT_RGBA, object_rgba, obstacle_rgba
+from lazyground.scene.types import occupant_geometry
+from lazyground.typed_yaml import SceneError
 
 
 @dataclass(frozen=True)

@@ -40,7 +40,7 @@ from lazyground.goals import RoundRobinGoalSource, register_goal_source
 from lazyground.planning.problem import GoalSample
 from lazyground.regions import PlacementRegion, PoseRegion, WorkspaceRegion
 from lazyground.regions.base import from_unit
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 from lazyground.tolerance import ORIENTATION_TOLERANCE, POSITION_TOLERANCE, accepted_error
 
 

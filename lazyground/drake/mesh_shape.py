@@ -11,7 +11,7 @@ from pydrake.geometry import InMemoryMesh, Mesh
 
 from lazyground.mesh_files import MeshFileError, obj_text, read_stl
 from lazyground.scene.schema import MeshFile
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 
 def mesh_shape(mesh: MeshFile) -> Mesh:

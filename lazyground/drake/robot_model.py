@@ -17,7 +17,7 @@ from pydrake.multibody.parsing import Parser
 
 from lazyground.robots.description import PreparedModel, prepare_model
 from lazyground.robots.srdf import read_srdf
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 
 def add_robot(parser: Parser, model: str | Path, packages: dict[str, Path] | None = None, where: str = "robot.model"):

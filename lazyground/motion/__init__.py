@@ -8,5 +8,6 @@
 - :mod:`~lazyground.motion.steps`: pick and place: one trajectory per step, gripper events between.
 - :mod:`~lazyground.motion.export`: CSV / JSON / ROS ``trajectory_msgs/JointTrajectory`` YAML.
 - :mod:`~lazyground.motion.validate`: re-checking a trajectory (tests, ``tools/stress.py``).
-- :mod:`~lazyground.motion.cli_options`: the ``lazyground plan`` options.
 """
+
+TRAJECTORY_FORMATS = (".csv", ".json")  # trajectory file suffixes (export writes them; the CLI checks --trajectory)

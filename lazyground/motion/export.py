@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from lazyground.motion.cli_options import FORMATS
+from lazyground.motion import TRAJECTORY_FORMATS as FORMATS
 from lazyground.motion.trajectory import Trajectory
 
 
@@ -143,20 +143,29 @@ def motion_line(motion) -> str:
     return line + f"; shortcut {motion.shortcut_s:.3f} s, timing {motion.timing_s:.3f} s"
 
 
-def write_outputs(report, args, out) -> None:
-    """Write --trajectory / --ros-trajectory for a solved report (pick and place: the steps joined)."""
-    if not (args.trajectory or args.ros_trajectory):
-        return
+def write_outputs(report, trajectory: str | None = None, ros_trajectory: str | None = None) -> list[str]:
+    """Write the trajectory files asked for, for a solved report (pick and place: the steps joined).
+
+    Args:
+        report: the PlanReport.
+        trajectory: a ``.csv`` or ``.json`` file, or None.
+        ros_trajectory: a ``trajectory_msgs/JointTrajectory`` YAML file, or None.
+    Returns:
+        One line per file written, or the note why none was (for the CLI to print).
+    """
+    if not (trajectory or ros_trajectory):
+        return []
     from lazyground.motion.steps import report_trajectory
 
     traj = report_trajectory(report)
     if traj is None:
         motion = report.motion
-        print("note: no trajectory to write" + (f" ({motion.note})" if motion is not None and motion.note else ""), file=out)
-        return
-    if args.trajectory:
-        write_trajectory(traj, args.trajectory)
-        print(f"wrote {args.trajectory}", file=out)
-    if args.ros_trajectory:
-        write_ros_trajectory(traj, args.ros_trajectory)
-        print(f"wrote {args.ros_trajectory}", file=out)
+        return ["note: no trajectory to write" + (f" ({motion.note})" if motion is not None and motion.note else "")]
+    lines = []
+    if trajectory:
+        write_trajectory(traj, trajectory)
+        lines.append(f"wrote {trajectory}")
+    if ros_trajectory:
+        write_ros_trajectory(traj, ros_trajectory)
+        lines.append(f"wrote {ros_trajectory}")
+    return lines

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from lazyground.robots.defaults import RobotDefaults, defaults_for_model
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 
 @dataclass(frozen=True)

@@ -125,7 +125,7 @@ def motion_for_world(world, result: PlanResult, planner: PlannerSettings,
     if not result.solved or result.path is None:
         return result, None
     from lazyground.motion.limits import world_limits
-    from lazyground.scene.typed_yaml import SceneError
+    from lazyground.typed_yaml import SceneError
 
     try:
         limits, note = world_limits(world), ""

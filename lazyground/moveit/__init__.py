@@ -4,7 +4,7 @@
     result = import_moveit_file("scene.yml", "yaml_scenes/mine.yaml", ImportOptions(robot="fetch"))
     print(result.summary.line())
 
-Modules: ``detect`` (what a file is), ``types`` (object types from id tokens and
+Modules (what a file is: ``lazyground.scene.file_kind``): ``types`` (object types from id tokens and
 geometry), ``start`` (start states and joint limits), ``meshes`` (finding mesh files),
 ``convert`` (mapping -> scene mapping), ``importer`` (files, atomic output). No pydrake
 except the start check, which is skipped without it.

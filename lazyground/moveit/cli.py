@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 
-from lazyground.moveit.start import add_start_options, start_options
+from lazyground.cli_options import add_start_options, start_options
 
 DESCRIPTION = """Convert a MoveIt planning scene (moveit_msgs/PlanningScene YAML) into a lazyground scene.
 Object types come from id words (table_leg_1 is an obstacle, Can1 a can) checked against geometry;

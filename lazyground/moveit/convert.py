@@ -19,13 +19,13 @@ from pathlib import Path
 import numpy as np
 
 from lazyground.geometry import Pose, matrix_to_rpy, quaternion_xyzw_to_matrix
-from lazyground.moveit.detect import FileKind, kind_of_mapping, not_a_scene_message
+from lazyground.scene.file_kind import FileKind, kind_of_mapping, not_a_scene_message
 from lazyground.moveit.meshes import MeshLookup, MeshTally, find_mesh
 from lazyground.moveit.start import StartOptions, clamp_to_limits, joint_state_values, resolve_start, urdf_limits
 from lazyground.moveit.types import OBSTACLE, UserRule, classify
 from lazyground.robots.defaults import RobotDefaults, defaults_for_model
 from lazyground.scene.loader import resolve_model
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 SHAPES = {1: "box", 2: "sphere", 3: "cylinder", 4: "cone"}
 WORLD_FRAMES = ("", "world", "map", "odom")  # besides the robot's base link, welded at the world origin

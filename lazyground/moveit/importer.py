@@ -14,9 +14,9 @@ from pathlib import Path
 import yaml
 
 from lazyground.moveit.convert import ImportOptions, ImportSummary, convert_moveit
-from lazyground.moveit.detect import FileKind, kind_of_text, not_a_scene_message
+from lazyground.scene.file_kind import FileKind, kind_of_text, not_a_scene_message
 from lazyground.scene.loader import load_scene
-from lazyground.scene.typed_yaml import SceneError, load_yaml
+from lazyground.typed_yaml import SceneError, load_yaml
 
 
 @dataclass(frozen=True)
@@ -118,7 +118,7 @@ def _check_types(scene, source: Path) -> None:
         check_types(scene, source="")
     except GroundingError as exc:
         raise SceneError(f"{source}: {str(exc).split(' (types:')[0]} (from a --type or --rules rule; the types are "
-                         f"those of grounding/types.yaml, or 'obstacle')") from None
+                         f"those of lazyground/scene/types.yaml, or 'obstacle')") from None
 
 
 def _check_start(scene, start_source: str, source: Path) -> None:

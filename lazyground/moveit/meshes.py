@@ -13,7 +13,7 @@ from pathlib import Path
 
 from lazyground.mesh_files import MeshFileError, read_stl
 from lazyground.scene.schema import MESH_SUFFIXES
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 
 @dataclass(frozen=True)

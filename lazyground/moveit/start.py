@@ -1,8 +1,7 @@
 """Start states (#15): from a MoveIt joint state, a motion-plan request, a named pose of the
 robot, or ``name=value`` pairs; checked against the model's joint limits.
 
-One parser serves ``import-moveit`` and ``plan`` (:func:`add_start_options`,
-:func:`start_from_options`). A value within :data:`LIMIT_TOLERANCE` outside a joint
+One set of options serves ``import-moveit`` and ``plan`` (their flags: :mod:`lazyground.cli_options`). A value within :data:`LIMIT_TOLERANCE` outside a joint
 limit (recorded sensor noise such as -1.5e-08 on the torso) is clamped with a warning;
 further out is an error naming the joint. No pydrake: limits are read from the URDF.
 """
@@ -17,7 +16,7 @@ from pathlib import Path
 import yaml
 
 from lazyground.robots.defaults import RobotDefaults
-from lazyground.scene.typed_yaml import SceneError, load_yaml
+from lazyground.typed_yaml import SceneError, load_yaml
 
 LIMIT_TOLERANCE = 1e-6
 
@@ -33,21 +32,6 @@ class StartOptions:
     @property
     def given(self) -> bool:
         return any(v is not None for v in (self.name, self.request, self.joints))
-
-
-def add_start_options(parser) -> None:
-    """The start options of ``import-moveit`` and ``plan`` (one definition for both)."""
-    group = parser.add_argument_group("start state")
-    group.add_argument("--start", metavar="NAME", help="start from a named pose of the robot (models/<robot>/robot.yaml, e.g. tucked)")
-    group.add_argument("--start-from", metavar="REQUEST.yaml",
-                       help="start from a MoveIt motion-plan request's start_state.joint_state")
-    group.add_argument("--start-joints", metavar="NAME=VALUE,...",
-                       help="set these joints (applied after --start/--start-from), e.g. torso_lift_joint=0.2")
-
-
-def start_options(args) -> StartOptions:
-    """The StartOptions of parsed arguments."""
-    return StartOptions(args.start, args.start_from, args.start_joints)
 
 
 def parse_joints(text: str) -> dict[str, float]:
@@ -96,7 +80,7 @@ def request_start(path: str | Path) -> dict[str, float]:
     Raises:
         SceneError: unreadable, not a motion-plan request, or no joint state.
     """
-    from lazyground.moveit.detect import FileKind, kind_of_mapping, kind_of_text
+    from lazyground.scene.file_kind import FileKind, kind_of_mapping, kind_of_text
 
     try:
         text = Path(path).read_text(encoding="utf-8")

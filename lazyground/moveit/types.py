@@ -18,7 +18,7 @@ from pathlib import Path
 
 import yaml
 
-from lazyground.scene.typed_yaml import SceneError, load_yaml
+from lazyground.typed_yaml import SceneError, load_yaml
 
 OBSTACLE = "obstacle"
 PART_WORDS = frozenset({"leg", "legs", "wall", "walls", "bar", "bars", "post", "posts", "vert", "vertical", "panel", "back",

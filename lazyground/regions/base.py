@@ -107,15 +107,15 @@ class GoalRegion:
         return lo, span, wrapped
 
     def contains(self, v: np.ndarray, tol: float = 1e-6) -> bool:
-        """Whether a vector of the kind's coordinates lies in the bounds."""
+        """Whether a vector of the kind's coordinates lies in the bounds (within ``tol``; on wrapped axes, on the
+        arc from ``lower`` anticlockwise to ``upper``)."""
         v = np.asarray(v, float)
-        for i, (x, lo, hi) in enumerate(zip(v, self.lower, self.upper)):
-            if i in self.wrap:
-                mid = lo + wrap_angle(hi - lo) / 2 if hi >= lo else lo + (hi - lo + 2 * np.pi) / 2
-                half = (hi - lo) / 2 if hi >= lo else (hi - lo + 2 * np.pi) / 2
-                if abs(wrap_angle(x - mid)) > half + tol:
+        lo, span, wrapped = self.unit_map()
+        for x, a, b, s, w in zip(v, lo, self.upper, span, wrapped):
+            if w:  # the angular distance from the arc's middle is at most half the arc
+                if s / 2 < np.pi and abs(wrap_angle(x - (a + s / 2))) > s / 2 + tol:
                     return False
-            elif not lo - tol <= x <= hi + tol:
+            elif not a - tol <= x <= b + tol:
                 return False
         return True
 

@@ -21,7 +21,7 @@ from pathlib import Path
 
 from lazyground.robots.defaults import RobotDefaults, defaults_for_model
 from lazyground.robots.srdf import read_srdf
-from lazyground.scene.typed_yaml import SceneError, _describe
+from lazyground.typed_yaml import SceneError, _describe
 
 FROM = "from"  # the key of a start mapping that names the pose it starts from
 

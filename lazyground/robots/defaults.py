@@ -20,10 +20,33 @@ from typing import Any
 
 import yaml
 
-from lazyground.scene.schema import AXES, EndEffectorSpec  # noqa: F401  (re-exported: robot.yaml and scenes share it)
-from lazyground.scene.typed_yaml import SceneError, checked, load_dataclass, load_yaml, positive
+from lazyground.planner_spec import PlannerSpec
+from lazyground.typed_yaml import SceneError, checked, load_dataclass, load_yaml, positive
 
 DEFAULTS_FILE = "robot.yaml"
+AXES = ("x", "y", "z", "-x", "-y", "-z")
+
+
+@dataclass(frozen=True)
+class EndEffectorSpec:
+    """The gripper frame and how it grasps: ``approach_axis`` points from the palm towards the
+    object, ``closing_axis`` is the direction the fingers close along, ``opening`` the widest
+    object (m) the fingers take."""
+
+    frame: str
+    offset_xyz: tuple[float, float, float] = (0.0, 0.0, 0.0)  # grasp point in ``frame``
+    offset_rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    approach_axis: str = "x"
+    closing_axis: str = "y"
+    opening: float | None = checked(positive, default=None)
+
+    def validate(self) -> str | None:
+        for key in ("approach_axis", "closing_axis"):
+            if getattr(self, key) not in AXES:
+                return f"{key}: {getattr(self, key)!r} is not one of {', '.join(AXES)}"
+        if self.approach_axis.strip("-") == self.closing_axis.strip("-"):
+            return "closing_axis: must differ from approach_axis"
+        return None
 
 
 @dataclass(frozen=True)
@@ -82,8 +105,6 @@ class RobotDefaults:
 
 def _planner_problem(planner: dict) -> str | None:
     """The robot's planner block checked as a scene's (the declarations of lazyground.settings), or None."""
-    from lazyground.scene.schema import PlannerSpec  # late: scene loading imports this module
-
     try:
         load_dataclass(planner, PlannerSpec, "planner")
     except SceneError as exc:

@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from lazyground.mesh_files import MeshFileError, mesh_from_triangles, obj_text, read_stl
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 DRAKE_MESHES = (".obj", ".gltf", ".glb", ".vtk")
 CONVERTED = (".stl", ".dae")

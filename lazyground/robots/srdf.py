@@ -13,7 +13,7 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 IGNORED = ("group", "end_effector", "virtual_joint", "passive_joint", "link_sphere_approximation")
 

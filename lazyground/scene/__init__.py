@@ -2,7 +2,7 @@
 
 from lazyground.scene.loader import load_scene, parse_scene
 from lazyground.scene.schema import Expectation, Geometry, Obstacle, PlannerSpec, PoseSpec, RobotSpec, Scene, SceneObject
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 __all__ = [
     "Expectation", "Geometry", "Obstacle", "PlannerSpec", "PoseSpec", "RobotSpec", "Scene", "SceneError",

@@ -10,8 +10,11 @@ import numpy as np
 import yaml
 
 from lazyground.bundled import bundled_scene, data_dir, scene_names
+from lazyground.robots.complete import complete_robot
+from lazyground.scene.file_kind import FileKind, kind_of_mapping, kind_of_text
+from lazyground.scene.robot_fill import fill_from_robot_defaults
 from lazyground.scene.schema import Scene, SceneObject
-from lazyground.scene.typed_yaml import SceneError, load_dataclass, load_yaml
+from lazyground.typed_yaml import SceneError, load_dataclass, load_yaml
 
 MAX_SCENE_BYTES = 5 * 1024 * 1024
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -59,8 +62,6 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
     problem = _not_a_scene(text, data) if isinstance(data, dict) else None
     if problem:
         raise SceneError(f"{source}: {problem}")
-    from lazyground.scene.robot_fill import fill_from_robot_defaults  # late: it imports robots.defaults
-
     try:
         data = fill_from_robot_defaults(data, lambda model: resolve_model(model, scene_dir))
         scene = load_dataclass(data, Scene, "")
@@ -72,9 +73,6 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
     problem = _overlap_problem(scene) or _mesh_problem(scene, scene_dir)
     if problem:
         raise SceneError(f"{source}: {problem}")
-    # imported here: lazyground.robots reads robot.yaml through this package's typed_yaml
-    from lazyground.robots.complete import complete_robot
-
     robot = replace(scene.robot, model=str(model), **(robot_overrides or {}))
     robot = complete_robot(robot, scene_dir, source)
     return replace(scene, robot=robot, obstacles=_absolute_meshes(scene.obstacles, scene_dir), source=source)
@@ -107,8 +105,6 @@ def load_scene(path: str | os.PathLike, robot_overrides: dict | None = None) -> 
 
 def _not_a_scene(text: str, data: dict | None = None) -> str | None:
     """What a file given as a scene is instead (a robot model, a MoveIt message) and what to do with it, or None."""
-    from lazyground.moveit.detect import FileKind, kind_of_mapping, kind_of_text  # late: lazyground.moveit imports this
-
     kind = kind_of_mapping(data) if data is not None else kind_of_text(text)
     model = "a scene names it under robot.model (docs/scene_format.md); `lazyground check-robot FILE` shows what it holds"
     hint = {

@@ -7,15 +7,16 @@ grounding module and the CLI's input checks use this without Drake.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, make_dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from lazyground.geometry import Pose
-from lazyground.scene.typed_yaml import checked, in_range, positive
-from lazyground.settings import BY_NAME, Algorithm, Layer, Setting, declared
+from lazyground.typed_yaml import checked, in_range, positive
+from lazyground.planner_spec import AlgorithmSpec, PlannerSpec  # noqa: F401  (the scene's planner block)
+from lazyground.robots.defaults import AXES, EndEffectorSpec  # noqa: F401  (robot.yaml and scenes share it)
+from lazyground.settings import BY_NAME
 
 OBJECT_TYPES_HINT = "can, box, cup, bottle, table, shelf, parking_spot, ..."
-AXES = ("x", "y", "z", "-x", "-y", "-z")
 
 
 @dataclass(frozen=True)
@@ -128,7 +129,7 @@ class SceneObject:
     size: str | None = None
     occupied: bool = False
     collision: bool | None = None  # default: every type but parking_spot collides
-    occupant: Geometry | None = None  # what an occupied object holds (default: its type's `occupant` in grounding/types.yaml)
+    occupant: Geometry | None = None  # what an occupied object holds (default: its type's `occupant` in lazyground/scene/types.yaml)
     attributes: dict[str, str] = field(default_factory=dict)
 
     @property
@@ -136,28 +137,6 @@ class SceneObject:
         if self.collision is not None:
             return self.collision
         return self.type != "parking_spot"
-
-
-@dataclass(frozen=True)
-class EndEffectorSpec:
-    """The gripper frame and how it grasps: ``approach_axis`` points from the palm towards the
-    object, ``closing_axis`` is the direction the fingers close along, ``opening`` the widest
-    object (m) the fingers take."""
-
-    frame: str
-    offset_xyz: tuple[float, float, float] = (0.0, 0.0, 0.0)  # grasp point in ``frame``
-    offset_rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    approach_axis: str = "x"
-    closing_axis: str = "y"
-    opening: float | None = checked(positive, default=None)
-
-    def validate(self) -> str | None:
-        for key in ("approach_axis", "closing_axis"):
-            if getattr(self, key) not in AXES:
-                return f"{key}: {getattr(self, key)!r} is not one of {', '.join(AXES)}"
-        if self.approach_axis.strip("-") == self.closing_axis.strip("-"):
-            return "closing_axis: must differ from approach_axis"
-        return None
 
 
 @dataclass(frozen=True)
@@ -189,41 +168,6 @@ class RobotSpec:
         return None
 
 
-def _spec_field(s: Setting, per_algorithm: bool):
-    """A scene field for setting ``s``: names as str (the planner converts them), numbers checked."""
-    tp = str if s.choices else s.type
-    optional = per_algorithm or s.optional
-    default = None if per_algorithm else s.default
-    return (s.name, tp | None if optional else tp, checked(s.problem, default=default))
-
-
-AlgorithmSpec = make_dataclass(
-    "AlgorithmSpec", [_spec_field(s, True) for s in declared(Layer.PER_ALGORITHM)], frozen=True,
-    namespace={"__module__": __name__, "__doc__": "Settings that apply only when one algorithm runs; keys left out keep the scene's."},
-)
-
-
-def _planner_problem(self) -> str | None:
-    for name in self.per_algorithm:
-        if name not in tuple(Algorithm):
-            return f"per_algorithm.{name}: unknown algorithm (known: {', '.join(Algorithm)})"
-    return None
-
-
-PlannerSpec = make_dataclass(
-    "PlannerSpec",
-    [_spec_field(s, False) for s in declared(Layer.SCENE)]
-    + [("per_algorithm", dict[str, AlgorithmSpec], field(default_factory=dict))],
-    frozen=True,
-    namespace={"__module__": __name__, "validate": _planner_problem, "__doc__": """Planner defaults for this scene; the CLI and API may override each.
-
-    Fields come from :data:`lazyground.settings.SETTINGS` (scene layer). ``per_algorithm``
-    holds settings for one algorithm only, e.g. the one-tree planner's longer step on the
-    Fetch scenes: ``{rrt: {step_size: 2.65}}``.
-    """},
-)
-
-
 @dataclass(frozen=True)
 class Expectation:
     """What a regression test asserts for one request on this scene."""
@@ -251,7 +195,7 @@ class Scene:
     objects: tuple[SceneObject, ...] = ()
     planner: PlannerSpec = PlannerSpec()
     expect: tuple[Expectation, ...] = ()
-    grasp_types: dict[str, dict] | None = None  # per-type overrides of grounding/types.yaml
+    grasp_types: dict[str, dict] | None = None  # per-type overrides of lazyground/scene/types.yaml
     source: str = ""  # file the scene came from (set by the loader)
 
     def validate(self) -> str | None:

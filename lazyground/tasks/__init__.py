@@ -17,7 +17,7 @@ from lazyground.tasks.worlds import Worlds
 TASKS: dict[str, str] = {
     "park": "lazyground.tasks.reach",
     "pick": "lazyground.tasks.reach",
-    "place": "lazyground.place",  # pick and place, with fallback to another object
+    "place": "lazyground.tasks.place",  # pick and place, with fallback to another object
 }
 
 __all__ = ["TASKS", "Grasp", "Lift", "Outcome", "Placement", "Step", "Worlds", "run", "task"]

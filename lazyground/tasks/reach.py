@@ -6,7 +6,7 @@ from lazyground.goals import goal_source_for
 from lazyground.motion.car_shortcut import shorten_car_result, with_car_shortcut
 from lazyground.motion.pipeline import motion_for_world
 from lazyground.planning.rrt import solve
-from lazyground.robots.car import planning_space
+from lazyground.tasks.car_space import planning_space
 from lazyground.tasks.outcome import Outcome, Step
 
 

@@ -7,6 +7,7 @@ Fetch scene is bundled, "pick up a can" (an HTML replay).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Callable
 from pathlib import Path
 
 from lazyground import api
@@ -32,8 +33,10 @@ DEMOS = (
 )
 
 
-def run_demo(out_dir: Path, seed: int) -> int:
-    """Plan every bundled demo, print a summary, write the files; 0 when every planned request is solved."""
+def run_demo(out_dir: Path, seed: int, say: Callable[[str], None]) -> int:
+    """Plan every bundled demo, write the files; 0 when every planned request is solved.
+
+    ``say`` gets the summary line by line (the CLI prints it)."""
     from lazyground.viz import meshcat_view, plots
 
     out_dir = Path(out_dir)
@@ -42,25 +45,25 @@ def run_demo(out_dir: Path, seed: int) -> int:
     for demo in DEMOS:
         scene_path = SCENES / demo.scene
         if not scene_path.exists():
-            print(f"skipped {demo.request!r}: {scene_path} is not bundled")
+            say(f"skipped {demo.request!r}: {scene_path} is not bundled")
             continue
         scene = load_scene(scene_path)
         report = api.plan(scene, demo.request, seed=seed, keep_tree=True)
         all_solved &= report.result.solved
-        print("\n".join(report_lines(report)))
+        say("\n".join(report_lines(report)))
         if demo.png:
             plots.plot_parking(report, scene, out_dir / demo.png)
-            _wrote(out_dir / demo.png)
+            say(_wrote(out_dir / demo.png))
         if demo.gif:
             plots.animate_parking(report, scene, out_dir / demo.gif)
-            _wrote(out_dir / demo.gif)
+            say(_wrote(out_dir / demo.gif))
         if demo.html:
             meshcat_view.write_html(report, scene, out_dir / demo.html)
-            _wrote(out_dir / demo.html)
-        print()
-    print(f"output folder: {out_dir.resolve()}")
+            say(_wrote(out_dir / demo.html))
+        say("")
+    say(f"output folder: {out_dir.resolve()}")
     return 0 if all_solved else 1
 
 
-def _wrote(path: Path) -> None:
-    print(f"  wrote {path.name} ({path.stat().st_size / 1e6:.2f} MB)")
+def _wrote(path: Path) -> str:
+    return f"  wrote {path.name} ({path.stat().st_size / 1e6:.2f} MB)"

@@ -26,6 +26,7 @@ import re
 import time
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 from pydrake.geometry import Box, Meshcat, MeshcatAnimation, MeshcatVisualizer, MeshcatVisualizerParams, Rgba, Sphere
@@ -68,19 +69,20 @@ def write_html(report, scene, path) -> int:
     return len(data)
 
 
-def show_live(report, scene, loop_once: bool, out) -> None:
-    """Serve ``report`` in a live Meshcat on localhost until Ctrl-C (or return at once with ``loop_once``)."""
+def show_live(report, scene, loop_once: bool, say: Callable[[str], None]) -> None:
+    """Serve ``report`` in a live Meshcat on localhost until Ctrl-C (or return at once with ``loop_once``);
+    ``say`` gets the address and the stop line (the CLI prints them)."""
     meshcat = Meshcat()
     seconds = draw(report, scene, meshcat)
     until = "drawn once (--loop-once): the server stops now" if loop_once else "press Ctrl-C to stop"
-    print(f"meshcat: {meshcat.web_url()} (replay {seconds:.1f} s; {until})", file=out, flush=True)
+    say(f"meshcat: {meshcat.web_url()} (replay {seconds:.1f} s; {until})")
     if loop_once:
         return
     try:
         while True:
             time.sleep(0.5)
     except KeyboardInterrupt:
-        print("meshcat: stopped", file=out)
+        say("meshcat: stopped")
 
 
 def draw(report, scene, meshcat: Meshcat) -> float:

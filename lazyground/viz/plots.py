@@ -20,7 +20,7 @@ from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.colors import ListedColormap  # noqa: E402
 from matplotlib.patches import Circle, Polygon, Rectangle  # noqa: E402
 
-from grounding.regions import occupant_geometry  # noqa: E402
+from lazyground.scene.types import occupant_geometry  # noqa: E402
 from lazyground.viz.legend import HANDLER_MAP, LABEL_STYLE, LIMITS_STYLE, OCCUPIED_LABEL_STYLE, parking_handles  # noqa: E402
 from lazyground.viz.style import (  # noqa: E402
     CAR_FOOTPRINT,

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from lazyground.geometry import wrap_angle
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 PLANAR_SUFFIXES = ("_x", "_y", "_qz")  # Drake's PlanarJoint position names
 

@@ -17,12 +17,13 @@ def test_dask_cluster_runs_the_same_function(tmp_path):
     with distributed.LocalCluster(processes=False, n_workers=1, threads_per_worker=1, dashboard_address=None) as cluster:
         out = tmp_path / "bench"
         code = main(["bench", "--scenes", "parking_1", "--strategies", "reward-penalty", "--runs", "2",
-                     "--time-limit", "0.5", "--cluster", cluster.scheduler_address, "--out", str(out)])
+                     "--time-limit", "20", "--kinematics", "holonomic", "--cluster", cluster.scheduler_address,
+                     "--out", str(out)])
     assert code == 0
     with open(out / "results.csv", newline="") as f:
         rows = list(csv.DictReader(f))
     assert sorted(r["seed"] for r in rows) == ["0", "1"]
-    assert all(r["status"] in ("solved", "timeout") for r in rows)
+    assert all(r["status"] == "solved" for r in rows), [r["message"] for r in rows]
     assert (out / "ompl_parking_1.log").is_file()
 
 
@@ -40,6 +41,7 @@ def test_ompl_peers_share_goal_samples_and_checker():
         else:  # OMPL ends the solve by its own clock, which ran out ~8 ms before ours once (2.992 s of 3 s); a
             # busy machine only makes the run longer, so no upper bound
             assert r["time_s"] >= 0.95 * 3.0
+    assert any(r["status"] == "solved" for r in rows), "neither OMPL peer solved parking_1"  # not skipped: 3 s is ample
 
 
 def test_generated_arm_urdf_and_regions():

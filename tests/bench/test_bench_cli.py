@@ -28,24 +28,24 @@ def _rows(out: Path) -> list[dict]:
 
 def test_tiny_parking_run_writes_all_outputs(tmp_path, capsys):
     out = tmp_path / "bench"
-    code = main(["bench", "--scenes", "parking_1", "--runs", "2", "--time-limit", "0.5", "--jobs", "1", "--out", str(out)])
+    code = main(["bench", "--scenes", "parking_1", "--runs", "2", "--time-limit", "20", "--kinematics", "holonomic",
+                 "--jobs", "1", "--out", str(out)])
     assert code == 0
     rows = _rows(out)
     assert len(rows) == 6  # 3 strategies x 2 seeds
     assert {r["strategy"] for r in rows} == {"consecutive", "random", "reward-penalty"}
     assert {r["seed"] for r in rows} == {"0", "1"}
-    for r in rows:
-        assert r["status"] in ("solved", "timeout"), r["message"]
+    for r in rows:  # holonomic parking_1 solves in under 1 s (0.16-0.65 s measured); 20 s is a guard, not the judge
+        assert r["status"] == "solved", r["message"]
         t = float(r["time_s"])
         assert t >= float(r["grounding_s"]) + float(r["goal_sampling_s"]) - 1e-6
-        if r["status"] == "solved":
-            assert r["interpretation"].startswith("park:") and r["region"]
+        assert r["interpretation"].startswith("park:") and r["region"]
     table = (out / "table.md").read_text()
     assert "| Strategy | Bias % | parking_1 mean | std | median | solved |" in table
-    assert "| Reward-Penalty | 5 |" in table and "time limit (0.5 s)" in table
+    assert "| Reward-Penalty | 5 |" in table and "time limit (20 s)" in table
     assert (out / "boxplots.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     exp = ompl_log.read_log(out / "ompl_parking_1.log")
-    assert exp.name == "parking_1" and exp.time_limit == 0.5
+    assert exp.name == "parking_1" and exp.time_limit == 20
     assert set(exp.planners) == {f"lazyground_{s}_bias0.05" for s in ("consecutive", "random", "reward-penalty")}
     by_planner = {}
     for r in rows:
@@ -62,11 +62,11 @@ def test_tiny_parking_run_writes_all_outputs(tmp_path, capsys):
 def test_both_algorithms_are_rows_of_their_own(tmp_path):
     out = tmp_path / "bench"
     code = main(["bench", "--scenes", "parking_1", "--strategies", "reward-penalty", "--algorithms", "rrt,bidirectional",
-                 "--runs", "1", "--time-limit", "2", "--jobs", "1", "--out", str(out)])
+                 "--runs", "1", "--time-limit", "20", "--kinematics", "holonomic", "--jobs", "1", "--out", str(out)])
     assert code == 0
     rows = _rows(out)
     assert sorted(r["planner"] for r in rows) == ["lazyground", "lazyground-bidirectional"]
-    assert all(r["status"] in ("solved", "timeout") for r in rows)
+    assert all(r["status"] == "solved" for r in rows), [r["message"] for r in rows]
     table = (out / "table.md").read_text()
     assert table.index("| Reward-Penalty | 5 |") < table.index("| Reward-Penalty (bidirectional) | 5 |")
     exp = ompl_log.read_log(out / "ompl_parking_1.log")
@@ -193,7 +193,7 @@ def test_an_error_row_does_not_break_the_tables():
 def test_ctrl_c_keeps_finished_runs(tmp_path):
     out = tmp_path / "bench"
     cmd = [sys.executable, "-m", "lazyground", "bench", "--scenes", "parking_1", "--strategies", "reward-penalty",
-           "--runs", "500", "--time-limit", "0.5", "--jobs", "1", "--out", str(out)]
+           "--runs", "500", "--time-limit", "20", "--kinematics", "holonomic", "--jobs", "1", "--out", str(out)]
     proc = subprocess.Popen(cmd, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=with_ctrl_c)
     try:
         deadline = time.time() + 300  # a hang backstop only: the test waits for finished runs, however slow
@@ -209,7 +209,7 @@ def test_ctrl_c_keeps_finished_runs(tmp_path):
     assert proc.returncode == 130, err
     kept = _rows(out)
     assert 2 <= len(kept) < 500
-    assert all(r["status"] in ("solved", "timeout") for r in kept)
+    assert all(r["status"] == "solved" for r in kept), [r["message"] for r in kept]
     assert "interrupted: kept" in err
     assert (out / "table.md").is_file()
 

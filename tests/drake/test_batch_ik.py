@@ -90,7 +90,8 @@ def test_pose_errors_take_the_short_way_and_see_half_turns():
     T = np.array([Pose((0.1, 0.0, 0.0), (0.0, 0.0, 0.3)).matrix(), Pose(rpy=(np.pi, 0.0, 0.0)).matrix(),
                   Pose(rpy=(0.0, 0.0, -3.0)).matrix()])
     w, dp, angle = pose_errors(X, T)
-    np.testing.assert_allclose(w[0], [0, 0, 0.3], atol=1e-12) and np.testing.assert_allclose(dp[0], [0.1, 0, 0])
+    np.testing.assert_allclose(w[0], [0, 0, 0.3], atol=1e-12)
+    np.testing.assert_allclose(dp[0], [0.1, 0, 0], atol=1e-12)  # was after `and`, never run
     np.testing.assert_allclose(abs(w[1][0]), np.pi, atol=1e-9)  # a half turn: the axis is not lost (sin = 0)
     np.testing.assert_allclose(angle, [0.3, np.pi, 3.0], atol=1e-9)
     np.testing.assert_allclose(w[2], [0, 0, -3.0], atol=1e-9)

@@ -18,7 +18,7 @@ from lazyground import api  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.planning import path_is_valid  # noqa: E402
 from lazyground.planning.car import DENSE_SPACING, CarSpace  # noqa: E402
-from lazyground.robots.car import planning_space  # noqa: E402
+from lazyground.tasks.car_space import planning_space  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 
 SCENES = Path(__file__).resolve().parents[2] / "yaml_scenes"

@@ -53,7 +53,7 @@ def parking():
 
 def car_space(world):
     """The bundled car's Reeds-Shepp space (turning radius and rear axle of models/car/robot.yaml)."""
-    from lazyground.robots.car import planning_space
+    from lazyground.tasks.car_space import planning_space
 
     return planning_space(world.scene, world.space, "reeds-shepp")
 

@@ -10,7 +10,7 @@ from lazyground.cli import main
 from lazyground.drake.world import DrakeWorld
 from lazyground.moveit import ImportOptions, import_moveit_file
 from lazyground.scene import load_scene
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 from tests.unit.test_scene_meshes_and_robot_fill import FETCH
 
 

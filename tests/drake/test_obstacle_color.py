@@ -6,7 +6,7 @@ pytest.importorskip("pydrake")
 
 from lazyground.drake.diagram import environment_items  # noqa: E402
 from lazyground.scene import parse_scene  # noqa: E402
-from lazyground.viz.style import COLOR_RGBA, OBSTACLE_SCENE_RGBA  # noqa: E402
+from lazyground.scene.colours import COLOR_RGBA, OBSTACLE_SCENE_RGBA  # noqa: E402
 
 SCENE = """\
 name: legs

@@ -13,8 +13,8 @@ from grounding.model import Grounding, Interpretation  # noqa: E402
 from grounding.regions import regions_for  # noqa: E402
 from lazyground import api  # noqa: E402
 from lazyground.geometry import rpy_to_matrix  # noqa: E402
-from lazyground import place  # noqa: E402
-from lazyground.place import validate_pick_and_place  # noqa: E402
+from lazyground.tasks import place  # noqa: E402
+from lazyground.tasks.place import validate_pick_and_place  # noqa: E402
 from lazyground.plan_report import PlanReport  # noqa: E402
 from lazyground.report import report_to_json  # noqa: E402
 from lazyground.scene import load_scene, parse_scene  # noqa: E402

@@ -177,6 +177,15 @@ def test_no_point_moves_farther_than_its_levers_allow():
     assert gained > len(cert._self.mover) / 2  # most pairs share joints above them that the relative bound leaves out
 
 
+def test_the_growth_factor_bounds_the_distance_moved_from_the_lever_at_q():
+    """levers(): a point moved along a straight joint line with total revolute motion s is at most a (e^s - 1) / s
+    away, a its speed bound at q; _growth must be at least (e^s - 1) / s wherever it is finite (a smaller factor,
+    such as 1 + s / 2, certifies rows whose geometry may have moved into an obstacle)."""
+    s = np.linspace(1e-6, 1.0, 2001)
+    assert np.all(_growth(s) >= np.expm1(s) / s)
+    assert _growth(np.array([0.0]))[0] >= 1.0 and np.isinf(_growth(np.array([1.0 + 1e-9, 3.0]))).all()
+
+
 def test_the_body_tree_matches_the_plant():
     world = DrakeWorld(load_scene("yaml_scenes/panda_tabletop.yaml"), visual=False)
     plant = world.plant

@@ -19,7 +19,7 @@ import grounding  # noqa: E402
 from lazyground import api  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.motion.validate import trajectory_problems  # noqa: E402
-from lazyground.place import validate_pick_and_place  # noqa: E402
+from lazyground.tasks.place import validate_pick_and_place  # noqa: E402
 from lazyground.planning import path_is_valid  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 

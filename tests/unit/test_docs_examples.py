@@ -16,7 +16,7 @@ import yaml
 import grounding
 from lazyground.robots.defaults import RobotDefaults
 from lazyground.scene import RobotSpec, parse_scene
-from lazyground.scene.typed_yaml import load_dataclass
+from lazyground.typed_yaml import load_dataclass
 
 ROOT = Path(__file__).resolve().parents[2]
 PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]

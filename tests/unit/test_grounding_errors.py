@@ -42,9 +42,9 @@ ERRORS = [
     ("kitchen", "pick it up", "not supported: 'it' (nothing to refer back to)"),
     ("kitchen", "pick up the can put the box", "not supported: a second verb 'put'"),
     # wrong roles
-    ("kitchen", "lift the table", "cannot pick up a table: type 'table' has no 'pick' definition in grounding/types.yaml"),
+    ("kitchen", "lift the table", "cannot pick up a table: type 'table' has no 'pick' definition in lazyground/scene/types.yaml"),
     ("kitchen", "put the can on the can", None),
-    ("kitchen", "put the red can on a box", "cannot put things on a box: type 'box' has no 'support' definition in grounding/types.yaml"),
+    ("kitchen", "put the red can on a box", "cannot put things on a box: type 'box' has no 'support' definition in lazyground/scene/types.yaml"),
     ("kitchen", "put a can", "'put' needs a place, e.g. 'put the can on the table'"),
     ("kitchen", "grab", "'grab' needs an object, e.g. 'grab a can'"),
     ("kitchen", "pick up the car", "cannot pick up 'the car': that is the robot"),

@@ -94,5 +94,110 @@ def test_no_import_cycle():
 
 def test_api_and_place_do_not_import_each_other():
     graph = import_graph()
-    assert "lazyground.place" not in graph["lazyground.api"]
-    assert "lazyground.api" not in graph["lazyground.place"]
+    assert "lazyground.tasks.place" not in graph["lazyground.api"]
+    assert "lazyground.api" not in graph["lazyground.tasks.place"]
+
+
+# --- layers (#35) ------------------------------------------------------------------------------------
+# The one table of the package tree's floors, lowest first (docs/architecture.md draws it): a module
+# belongs to the layer of the longest prefix naming it; an import, module-level or in a function,
+# only points to its own layer or one below.
+LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
+    ("scene", ("lazyground.scene", "lazyground.robots", "lazyground.typed_yaml", "lazyground.geometry",
+               "lazyground.settings", "lazyground.planner_spec", "lazyground.bundled", "lazyground.mesh_files",
+               "lazyground.tolerance", "lazyground.interrupt")),
+    ("regions", ("lazyground.regions",)),
+    ("grounding", ("grounding",)),
+    ("planning", ("lazyground.planning",)),
+    ("goals", ("lazyground.goals",)),
+    ("drake", ("lazyground.drake",)),
+    ("motion", ("lazyground.motion",)),
+    ("tasks", ("lazyground.tasks", "lazyground.plan_report")),
+    ("api", ("lazyground.api", "lazyground.report", "lazyground.moveit")),
+    ("viz", ("lazyground.viz", "lazyground.outputs")),
+    ("bench", ("lazyground.bench",)),
+    ("cli", ("lazyground.cli", "lazyground.cli_options", "lazyground.entry", "lazyground.__main__",
+             "lazyground.bench.cli", "lazyground.moveit.cli")),
+)
+LAYER_NAMES = tuple(name for name, _ in LAYERS)
+ROOT_PACKAGES = ("lazyground",)  # an __init__ that imports nothing: the bottom floor
+
+
+def layer_of(module: str) -> str | None:
+    """The layer of ``module`` by its longest prefix in :data:`LAYERS`, or None when no prefix names it."""
+    if module in ROOT_PACKAGES:
+        return LAYER_NAMES[0]
+    best, depth = None, -1
+    for name, prefixes in LAYERS:
+        for p in prefixes:
+            if (module == p or module.startswith(p + ".")) and p.count(".") > depth:
+                best, depth = name, p.count(".")
+    return best
+
+
+def unit_of(module: str) -> str:
+    """The package (a folder) or top-level module a module belongs to, ``lazyground.scene.loader`` ->
+    ``lazyground.scene``; a module the table lifts out of its package's layer (``bench.cli``) is its own."""
+    parts = module.split(".")
+    unit = ".".join(parts[:2]) if parts[0] == "lazyground" else parts[0]
+    return unit if layer_of(module) == layer_of(unit) else module
+
+
+def upward_imports(graph: dict[str, set[str]]) -> list[str]:
+    rank = {name: i for i, name in enumerate(LAYER_NAMES)}
+    return sorted(f"{m} ({layer_of(m)}) -> {d} ({layer_of(d)})" for m, deps in graph.items() for d in deps
+                  if rank[layer_of(d)] > rank[layer_of(m)])
+
+
+def test_every_module_has_a_layer():
+    assert [m for m in import_graph() if layer_of(m) is None] == []
+    assert layer_of("lazyground.bench.cli") == "cli" and layer_of("lazyground.bench.runner") == "bench"
+
+
+def test_no_import_points_up_the_layers():
+    assert upward_imports(import_graph()) == []
+
+
+def test_the_layer_check_sees_an_upward_import():
+    assert upward_imports({"lazyground.drake.diagram": {"lazyground.viz.style"}, "lazyground.viz.style": set()}) == [
+        "lazyground.drake.diagram (drake) -> lazyground.viz.style (viz)"]
+
+
+def test_no_cycle_between_packages():
+    """Packages, not only modules, form no cycle: one a late import would hide (scene <-> robots, scene <-> moveit)."""
+    units: dict[str, set[str]] = {}
+    for m, deps in import_graph().items():
+        units.setdefault(unit_of(m), set()).update(unit_of(d) for d in deps if unit_of(d) != unit_of(m))
+    cycle = find_cycle(units)
+    assert cycle is None, "package cycle: " + " -> ".join(cycle)
+
+
+def test_no_late_import():
+    """No import is marked as deferred to dodge a cycle."""
+    late = [f"{p.relative_to(ROOT)}:{i}" for p in module_names().values()
+            for i, line in enumerate(p.read_text().splitlines(), 1)
+            if "import " in line and ("# late" in line or "imported here:" in line)]
+    assert late == []
+
+
+def _below_cli(module: str) -> bool:
+    return layer_of(module) != "cli"
+
+
+def test_the_library_never_prints_nor_parses_arguments():
+    """print, argparse and ``add_argument`` live in the CLI layer; the library returns values and takes plain ones."""
+    found = []
+    for mod, path in module_names().items():
+        if not _below_cli(mod):
+            continue
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Call):
+                f = node.func
+                name = f.id if isinstance(f, ast.Name) else f.attr if isinstance(f, ast.Attribute) else ""
+                if name in ("print", "add_argument", "add_argument_group", "add_parser", "add_subparsers"):
+                    found.append(f"{mod}:{node.lineno} {name}")
+            elif isinstance(node, (ast.Import, ast.ImportFrom)):
+                names = [a.name for a in node.names] if isinstance(node, ast.Import) else [node.module or ""]
+                if "argparse" in names:
+                    found.append(f"{mod}:{node.lineno} import argparse")
+    assert found == []

@@ -13,7 +13,7 @@ from lazyground.bench.moveit_corpus import CORPUS, REFERENCE, corpus_entries
 from lazyground.moveit import ImportOptions, StartOptions, classify, convert_moveit, import_moveit_file, parse_rule, tokens, word_type
 from lazyground.moveit.types import load_rules_file
 from lazyground.scene import load_scene
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 REFERENCE_FILES = sorted(REFERENCE.glob("*.yml")) if REFERENCE.is_dir() else []
 KITCHEN = ImportOptions(packages={"kitchen_description": CORPUS / "kitchen_description"})

@@ -5,10 +5,12 @@ from textwrap import dedent
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from grounding.regions import occupant_geometry
+from lazyground.scene.types import occupant_geometry
 from lazyground import goals
-from lazyground.geometry import Pose
+from lazyground.geometry import Pose, wrap_angle
 from lazyground.goals import ConfigGoalSource, goal_source_for, register_goal_source
 from lazyground.regions import REGION_KINDS, ConfigRegion, GoalRegion, PlacementRegion, RegionDrawing, WorkspaceRegion, register_region
 from lazyground.regions import base as regions_base
@@ -50,12 +52,65 @@ def test_config_sampling_wraps_and_stays_inside():
     assert not r.contains(np.array([0.5, 0.5, 0.0]))
 
 
-def test_same_seed_same_samples_for_every_kind():
-    regions = [ConfigRegion(id="c", interpretation="i", object="c", lower=(0, 0), upper=(1, 2)),
-               WorkspaceRegion(id="w", frame="ee", **_pose_fields()), PlacementRegion(id="p", **_pose_fields())]
-    for r in regions:
-        a, b = np.random.default_rng(3), np.random.default_rng(3)
-        assert np.array_equal(r.sample(a), r.sample(b))
+def test_samples_are_the_uniform_draws_mapped_onto_the_bounds():
+    """A sample is lower + u * (upper - lower) for the generator's next uniform draws u (worked out here, not by
+    sampling twice), wrapped across pi where the axis is an angle; the mean of many lies at the box centre."""
+    u = np.random.default_rng(3).random(3)
+    c = ConfigRegion(id="c", interpretation="i", object="c", lower=(0.0, -1.0, 3.0), upper=(1.0, 1.0, -3.0), wrap=(2,))
+    want = np.array([u[0], -1.0 + 2.0 * u[1], 3.0 + u[2] * (2 * np.pi - 6.0)])
+    want[2] = want[2] - 2 * np.pi if want[2] >= np.pi else want[2]
+    assert np.allclose(c.sample(np.random.default_rng(3)), want, atol=1e-12)
+    w = WorkspaceRegion(id="w", frame="ee", **_pose_fields())
+    u6 = np.random.default_rng(3).random(6)
+    assert np.allclose(w.sample(np.random.default_rng(3)), [-0.1 + 0.2 * u6[0], 0, 0.2, -np.pi + 2 * np.pi * u6[3], 0, 0])
+    many = np.array([c.sample(np.random.default_rng(s))[:2] for s in range(400)])
+    assert np.allclose(many.mean(axis=0), [0.5, 0.0], atol=0.1)
+
+
+@pytest.mark.parametrize("lower, upper", [(-2.0, 2.0), (-1.0, 2.5), (0.5, -0.5), (2.0, 1.9), (-3.0, 0.3), (2.5, 0.0)])
+def test_wrapped_arcs_wider_than_pi_contain_their_own_samples(lower, upper):
+    """An arc wider than pi (crossing pi or not) holds every sample it draws, and rejects the middle of its gap."""
+    r = ConfigRegion(id="a", interpretation="i", object="a", lower=(lower,), upper=(upper,), wrap=(0,))
+    width = (upper - lower) % (2 * np.pi)
+    assert width > np.pi
+    rng = np.random.default_rng(11)
+    assert all(r.contains(r.sample(rng)) for _ in range(300))
+    gap_middle = upper + (2 * np.pi - width) / 2
+    assert not r.contains([gap_middle]) and not r.contains([gap_middle - 2 * np.pi])
+
+
+@settings(max_examples=100, deadline=None, derandomize=True)
+@given(st.floats(-np.pi, np.pi), st.floats(1e-3, 2 * np.pi - 1e-2), st.integers(0, 2**32 - 1))
+def test_any_wrapped_arc_contains_its_own_samples(lower, width, seed):
+    """Property: for every arc (lower, width), wrapped widths above pi included, samples lie in the region."""
+    upper = float(wrap_angle(lower + width))
+    r = ConfigRegion(id="a", interpretation="i", object="a", lower=(lower,), upper=(upper,), wrap=(0,))
+    rng = np.random.default_rng(seed)
+    assert all(r.contains(r.sample(rng)) for _ in range(20))
+    # the middle of the gap is out
+    assert not r.contains([lower + width + (2 * np.pi - width) / 2])
+
+
+def test_wrapped_bounds_minus_two_to_two_contain_zero():
+    r = ConfigRegion(id="a", interpretation="i", object="a", lower=(-2.0,), upper=(2.0,), wrap=(0,))
+    assert r.contains([0.0]) and r.contains([1.99]) and r.contains([-1.99])
+    assert not r.contains([3.0]) and not r.contains([np.pi]) and not r.contains([-2.2])
+
+
+@pytest.mark.parametrize("wrap", [(), (0,)])
+def test_contains_allows_tol_beyond_either_bound_and_no_more(wrap):
+    """Bounds are kept within ``tol`` on every axis, wrapped or not: 0.5 tol outside is in, 2 tol outside is out."""
+    for lo, hi in [(-1.0, 0.5), (0.2, 3.1)]:
+        r = ConfigRegion(id="a", interpretation="i", object="a", lower=(lo,), upper=(hi,), wrap=wrap)
+        tol = 1e-4
+        assert r.contains([hi + 0.5 * tol], tol) and r.contains([lo - 0.5 * tol], tol)
+        assert not r.contains([hi + 2 * tol], tol) and not r.contains([lo - 2 * tol], tol)
+        assert r.contains([hi + 0.5e-6]) and not r.contains([hi + 2e-6])  # the default tol, 1e-6
+
+
+def test_full_circle_wrapped_axis_contains_every_angle():
+    r = ConfigRegion(id="a", interpretation="i", object="a", lower=(-np.pi,), upper=(np.pi,), wrap=(0,))
+    assert all(r.contains([a]) for a in np.linspace(-4, 4, 17))
 
 
 def test_pose_coordinates_invert_pose_in_world():
@@ -132,7 +187,7 @@ def test_a_kind_without_a_source_is_one_clear_error(monkeypatch):
 
 def test_what_an_occupied_spot_holds_is_type_data_overridable_per_object():
     scene = parse_scene(LOT)
-    assert occupant_geometry(scene.object("spot_2"), scene).box == (4.5, 1.8, 1.5)  # grounding/types.yaml
+    assert occupant_geometry(scene.object("spot_2"), scene).box == (4.5, 1.8, 1.5)  # lazyground/scene/types.yaml
     assert occupant_geometry(scene.object("spot_3"), scene).box == (3.0, 1.5, 1.2)  # the object's own
     assert occupant_geometry(scene.object("spot_1"), scene).box == (4.5, 1.8, 1.5)  # asked only when occupied
 

@@ -5,7 +5,7 @@ from pathlib import Path
 import pytest
 
 from lazyground.robots.defaults import defaults_for_model, load_robot_defaults
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 MODELS = Path(__file__).resolve().parents[2] / "models"
 

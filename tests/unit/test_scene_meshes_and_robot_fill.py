@@ -10,7 +10,7 @@ from lazyground.mesh_files import MeshFileError, obj_text, read_stl
 from lazyground.moveit.start import StartOptions, override_scene_start
 from lazyground.scene import load_scene
 from lazyground.scene.loader import parse_scene
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 FETCH = "{model: fetch, base: {xyz: [0, 0, 0]}, start: {torso_lift_joint: 0.05, shoulder_pan_joint: 1.32, shoulder_lift_joint: 1.4, upperarm_roll_joint: -0.2, elbow_flex_joint: 1.72, forearm_roll_joint: 0.0, wrist_flex_joint: 1.66, wrist_roll_joint: 0.0}, planned_joints: [torso_lift_joint, shoulder_pan_joint, shoulder_lift_joint, upperarm_roll_joint, elbow_flex_joint, forearm_roll_joint, wrist_flex_joint, wrist_roll_joint]}"  # tucked
 CUBE = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)

@@ -104,7 +104,7 @@ def test_cli_has_one_flag_per_cli_setting():
 
 def test_docs_settings_table_is_the_generated_one():
     text = (ROOT / "docs/scene_format.md").read_text()
-    assert settings.markdown_table() in text, "docs/scene_format.md: regenerate with python3 -m lazyground.settings"
+    assert settings.markdown_table() in text, "docs/scene_format.md: regenerate with python3 -m lazyground.cli_options"
 
 
 def test_names_are_written_once():

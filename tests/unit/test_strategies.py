@@ -93,15 +93,15 @@ def test_consecutive_is_round_robin_in_draw_order():
 
 
 def test_random_is_uniform_and_seeded():
-    r1, r2 = Random(), Random()
-    r1.add(list(range(4)))
-    r2.add(list(range(4)))
-    a = [r1.select(np.random.default_rng(7)) for _ in range(1)]
-    b = [r2.select(np.random.default_rng(7)) for _ in range(1)]
-    assert a == b
+    """The draw is the generator's next integer below the number of samples, in the order added."""
+    r = Random()
+    r.add([4, 7, 9, 2])
+    want = [[4, 7, 9, 2][k] for k in np.random.default_rng(7).integers(0, 4, size=1)]  # one draw per select
+    rng = np.random.default_rng(7)
+    assert [r.select(rng)] == want
     rng = np.random.default_rng(1)
-    counts = np.bincount([r1.select(rng) for _ in range(4000)], minlength=4)
-    assert counts.min() > 850 and counts.max() < 1150
+    counts = np.bincount([r.select(rng) for _ in range(4000)], minlength=10)[[4, 7, 9, 2]]
+    assert counts.min() > 850 and counts.max() < 1150 and counts.sum() == 4000
 
 
 def test_registry_by_name():

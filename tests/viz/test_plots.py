@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 from lazyground.viz import plots
 from lazyground.viz.style import OBSTACLE_RGBA, PATH_RGBA
 

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 from lazyground.viz.style import weight_rgba
 from lazyground.viz.trace import planar_indices, rect_corners, resample_path, tree_edges
 

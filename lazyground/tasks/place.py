@@ -19,11 +19,10 @@ from dataclasses import replace
 import numpy as np
 
 from grounding.model import Grounding
-from lazyground.drake.ik import IKGoalSource
-from lazyground.motion.steps import pick_and_place_motions
 from lazyground.drake.world import DrakeWorld
 from lazyground.geometry import Pose
-from lazyground.plan_report import PlanReport
+from lazyground.goals import goal_source_for
+from lazyground.motion.steps import pick_and_place_motions
 from lazyground.planning.problem import PlannerSettings, PlanResult, PlanStatus
 from lazyground.planning.rrt import path_is_valid, solve
 from lazyground.regions import GoalRegion
@@ -54,9 +53,10 @@ def _placement_regions(regions: list[GoalRegion], half_height: float) -> tuple[G
     return tuple(replace(r, X_SE=Pose((0.0, 0.0, half_height))) for r in regions)
 
 
-def lift_off(world: DrakeWorld, carrying: DrakeWorld, ik: IKGoalSource, frame: str, q_grasp: np.ndarray, resolution: float) -> Lift | None:
+def lift_off(world: DrakeWorld, carrying: DrakeWorld, ik, frame: str, q_grasp: np.ndarray, resolution: float) -> Lift | None:
     """Raise the gripper (and object) straight up until the carried object is clear of its support.
 
+    ``ik`` is the goal source registered for pose regions (it solves IK to a pose: ``ik.solve``).
     The lift is solved in 1 cm IK steps, each seeded by the last, so the path
     stays close to a vertical line. The object rests on its support at the
     grasp, so the first millimetres may touch it; from the first collision-free
@@ -155,7 +155,7 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
         candidates = [r for r in grasps if r.object not in excluded]
         if remaining <= 0 or not candidates:
             break
-        pick = solve(world.space, world, IKGoalSource(tuple(candidates), world), world.start,
+        pick = solve(world.space, world, goal_source_for(tuple(candidates), world), world.start,
                      replace(settings, time_limit=remaining), rng, seed=seed, keep_tree=keep_tree)
         results.append(pick)
         if not pick.solved:
@@ -169,7 +169,12 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
         built = worlds.setup_s
         carrying = worlds.get(grasp)
         setup = worlds.setup_s - built
-        source = IKGoalSource(_placement_regions(places.get(obj.id, []), obj.geometry.half_extents()[2]), carrying)
+        targets = _placement_regions(places.get(obj.id, []), obj.geometry.half_extents()[2])
+        if not targets:
+            notes.append(f"picked {obj.id} but it has no placement region; trying another object")
+            excluded.append(obj.id)
+            continue
+        source = goal_source_for(targets, carrying)
         lift = lift_off(world, carrying, source, frame, q_grasp, settings.resolution)
         if lift is None:
             notes.append(f"picked {obj.id} ({pick.goal_region.label}) but could not lift it clear; trying another object")
@@ -207,8 +212,8 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
     return finish(status, f"no object could be picked and placed in time (tried: {tried})")
 
 
-def validate_pick_and_place(report: PlanReport, scene: Scene, resolution: float) -> list[str]:
-    """Re-check both steps at ``resolution``, the carried object included; returns problems found."""
+def validate_pick_and_place(report, scene: Scene, resolution: float) -> list[str]:
+    """Re-check both steps of a solved place ``PlanReport`` at ``resolution``, the carried object included; returns problems found."""
     problems = []
     pick, place = report.steps
     worlds = Worlds(scene, visual=False)

@@ -8,7 +8,7 @@ from lazyground.planning.car import Kinematics, make_space
 from lazyground.planning.space import ConfigSpace
 from lazyground.robots.defaults import defaults_for_model
 from lazyground.scene.loader import resolve_model
-from lazyground.scene.typed_yaml import SceneError
+from lazyground.typed_yaml import SceneError
 
 
 def planning_space(scene, base: ConfigSpace, kinematics: str) -> ConfigSpace:

@@ -1,0 +1,119 @@
+"""Mutation testing of the core modules with mutmut, one module at a time on the unit tests that cover it.
+
+Usage (from the repository root; dev extra: ``pip install -e .[dev]``)::
+
+    nice python3 tools/mutation.py                      # every module below (about an hour on 2 cores)
+    nice python3 tools/mutation.py regions strategies   # some of them
+    python3 tools/mutation.py --list                    # the modules and their tests
+
+Each module runs in a scratch copy of the working tree (``--work``, default /tmp/lazyground-mutation/<module>),
+whose pyproject.toml gets a ``[tool.mutmut]`` section naming that module's files and tests; mutmut then runs,
+for each mutant, the tests that reach the mutated function. The score printed is killed / (killed + survived),
+mutants that time out counted as killed; the surviving mutants are listed (``mutmut show NAME`` in the scratch
+copy shows one). Equivalent mutants are listed in docs/reliability.md.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+
+# module -> (files mutated, the unit tests that cover them: the fast subset, no Drake unless the module is Drake's)
+MODULES: dict[str, tuple[list[str], list[str]]] = {
+    "regions": (["lazyground/regions/*"], ["tests/unit/test_regions.py"]),
+    "strategies": (["lazyground/planning/strategies.py"],
+                   ["tests/unit/test_strategies.py", "tests/contract/test_strategy_contract.py"]),
+    "tree-nn": (["lazyground/planning/tree.py", "lazyground/planning/nn.py"],
+                ["tests/unit/test_nn.py", "tests/unit/test_planner_toy.py"]),
+    "search": (["lazyground/planning/search.py", "lazyground/planning/rrt.py", "lazyground/planning/birrt.py"],
+               ["tests/unit/test_planner_toy.py", "tests/unit/test_birrt_toy.py", "tests/unit/test_fine_recheck.py",
+                "tests/contract/test_planner_contract.py"]),
+    "validate": (["lazyground/motion/validate.py", "lazyground/motion/limits.py"],
+                 ["tests/unit/test_validate.py", "tests/unit/test_motion_checks.py"]),
+    "spatial": (["grounding/spatial.py"], ["tests/unit/test_grounding.py", "tests/unit/test_grounding_base_pose.py"]),
+    "resolve": (["grounding/resolve.py"], ["tests/unit/test_grounding.py", "tests/unit/test_grounding_base_pose.py",
+                                          "tests/unit/test_grounding_errors.py"]),
+    "parse": (["grounding/parse.py"], ["tests/unit/test_grounding.py", "tests/unit/test_grounding_errors.py"]),
+    "spheres": (["lazyground/drake/spheres.py"], ["tests/drake/test_spheres.py"]),
+    "checker": (["lazyground/drake/checker.py"], ["tests/drake/test_fast_checks.py", "tests/contract/test_checker_contract.py"]),
+}
+
+IGNORE = shutil.ignore_patterns(".git", "mutants", "__pycache__", ".pytest_cache", ".hypothesis", "lazyground_output",
+                                "bench_output", "*.egg-info")
+
+
+def _mutmut_section(files: list[str], tests: list[str]) -> str:
+    return "\n[tool.mutmut]\n" + "\n".join([
+        'source_paths = ["lazyground", "grounding"]',
+        f"only_mutate = {json.dumps(files)}",
+        'also_copy = ["yaml_scenes", "models", "docs", "README.md"]',
+        f'pytest_add_cli_args_test_selection = {json.dumps(tests + ["-x", "-q", "-p", "no:cacheprovider"])}',
+        "mutate_only_covered_lines = true",
+    ]) + "\n"
+
+
+def run_module(name: str, work: Path, children: int) -> dict:
+    """Copy the tree, configure mutmut for ``name``, run it; returns the counts by status and the survivors."""
+    files, tests = MODULES[name]
+    scratch = work / name
+    if scratch.exists():
+        shutil.rmtree(scratch)
+    shutil.copytree(REPO, scratch, ignore=IGNORE, symlinks=True)
+    pyproject = scratch / "pyproject.toml"
+    pyproject.write_text(pyproject.read_text() + _mutmut_section(files, tests))
+    subprocess.run(["mutmut", "run", "--max-children", str(children)], cwd=scratch, check=False)
+    out = subprocess.run(["mutmut", "results", "--all", "true"], cwd=scratch, capture_output=True, text=True).stdout
+    counts: dict[str, int] = {}
+    survivors = []
+    for line in out.splitlines():
+        key, _, status = line.strip().rpartition(": ")
+        if not key:
+            continue
+        counts[status] = counts.get(status, 0) + 1
+        if status == "survived":
+            survivors.append(key)
+    killed = counts.get("killed", 0) + counts.get("timeout", 0)
+    survived = counts.get("survived", 0)
+    score = killed / (killed + survived) if killed + survived else float("nan")
+    return {"module": name, "counts": counts, "score": score, "survivors": survivors, "scratch": str(scratch)}
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("modules", nargs="*", help=f"of {', '.join(MODULES)} (default: all)")
+    p.add_argument("--work", type=Path, default=Path("/tmp/lazyground-mutation"), help="scratch copies go here")
+    p.add_argument("--children", type=int, default=1, help="mutmut worker processes (default 1: a shared machine)")
+    p.add_argument("--list", action="store_true", help="print the modules and their tests, run nothing")
+    args = p.parse_args(argv)
+    unknown = [m for m in args.modules if m not in MODULES]
+    if unknown:
+        print(f"unknown module(s) {', '.join(unknown)} (known: {', '.join(MODULES)})", file=sys.stderr)
+        return 2
+    if args.list:
+        for name, (files, tests) in MODULES.items():
+            print(f"{name}: {' '.join(files)}  <-  {' '.join(tests)}")
+        return 0
+    args.work.mkdir(parents=True, exist_ok=True)
+    results = [run_module(m, args.work, args.children) for m in args.modules or MODULES]
+    print("\n| module | killed | survived | other | score |\n| --- | --- | --- | --- | --- |")
+    for r in results:
+        c = r["counts"]
+        killed, survived = c.get("killed", 0) + c.get("timeout", 0), c.get("survived", 0)
+        other = {k: v for k, v in c.items() if k not in ("killed", "timeout", "survived")}
+        print(f"| {r['module']} | {killed} | {survived} | {other or ''} | {r['score']:.0%} |")
+    for r in results:
+        if r["survivors"]:
+            print(f"\n{r['module']} survivors (mutmut show NAME in {r['scratch']}):")
+            print("\n".join(f"  {s}" for s in r["survivors"]))
+    (args.work / "results.json").write_text(json.dumps(results, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
