@@ -42,9 +42,25 @@ def path_is_valid(space: ConfigSpace, checker: ValidityChecker, path: np.ndarray
         prev = k
     if not chunks:
         return -1
-    free = np.asarray(checker.configs_free(np.vstack(chunks)), bool)
+    free = samples_free(space, checker, np.vstack(chunks))
     blocked = np.flatnonzero(~free)
     return int(np.concatenate(owner)[blocked[0]]) if len(blocked) else -1
+
+
+def samples_free(space: ConfigSpace, checker: ValidityChecker, qs: np.ndarray) -> np.ndarray:
+    """Which configurations ``qs`` (samples along edges) are valid: inside the space's bounds and free.
+
+    Nodes are sampled inside the bounds, and a straight edge between two stays inside them; a car's curve
+    need not (issue 34: paths around walls at a lot's edge drove up to 6 m outside it), so every sample is
+    held to the bounds where it is checked for collision."""
+    qs = np.asarray(qs, float)
+    inside = np.all((qs >= space.lower - 1e-9) & (qs <= space.upper + 1e-9), axis=1)
+    if inside.all():
+        return np.asarray(checker.configs_free(qs), bool)
+    free = np.zeros(len(qs), bool)
+    if inside.any():
+        free[inside] = np.asarray(checker.configs_free(qs[inside]), bool)
+    return free
 
 
 def _checks(checker: ValidityChecker) -> int:
@@ -57,7 +73,7 @@ def edge_free(space: ConfigSpace, checker: ValidityChecker, a: np.ndarray, b: np
     the space's samples along the curve otherwise (Drake's edge check interpolates linearly)."""
     if space.linear_edges:
         return checker.edge_free(a, b, resolution)
-    return bool(np.all(checker.configs_free(space.discretize(a, b, resolution, skip_first=True))))
+    return bool(np.all(samples_free(space, checker, space.discretize(a, b, resolution, skip_first=True))))
 
 
 def edge_fraction(space: ConfigSpace, checker: ValidityChecker, a: np.ndarray, b: np.ndarray, resolution: float) -> float:
@@ -65,7 +81,7 @@ def edge_fraction(space: ConfigSpace, checker: ValidityChecker, a: np.ndarray, b
     if space.linear_edges:
         return checker.edge_fraction(a, b, resolution)
     qs = space.discretize(a, b, resolution, skip_first=True)
-    blocked = np.flatnonzero(~np.asarray(checker.configs_free(qs), bool))
+    blocked = np.flatnonzero(~samples_free(space, checker, qs))
     if not len(blocked):
         return 1.0
     if blocked[0] == 0:
