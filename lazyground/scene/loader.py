@@ -114,8 +114,7 @@ def _not_a_scene(text: str, data: dict | None = None) -> str | None:
         FileKind.SDF: model,
         FileKind.SRDF: "give it as --srdf FILE or under robot.srdf in a scene",
         FileKind.XML: "a scene is YAML (docs/scene_format.md)",
-        FileKind.SCENE_TEXT: "save the scene as a moveit_msgs/PlanningScene message in YAML and convert it with "
-                             "`lazyground import-moveit`",
+        FileKind.SCENE_TEXT: "convert it with `lazyground import-moveit FILE -o scene.yaml`",
     }.get(kind)
     return f"this is {kind.value}, not a lazyground scene: {hint}" if hint else None
 
