@@ -47,6 +47,10 @@ def path_is_valid(space: ConfigSpace, checker: ValidityChecker, path: np.ndarray
     return int(np.concatenate(owner)[blocked[0]]) if len(blocked) else -1
 
 
+# what one goal-sampling attempt in a region of each kind tries (issue 34: the status said "0/50 valid", not of what)
+TRIED = {"workspace": "grasps", "placement": "placements"}
+
+
 def samples_free(space: ConfigSpace, checker: ValidityChecker, qs: np.ndarray) -> np.ndarray:
     """Which configurations ``qs`` (samples along edges) are valid: inside the space's bounds and free.
 
@@ -216,11 +220,12 @@ class Search:
         )
 
     def region_summary(self) -> str:
-        """Each goal region's valid samples and attempts, and why the attempts failed."""
+        """Each goal region's tries (grasps, placements or configurations), valid ones, and why the others failed."""
         parts = []
         for region, st in zip(self.goals.regions, self.goals.stats):
-            why = ", ".join(f"{k} x{v}" for k, v in sorted(st.failures.items())) or "not tried"
-            parts.append(f"{region.id}: {st.valid}/{st.attempts} valid ({why})")
+            why = ", ".join(f"{k} x{v}" for k, v in sorted(st.failures.items()))
+            tried = f"{st.attempts} {TRIED.get(region.kind, 'configurations')} tried, {st.valid} valid"
+            parts.append(f"{region.id}: {tried} ({why})" if why else f"{region.id}: {tried}" if st.attempts else f"{region.id}: not tried")
         return "; ".join(parts)
 
     def no_goal(self) -> PlanResult:

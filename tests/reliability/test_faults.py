@@ -59,7 +59,7 @@ def test_fetch_no_valid_goal_gives_the_reason_per_region():
     assert set(per_region) == {f"Can{i}/{g}" for i in (1, 2) for g in grasps}
 
     def reasons(text):
-        match = re.fullmatch(r"0/(\d+) valid \((.*)\)", text)
+        match = re.fullmatch(r"(\d+) grasps tried, 0 valid \((.*)\)", text)  # issue 34: say what was tried
         assert match, text
         counts = dict((why, int(n)) for why, n in re.findall(r"(in collision|ik failed|out of reach) x(\d+)", match.group(2)))
         assert sum(counts.values()) == int(match.group(1)), text  # every attempt has its reason
@@ -69,7 +69,9 @@ def test_fetch_no_valid_goal_gives_the_reason_per_region():
         caged, far = reasons(per_region[f"Can1/{g}"]), reasons(per_region[f"Can2/{g}"])
         assert caged.get("in collision", 0) > 0, per_region  # IK answers exist inside the cage; they collide
         assert "in collision" not in far, per_region  # 3 m away: never reached
-    assert sum(st.attempts for st in res.region_stats) <= len(per_region) * 50  # given up on after 50 attempts per region
+    # given up on after 50 attempts per region, 4 x 50 where IK reached grasps that collided (issue 34)
+    tried = {r.id: st.attempts for r, st in zip(res.regions, res.region_stats)}
+    assert all(tried[f"Can2/{g}"] <= 50 and tried[f"Can1/{g}"] <= 200 for g in grasps), tried
 
 
 def overshoots(scene, request, limits, seeds, world=None):
