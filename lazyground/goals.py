@@ -44,8 +44,8 @@ class RoundRobinGoalSource:
         self.regions = tuple(regions)
         self.stats = [RegionStats() for _ in self.regions]
         self._give_up_after = give_up_after
-        self._attempts_per_sample = attempts_per_sample
-        self._next = 0
+        self.attempts_per_sample = attempts_per_sample
+        self.next_region = 0
         self._time = 0.0
 
     @property
@@ -66,18 +66,18 @@ class RoundRobinGoalSource:
 
     def draw(self, n: int, rng: np.random.Generator, deadline: float) -> list[GoalSample]:
         out: list[GoalSample] = []
-        budget = n * self._attempts_per_sample
+        budget = n * self.attempts_per_sample
         t0 = time.perf_counter()
         try:
             while len(out) < n and budget > 0 and not self.exhausted() and time.perf_counter() < deadline:
-                plan = self.plan(self._next, min(budget, self.batch_size(n - len(out))))
+                plan = self.plan(self.next_region, min(budget, self.batch_size(n - len(out))))
                 results = self.attempts(plan, rng, deadline)
                 try:
                     for j, after in plan:  # the attempts in round-robin order, as if made one by one
                         if len(out) >= n or budget <= 0 or time.perf_counter() >= deadline:
                             break
                         sample, reason, seconds = next(results)
-                        self._next = after
+                        self.next_region = after
                         budget -= 1
                         st = self.stats[j]
                         st.attempts += 1

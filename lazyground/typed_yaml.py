@@ -78,7 +78,7 @@ def convert(value: Any, tp, path: str):
         return value
     if tp in (dict, list):  # untyped contents (e.g. grasp_types' per-type layout): check the container only
         if not isinstance(value, tp):
-            _fail(path, f"expected {'a mapping' if tp is dict else 'a list'}, got {_describe(value)}")
+            _fail(path, f"expected {'a mapping' if tp is dict else 'a list'}, got {describe(value)}")
         return value
     if origin in (Union, types.UnionType):
         args = get_args(tp)
@@ -95,13 +95,13 @@ def convert(value: Any, tp, path: str):
                 return convert(value, arg, path)
             except SceneError:
                 pass
-        _fail(path, f"expected {_type_name(tp)}, got {_describe(value)}")
+        _fail(path, f"expected {_type_name(tp)}, got {describe(value)}")
     if dataclasses.is_dataclass(tp):
         return load_dataclass(value, tp, path)
     if origin is tuple:
         args = get_args(tp)
         if not isinstance(value, list):
-            _fail(path, f"expected a list, got {_describe(value)}")
+            _fail(path, f"expected a list, got {describe(value)}")
         if len(args) == 2 and args[1] is Ellipsis:
             return tuple(convert(v, args[0], f"{path}[{i}]") for i, v in enumerate(value))
         if len(value) != len(args):
@@ -110,11 +110,11 @@ def convert(value: Any, tp, path: str):
     if origin is dict:
         key_tp, val_tp = get_args(tp)
         if not isinstance(value, dict):
-            _fail(path, f"expected a mapping, got {_describe(value)}")
+            _fail(path, f"expected a mapping, got {describe(value)}")
         return {convert(k, key_tp, path): convert(v, val_tp, f"{path}.{k}") for k, v in value.items()}
     if tp is float:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            _fail(path, f"expected a number, got {_describe(value)}")
+            _fail(path, f"expected a number, got {describe(value)}")
         if isinstance(value, int) and abs(value) > INT_LIMIT:  # float() would raise OverflowError
             _fail(path, "number out of range")
         if value != value or value in (float("inf"), float("-inf")):
@@ -122,17 +122,17 @@ def convert(value: Any, tp, path: str):
         return float(value)
     if tp is int:
         if isinstance(value, bool) or not isinstance(value, int):
-            _fail(path, f"expected an integer, got {_describe(value)}")
+            _fail(path, f"expected an integer, got {describe(value)}")
         if abs(value) > INT_LIMIT:
             _fail(path, "number out of range")
         return value
     if tp is bool:
         if not isinstance(value, bool):
-            _fail(path, f"expected true or false, got {_describe(value)}")
+            _fail(path, f"expected true or false, got {describe(value)}")
         return value
     if tp is str:
         if not isinstance(value, str):
-            _fail(path, f"expected a string, got {_describe(value)}")
+            _fail(path, f"expected a string, got {describe(value)}")
         return value
     raise TypeError(f"unsupported schema type {tp!r}")  # a schema bug, not a user error
 
@@ -157,7 +157,7 @@ def _kind_of(value) -> str:
     return "string" if isinstance(value, str) else "number" if isinstance(value, (int, float)) else "other"
 
 
-def _describe(value) -> str:
+def describe(value) -> str:
     if value is None:
         return "nothing"
     if isinstance(value, bool):
@@ -181,7 +181,7 @@ def load_dataclass(value: Any, cls, path: str):
     string or None, applied after conversion.
     """
     if not isinstance(value, dict):
-        _fail(path, f"expected a mapping, got {_describe(value)}")
+        _fail(path, f"expected a mapping, got {describe(value)}")
     hints = get_type_hints(cls)
     fields = {f.name: f for f in dataclasses.fields(cls) if f.init}
     for key in value:

@@ -25,13 +25,13 @@ def bound_ik_by_counts(patch: pytest.MonkeyPatch | None = None) -> None:
         patch: records the change so it can be undone; None sets it for the process
             (worker processes of a test).
     """
-    from lazyground.drake import ik
+    from lazyground.drake.ik import settings as ik_settings
 
-    bound = replace(ik.DEFAULT_IK_SETTINGS, attempt_budget=None)
+    bound = replace(ik_settings.DEFAULT_IK_SETTINGS, attempt_budget=None)
     if patch is None:
-        ik.DEFAULT_IK_SETTINGS = bound
+        ik_settings.DEFAULT_IK_SETTINGS = bound
     else:
-        patch.setattr(ik, "DEFAULT_IK_SETTINGS", bound)
+        patch.setattr(ik_settings, "DEFAULT_IK_SETTINGS", bound)
 
 
 @pytest.fixture(autouse=True, scope="session")

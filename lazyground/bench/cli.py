@@ -36,6 +36,7 @@ TABLES = {
             requests={"fetch_cans_1": "pick up a can", "fetch_cans_2": "pick up a can", "fetch_boxes_3": "pick up a box"}),
 }
 EXIT_OK, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 2, 130
+PLOT_DPI = 60  # --plot: small PNGs to commit beside benchmarks/RESULTS.md
 
 
 class BenchUsageError(Exception):
@@ -67,6 +68,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=0, help="first seed (runs use seed, seed+1, ...)")
     p.add_argument("--out", default="bench_output", help="output folder (default: bench_output)")
     p.add_argument("--resume", action="store_true", help="keep results.csv in --out and skip the runs it holds")
+    p.add_argument("--plot", metavar="FILE.png", help="also write a small plot for docs: the box plots, the DOF sweep's "
+                   "curve, or (--nn-scaling alone) time per iteration against tree size")
     p.add_argument("--debug", action="store_true")
     return p
 
@@ -209,13 +212,19 @@ def _main(args) -> int:
     problem = folder_problem(out)
     if problem:
         raise BenchUsageError(f"--out {args.out}: {problem}")
+    if args.plot and (Path(args.plot).suffix.lower() != ".png" or folder_problem(Path(args.plot).resolve().parent)):
+        raise BenchUsageError(f"--plot {args.plot}: must be a .png file in a writable folder")
     if args.nn_scaling:
         from lazyground.bench import nn_scaling
 
-        text = nn_scaling.report(nn_scaling.measure())
+        scaling = nn_scaling.measure()
+        text = nn_scaling.report(scaling)
         (out / "nn_scaling.md").write_text(text)
         print(text, end="")
         if not (args.table or args.dof_sweep or args.scenes):
+            if args.plot:
+                nn_scaling.plot(scaling, args.plot, dpi=PLOT_DPI)
+                print(f"wrote {args.plot}", file=sys.stderr)
             return EXIT_OK
     specs, notes, title = plan_specs(args)
     for note in notes:
@@ -255,6 +264,11 @@ def _main(args) -> int:
         progress.close()
     rows = [r for r in read_csv(csv_path) if r["status"] != "interrupted"]
     write_outputs(rows, out, title, notes, time.perf_counter() - t0, dof_sweep=args.dof_sweep)
+    if args.plot and rows:
+        from lazyground.bench import tables
+
+        (tables.dof_plot if args.dof_sweep else tables.box_plots)(rows, args.plot, dpi=PLOT_DPI)
+        print(f"wrote {args.plot}", file=sys.stderr)
     errors = [r for r in rows if r["status"] == "error"]
     if errors:
         print(f"warning: {len(errors)} run(s) failed, e.g. {errors[0]['scene']}: {errors[0]['message']}", file=sys.stderr)

@@ -95,3 +95,23 @@ def report(s: Scaling) -> str:
     lines.append("")
     lines.append(f"Growth from {s.sizes[0]:,} to {s.sizes[-1]:,} nodes: NN x{s.ratio('nn_us'):.2f}, RRT iteration x{s.ratio('rrt_us'):.2f} (target < 2).")
     return "\n".join(lines) + "\n"
+
+
+def plot(s: Scaling, path, dpi: int = 110) -> None:
+    """Microseconds per NN operation and per RRT iteration against tree size (log x)."""
+    from lazyground.bench.tables import pyplot
+
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(5, 3.4))
+    ax.plot(s.sizes, s.rrt_us, marker="o", label="RRT iteration")
+    ax.plot(s.sizes, s.nn_us, marker="s", label="NN add + nearest")
+    ax.set_xscale("log")
+    ax.set_ylim(bottom=0)
+    ax.set_xlabel("tree size (nodes)")
+    ax.set_ylabel("µs")
+    ax.set_title(f"growth x{s.ratio('rrt_us'):.2f} from {s.sizes[0]:,} to {s.sizes[-1]:,} nodes", fontsize=9)
+    ax.legend(fontsize=8)
+    ax.grid(True, alpha=0.4)
+    fig.tight_layout()
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)

@@ -210,7 +210,8 @@ def motion_table(rows: list[dict]) -> str:
 
 # --- plots ----------------------------------------------------------------------------------
 
-def _pyplot():
+def pyplot():
+    """matplotlib.pyplot on the Agg backend (no display)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -219,9 +220,9 @@ def _pyplot():
     return plt
 
 
-def box_plots(rows: list[dict], path) -> None:
+def box_plots(rows: list[dict], path, dpi: int = 110) -> None:
     """One panel per scene, one box per configuration (unsolved runs at the time limit)."""
-    plt = _pyplot()
+    plt = pyplot()
     rows = [r for r in rows if r["status"] != "interrupted"]
     scenes = scenes_of(rows)
     fig, axes = plt.subplots(1, max(1, len(scenes)), figsize=(4.5 * max(1, len(scenes)), 4.2), squeeze=False)
@@ -237,13 +238,13 @@ def box_plots(rows: list[dict], path) -> None:
         ax.set_ylabel("time (s)")
         ax.yaxis.grid(True, alpha=0.4)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=dpi)
     plt.close(fig)
 
 
-def dof_plot(rows: list[dict], path) -> None:
+def dof_plot(rows: list[dict], path, dpi: int = 110) -> None:
     """Median time (unsolved at the limit) against DOF, one line per configuration; bars: quartiles."""
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(6, 4))
     for (label, bias), per_scene in group(rows).items():
         pts = sorted((int(s.split("_")[-1]), [counted_time(r) for r in rs]) for s, rs in per_scene.items())
@@ -259,5 +260,5 @@ def dof_plot(rows: list[dict], path) -> None:
     ax.legend(fontsize=8)
     ax.grid(True, alpha=0.4)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=dpi)
     plt.close(fig)

@@ -21,7 +21,7 @@ from pathlib import Path
 
 from lazyground.robots.defaults import RobotDefaults, defaults_for_model
 from lazyground.robots.srdf import read_srdf
-from lazyground.typed_yaml import SceneError, _describe
+from lazyground.typed_yaml import SceneError, describe
 
 FROM = "from"  # the key of a start mapping that names the pose it starts from
 
@@ -85,6 +85,6 @@ def _start(start, poses: dict[str, dict[str, float]], defaults: RobotDefaults | 
         if joint == FROM:
             continue
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise SceneError(f"{source}: robot.start.{joint}: expected a number, got {_describe(value)}")
+            raise SceneError(f"{source}: robot.start.{joint}: expected a number, got {describe(value)}")
         base[joint] = float(value)
     return base

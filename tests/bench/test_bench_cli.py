@@ -29,10 +29,12 @@ def _rows(out: Path) -> list[dict]:
 def test_tiny_parking_run_writes_all_outputs(tmp_path, capsys):
     out = tmp_path / "bench"
     code = main(["bench", "--scenes", "parking_1", "--runs", "2", "--time-limit", "20", "--kinematics", "holonomic",
-                 "--jobs", "1", "--out", str(out)])
+                 "--jobs", "1", "--out", str(out), "--plot", str(tmp_path / "small.png")])
     assert code == 0
     rows = _rows(out)
     assert len(rows) == 6  # 3 strategies x 2 seeds
+    small = (tmp_path / "small.png").read_bytes()  # --plot: the box plots again, small enough to commit
+    assert small[:8] == b"\x89PNG\r\n\x1a\n" and len(small) < len((out / "boxplots.png").read_bytes())
     assert {r["strategy"] for r in rows} == {"consecutive", "random", "reward-penalty"}
     assert {r["seed"] for r in rows} == {"0", "1"}
     for r in rows:  # holonomic parking_1 solves in under 1 s (0.16-0.65 s measured); 20 s is a guard, not the judge
@@ -147,6 +149,7 @@ def test_bad_arguments_exit_2(tmp_path, capsys):
     (["--jobs", "0"], "error: --jobs must be >= 1, got 0"),
     (["--out", "{tmp}/file"], "error: --out {tmp}/file: is a file, not a folder"),
     (["--out", "/proc/lazyground_bench"], "error: --out /proc/lazyground_bench: cannot write there: "),
+    (["--plot", "{tmp}/plot.jpg"], "error: --plot {tmp}/plot.jpg: must be a .png file in a writable folder"),
 ])
 def test_bad_input_is_refused_before_any_run(argv, message, tmp_path, capsys):
     from tests.unit.test_cli_outputs import refused

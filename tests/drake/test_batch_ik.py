@@ -1,4 +1,4 @@
-"""The batched damped-least-squares IK (lazyground.drake.batch_ik) and the goal source's batch mode (#19)."""
+"""The batched damped-least-squares IK (lazyground.drake.ik.batch) and the goal source's batch mode (#19)."""
 
 import math
 from dataclasses import replace
@@ -10,7 +10,7 @@ import pytest
 pytest.importorskip("pydrake")
 
 import grounding  # noqa: E402
-from lazyground.drake.batch_ik import SETTLE, BatchIKProblem, pose_errors, solve_batch  # noqa: E402
+from lazyground.drake.ik.batch import SETTLE, BatchIKProblem, pose_errors, solve_batch  # noqa: E402
 from lazyground.drake.chain import chain_to_frame  # noqa: E402
 from lazyground.drake.ik import IKGoalSource, IKSettings  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
@@ -150,12 +150,12 @@ def test_a_plan_ends_where_its_batch_answers_say(cans1):
 
 
 def test_starts_near_the_target_are_distinct_reach_arms_whose_wrists_lie_near_it(cans1):
-    from lazyground.drake.reach import START_STRIDE, reach_map
+    from lazyground.drake.ik.reach import START_STRIDE, reach_map
 
     _, world, regions = cans1
     source = IKGoalSource(regions, world, IKSettings(attempt_budget=None))
     rng = np.random.default_rng(8)
-    X = np.array([source._target_matrix(r, r.sample(rng)) for r in regions])
+    X = np.array([source.target_poses(np.array([j]), r.sample(rng)[None])[0] for j, r in enumerate(regions)])
     m = reach_map(world, "gripper_link")
     configs = m.near_configs(X, 3, 64, rng)
     assert configs.shape == (len(X), 3, world.space.dim)

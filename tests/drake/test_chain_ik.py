@@ -35,7 +35,7 @@ def test_chain_pose_and_jacobian_match_drake(fetch):
 
 def test_reach_map_points_are_the_plants_wrist_positions(fetch):
     """The batched reach map holds exactly what asking the plant sample by sample gives."""
-    from lazyground.drake import reach
+    from lazyground.drake.ik import reach
 
     world, frame, _ = fetch
     built = reach._build_reach_map(world, "gripper_link")

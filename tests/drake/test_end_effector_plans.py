@@ -19,7 +19,7 @@ from lazyground.robots.end_effector import frame_of  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 
 SCENES = Path(__file__).resolve().parents[2] / "yaml_scenes"
-# IK meets a goal pose within 0.01 rad and 2 mm a side (lazyground/drake/ik.py); a wrong axis is off by 90 deg
+# IK meets a goal pose within 0.01 rad and 2 mm a side (lazyground/drake/ik/source.py); a wrong axis is off by 90 deg
 ANGLE, POSITION = 0.011, 0.004
 
 

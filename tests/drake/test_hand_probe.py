@@ -1,4 +1,4 @@
-"""The hand-alone rejection of IK targets (lazyground.drake.hand_probe, #19): sound and worth having."""
+"""The hand-alone rejection of IK targets (lazyground.drake.ik.hand_probe, #19): sound and worth having."""
 
 from pathlib import Path
 
@@ -23,13 +23,13 @@ def test_no_rejected_target_has_a_free_ik_answer(name):
     world = DrakeWorld(scene, visual=False)
     source = IKGoalSource(grounding.ground(scene.expect[0].request, scene).goal_regions, world, IKSettings(attempt_budget=None))
     rng = np.random.default_rng(5)
-    draws = [(r, source._target_matrix(r, r.sample(rng))) for r in source.regions for _ in range(12)]
+    draws = [(r, source.target_poses(np.array([j]), r.sample(rng)[None])[0]) for j, r in enumerate(source.regions) for _ in range(12)]
     X = np.array([X for _, X in draws])
     rejected = X[np.array(source.screen("gripper_link", X)) == "hand in collision"]
     assert len(rejected) >= 0.1 * len(X)  # worth its cost here (boxes_3: ~45 % of the grasp targets)
-    starts = np.array([source._random_full(rng) for _ in range(len(rejected) * RESTARTS)])
-    answers, ok = source._batch._solve_rows(source._batch.problems["gripper_link"], starts, np.repeat(rejected, RESTARTS, axis=0))
-    q = answers[ok][:, source._planned]
+    starts = np.array([source.random_full(rng) for _ in range(len(rejected) * RESTARTS)])
+    answers, ok = source.batch.solver.solve("gripper_link", np.repeat(rejected, RESTARTS, axis=0), starts)
+    q = answers[ok][:, source.planned]
     q = q[[world.space.within_bounds(row) for row in q]]
     assert len(q) >= 2 * len(rejected)  # IK meets most rejected targets: the test tests something
     assert not np.any(world.configs_free(q))

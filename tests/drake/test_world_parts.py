@@ -8,12 +8,12 @@ import pytest
 
 pytest.importorskip("pydrake")
 
-from lazyground.drake import reach  # noqa: E402
+from lazyground.drake.ik import reach  # noqa: E402
 from lazyground.drake.checker import DrakeChecker  # noqa: E402
 from lazyground.drake.coordinates import coordinates_from_plant  # noqa: E402
 from lazyground.drake.diagram import build_diagram, environment_items  # noqa: E402
 from lazyground.drake.ik import IKGoalSource  # noqa: E402
-from lazyground.drake.reach import reach_key, reach_map  # noqa: E402
+from lazyground.drake.ik.reach import reach_key, reach_map  # noqa: E402
 from lazyground.drake.world import MAX_EXTRA_CHECKERS, DrakeWorld  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 from lazyground.scene.schema import Geometry  # noqa: E402

@@ -201,3 +201,36 @@ def test_the_library_never_prints_nor_parses_arguments():
                 if "argparse" in names:
                     found.append(f"{mod}:{node.lineno} import argparse")
     assert found == []
+
+
+def test_no_module_reaches_into_anothers_private_members():
+    """``obj._name`` only on ``self``/``cls``, and no ``from module import _name``: a helper that needs
+    another class's internals is on the wrong side of a boundary (ik_attempts.py did this before #35)."""
+    found = []
+    for mod, path in module_names().items():
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Attribute) and node.attr.startswith("_") and not node.attr.startswith("__"):
+                owner = node.value
+                if not (isinstance(owner, ast.Name) and owner.id in ("self", "cls", "os")):  # os._exit: public API
+                    found.append(f"{mod}:{node.lineno} {ast.unparse(node)}")
+            elif isinstance(node, ast.ImportFrom) and (node.module or "").split(".")[0] in PACKAGES:
+                found += [f"{mod}:{node.lineno} from {node.module} import {a.name}" for a in node.names if a.name.startswith("_")]
+    assert found == []
+
+
+def layers_markdown() -> str:
+    """The layer table of docs/architecture.md, from :data:`LAYERS` (``python3 tests/unit/test_import_graph.py`` prints it)."""
+    rows = ["| layer | modules (a prefix names a package or module and everything under it) |", "| --- | --- |"]
+    for name, prefixes in LAYERS:
+        rows.append(f"| {name} | {', '.join(f'`{p}`' for p in prefixes)} |")
+    return "\n".join(rows) + "\n"
+
+
+def test_docs_draw_the_layers_of_this_table():
+    text = (ROOT / "docs" / "architecture.md").read_text()
+    assert " < ".join(LAYER_NAMES) in text
+    assert layers_markdown() in text, "docs/architecture.md: regenerate the table with python3 tests/unit/test_import_graph.py"
+
+
+if __name__ == "__main__":
+    print(layers_markdown(), end="")

@@ -3,7 +3,7 @@
 With the ``batch`` solver the source plans its attempts in round-robin order ahead
 of the draw; :class:`BatchAttempts` draws their targets, screens them (reach, the
 hand alone in collision), solves every restart of every attempt in one
-damped-least-squares batch (:mod:`lazyground.drake.batch_ik`). When the draw comes
+damped-least-squares batch (:class:`~lazyground.drake.ik.solvers.BatchSolver`). When the draw comes
 to them it checks their grasps (each attempt's first answer within the limits and
 free) in order, as far as the samples it still wants, then solves the pre-poses of
 those free grasps in a second, warm-started batch; the approach checks wait for the
@@ -21,10 +21,8 @@ from typing import Callable
 
 import numpy as np
 
-from lazyground.drake.batch_ik import BatchIKProblem, pose_errors, solve_batch
-from lazyground.drake.chain import REVOLUTE, chain_to_frame
-from lazyground.drake.reach import reach_map
-from lazyground.tolerance import accepted_error
+from lazyground.drake.ik.reach import reach_map
+from lazyground.drake.ik.solvers import IKSolver
 
 APPROACH_SCALES = (1.0, 0.5, 0.25)  # fractions of a region's approach distance tried in turn
 PRE_POSE_ITERATIONS = 8  # batch solves of a pre-pose from its goal: 94-98 % converge within 5 (fetch_cans_1), none after 10
@@ -51,22 +49,20 @@ class Prepared:
 class BatchAttempts:
     """Prepared attempts for one IK goal source: solved in batches, queued until a draw takes them.
 
-    It reads and updates its source's state (settings, regions and their target
-    frames, the counters, the last valid answer per region): one job split over two
-    modules so that each stays readable.
+    It works through its source's public face: settings, regions and their target frames,
+    the round-robin plan, target draws and screen, grasp checks, counters and the last
+    valid answer per region.
 
     Args:
         source: the IKGoalSource.
-        problems: the batch IK problem of every robot frame the source's regions constrain.
+        solver: solves the attempts' restarts (every frame the source's regions constrain).
+        pre_solver: solves pre-poses from their goals (joints that must not pass a seam held).
     """
 
-    def __init__(self, source, problems: dict[str, BatchIKProblem]):
+    def __init__(self, source, solver: IKSolver, pre_solver: IKSolver):
         self.source = source
-        self.problems = problems
-        # A pre-pose solved from its goal must not pass a joint's seam: the approach from it is
-        # a straight segment in the planner's space, which does not wrap there (a pre-pose across
-        # the seam of a [-pi, pi] roll made a full-turn "approach": ~600 checks, then blocked).
-        self.pre_problems = {f: problem_for_frame(source.world, f, full_turns=False) for f in problems}
+        self.solver = solver
+        self.pre_solver = pre_solver
         self.queue: deque[Prepared] = deque()
         self.rng: np.random.Generator | None = None
 
@@ -99,7 +95,7 @@ class BatchAttempts:
         """
         s = self.source.settings
         t0 = time.perf_counter()
-        items = [Prepared(j, after, v, self.source._frames[self.source.regions[j].id], X)
+        items = [Prepared(j, after, v, self.source.frames[j], X)
                  for (j, after), v, X in zip(plan, *self.source.draw_targets([j for j, _ in plan], rng))]
         for frame in dict.fromkeys(it.frame for it in items):
             group = [it for it in items if it.frame == frame]
@@ -115,14 +111,14 @@ class BatchAttempts:
         return items
 
     def _solve_group(self, frame: str, group: list[Prepared], rng: np.random.Generator) -> None:
-        s, problem = self.source.settings, self.problems[frame]
+        s = self.source.settings
         t0 = time.perf_counter()
         starts = self._starts(frame, group, rng)
         if s.warm_start:
             for g, it in enumerate(group):
-                if self.source._last[it.j] is not None:
-                    starts[g * s.restarts] = self.source._last[it.j]
-        answers, ok = self._solve_rows(problem, np.array(starts), np.repeat([it.X_WT for it in group], s.restarts, axis=0))
+                if self.source.last[it.j] is not None:
+                    starts[g * s.restarts] = self.source.last[it.j]
+        answers, ok = self.solver.solve(frame, np.repeat([it.X_WT for it in group], s.restarts, axis=0), np.array(starts))
         t1 = time.perf_counter()
         share = (t1 - t0) / len(group)
         for g, it in enumerate(group):
@@ -141,7 +137,7 @@ class BatchAttempts:
         (fetch_boxes_3); checking every grasp of a look-ahead wasted the checks the draw never used.
         Neither draws from the rng: the samples are those of checking every attempt at once.
         """
-        want = math.ceil(1.5 * max(self.source._wanted, 1))
+        want = math.ceil(1.5 * max(self.source.wanted, 1))
         free = []
         for it in items:
             if len(free) >= want:
@@ -176,7 +172,7 @@ class BatchAttempts:
         s, world = self.source.settings, self.source.world
         n = s.restarts
         if not s.reach_starts:
-            return np.array([self.source._random_full(rng) for _ in range(len(group) * n)])
+            return np.array([self.source.random_full(rng) for _ in range(len(group) * n)])
         configs = reach_map(world, frame).near_configs(np.array([it.X_WT for it in group]), n, s.reach_starts, rng)
         starts = np.tile(world.q_full, (len(group) * n, 1))
         starts[:, world.planned] = configs.reshape(-1, configs.shape[-1])
@@ -189,43 +185,8 @@ class BatchAttempts:
         for it, k in todo:
             region = self.source.regions[it.j]
             starts += [it.answers[k]] * n
-            targets += [it.X_WT @ self.source._approach_shift(region, sc) for sc in APPROACH_SCALES]
-        answers, ok = self._solve_rows(self.pre_problems[todo[0][0].frame], np.array(starts), np.array(targets), PRE_POSE_ITERATIONS)
+            targets += [it.X_WT @ self.source.approach_shift(region, sc) for sc in APPROACH_SCALES]
+        answers, ok = self.pre_solver.solve(todo[0][0].frame, np.array(targets), np.array(starts))
         self.source.counters.add(len(ok), int(ok.sum()), 0.0)
         for i, (it, k) in enumerate(todo):
             it.pre[k] = (answers[i * n:(i + 1) * n], ok[i * n:(i + 1) * n])
-
-    def _solve_rows(self, problem: BatchIKProblem, starts_full: np.ndarray, targets: np.ndarray,
-                    iterations: int | None = None) -> tuple[np.ndarray, np.ndarray]:
-        """Batched IK from full starting positions; answers as full positions, ok judged as SNOPT's are."""
-        s, index = self.source.settings, problem.chain.index
-        q, _ = solve_batch(problem, starts_full[:, index], targets, s.position_tolerance, s.orientation_tolerance,
-                           s.batch_iterations if iterations is None else iterations)
-        answers = starts_full.copy()
-        answers[:, index] = q
-        X = problem.chain.forward(q)
-        max_dp, max_angle = accepted_error(s.position_tolerance, s.orientation_tolerance)
-        _, dp, angle = pose_errors(X, targets)
-        return answers, (np.linalg.norm(dp, axis=1) <= max_dp) & (angle <= max_angle)
-
-
-def problem_for_frame(world, frame: str, full_turns: bool = True) -> BatchIKProblem | None:
-    """The chain to ``frame`` with its planned joints free, or None when the chain cannot express it.
-
-    With ``full_turns`` a joint whose limits span a full turn wraps (IK may pass its seam);
-    without, only the joints the planner's space wraps do.
-    """
-    try:
-        chain = chain_to_frame(world.plant, world.plant.GetFrameByName(frame))
-    except ValueError:  # e.g. a planar base: SNOPT on the plant instead
-        return None
-    column = {int(i): c for c, i in enumerate(world.planned)}
-    free = np.array([int(i) in column for i in chain.index])
-    space = world.space
-    lower = np.array([space.lower[column[i]] if i in column else world.q_full[i] for i in chain.index], float)
-    upper = np.array([space.upper[column[i]] if i in column else world.q_full[i] for i in chain.index], float)
-    # a revolute joint whose limits span a full turn reaches every angle: IK may wrap it
-    # (the answer stays within the limits), where clipping would leave it stuck at +-pi
-    wrap = np.array([i in column and (bool(space.wrap[column[i]]) or (full_turns and kind == REVOLUTE and hi - lo >= 2 * np.pi - 1e-9))
-                     for i, kind, lo, hi in zip(chain.index, chain.kinds, lower, upper)])
-    return BatchIKProblem(chain, free, lower, upper, wrap)

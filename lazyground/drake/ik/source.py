@@ -1,119 +1,46 @@
-"""Goal sampling for workspace goal regions by inverse kinematics.
+"""The IK goal source: round-robin attempts over pose regions, each aimed at a free approach.
 
 One attempt on a region: draw a 6-vector v in the region, turn it into a
-target pose of the end-effector frame, solve IK for that pose over the planned
-coordinates from ``restarts`` random starts (kinematics only: position box and
-orientation cone, joint limits), then confirm the first answer that meets the
-pose with the collision checker, and its straight approach from a pre-pose.
+target pose of the end-effector frame, screen it (:mod:`~lazyground.drake.ik.screen`),
+solve IK for that pose over the planned coordinates from ``restarts`` starts
+(kinematics only: position box and orientation cone, joint limits), then confirm
+the first answer that meets the pose with the collision checker, and its straight
+approach from a pre-pose.
 
-Two ways to solve (``IKSettings.solver``):
+Two ways to solve (``IKSettings.solver``; :mod:`~lazyground.drake.ik.solvers`):
 
 * ``batch`` (the default): every attempt of a look-ahead in round-robin order
   is solved at once by damped least squares on the numpy chain
-  (:mod:`lazyground.drake.batch_ik`), ~0.1 ms per solve against ~1.5 ms for a
+  (:mod:`~lazyground.drake.ik.attempts`), ~0.1 ms per solve against ~1.5 ms for a
   SNOPT program built per solve; collision checks then run attempt by attempt,
   only as far as the draw needs (#19).
-* ``snopt`` / ``ipopt``: Drake ``InverseKinematics``, one solve at a time; also
-  what ``batch`` falls back to for a frame the chain cannot express (a planar
-  or floating base). No minimum-distance constraint: with one, failed solves
-  cost 0.3-0.8 s each (issue 7); collisions are checked after.
+* ``snopt`` / ``ipopt``: a Drake ``InverseKinematics`` program, one solve at a time;
+  also what ``batch`` falls back to for a frame the chain cannot express (a planar
+  or floating base).
 """
 
 from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
-from pydrake.math import RotationMatrix
-from pydrake.multibody.inverse_kinematics import InverseKinematics
-from pydrake.solvers import IpoptSolver, SnoptSolver, SolverOptions
 
-from lazyground.drake.batch_ik import ITERATIONS as BATCH_ITERATIONS
-from lazyground.drake.hand_probe import hand_probe
-from lazyground.drake.ik_attempts import APPROACH_SCALES, BatchAttempts, Prepared, problem_for_frame
-from lazyground.drake.reach import reach_map
+from lazyground.drake.ik import settings as ik_settings
+from lazyground.drake.ik.attempts import APPROACH_SCALES, PRE_POSE_ITERATIONS, BatchAttempts, Prepared
+from lazyground.drake.ik.screen import TargetScreen
+from lazyground.drake.ik.settings import IKCounters, IKSettings
+from lazyground.drake.ik.solvers import BatchSolver, ProgramSolver, pose_error, problem_for_frame
 from lazyground.geometry import Pose, rpy_to_matrices
-from lazyground.goals import RoundRobinGoalSource, register_goal_source
+from lazyground.goals import RoundRobinGoalSource
 from lazyground.planning.problem import GoalSample
-from lazyground.regions import PlacementRegion, PoseRegion, WorkspaceRegion
+from lazyground.regions import PoseRegion
 from lazyground.regions.base import from_unit
 from lazyground.typed_yaml import SceneError
-from lazyground.tolerance import ORIENTATION_TOLERANCE, POSITION_TOLERANCE, accepted_error
-
 
 APPROACH_RESOLUTION = 0.01  # rad (or m): spacing of the collision checks along an approach segment
 LOOK_AHEAD_MIN = 16  # fewest attempts the batch solver solves at once (below, one iteration's overhead dominates)
-
-
-@dataclass(frozen=True)
-class IKSettings:
-    """How hard one goal-sampling attempt tries.
-
-    ``restarts`` solves per attempt share the drawn target pose, each from a
-    uniform random configuration drawn from the rng, as MoveIt's IK constraint
-    sampler seeds them; the batch solver draws them, with ``reach_starts``, among
-    the reach map's random arms whose wrist points lie nearest the target's (on
-    fetch_boxes_3: 96 % of solves converged within 10 iterations against 85 %,
-    valid samples per attempt 0.084 against 0.070 over 20 seeds; samples spread
-    a little less: median distance to the region's nearest other sample 1.6 rad
-    against 2.3, seeds 0-9, 40 samples). With ``warm_start`` the first starts from the region's
-    last valid solution instead: ~1.5x cheaper per sample, but every sample of
-    a region then lands on one IK branch (near-copies: median distance to the
-    nearest other sample 0.02 rad on fetch_boxes_3 against 1.26 rad), so
-    resampling adds no new way in and the one-tree planner stalls (boxes_3,
-    reward-penalty at bias 0.5: 1 of 6 seeds within 30 s warm, 4 of 6 random).
-    """
-
-    position_tolerance: float = POSITION_TOLERANCE  # m, half-width of the box around the target point
-    orientation_tolerance: float = ORIENTATION_TOLERANCE  # rad, angle between target and solved orientation
-    restarts: int = 3
-    attempt_budget: float | None = 0.25  # s per attempt (also bounded by the planner's deadline); None: no
-    # clock, an attempt is bounded by restarts x iterations only (tests: outcomes independent of load)
-    major_iterations: int = 60  # SNOPT major iterations; IPOPT max_iter is 3x this
-    solver: str = "batch"  # "batch" (numpy damped least squares, many attempts at once), "snopt" or "ipopt"
-    batch_attempts: int = 128  # most attempts solved together by "batch" (a look-ahead later draws take from)
-    batch_iterations: int = BATCH_ITERATIONS  # damped least-squares iterations per solve
-    reach_check: bool = True  # reject targets whose wrist point is far outside the sampled reach
-    reach_margin: float = 0.08  # m, distance to the nearest sampled wrist point that still counts
-    hand_check: bool = True  # reject targets where the hand alone collides, whatever the arm (drake/hand_probe.py)
-    warm_start: bool = False  # first restart from the region's last valid solution (one IK branch)
-    reach_starts: int = 256  # batch solver: starts drawn among about this many reach-map arms nearest the target (0: uniform)
-
-
-DEFAULT_IK_SETTINGS = IKSettings()
-"""What an IKGoalSource built without settings uses; the test suite swaps in
-``IKSettings(attempt_budget=None)`` (tests/conftest.py) so outcomes depend on seeds, not load."""
-
-
-@dataclass
-class IKCounters:
-    """Every IK solve made by a source: for success rates and time per solve."""
-
-    solves: int = 0
-    successes: int = 0  # solves whose answer met the pose within tolerance
-    time: float = 0.0
-    success_time: float = 0.0
-
-    def add(self, solves: int, successes: int, seconds: float) -> None:
-        """Count ``solves`` solves taking ``seconds`` together, ``successes`` of them successful (time split evenly)."""
-        self.solves += solves
-        self.successes += successes
-        self.time += seconds
-        self.success_time += seconds * successes / solves if solves else 0.0
-
-    def to_json(self) -> dict:
-        return {
-            "solves": self.solves,
-            "successes": self.successes,
-            "success_rate": round(self.successes / self.solves, 4) if self.solves else None,
-            "mean_solve_ms": round(1e3 * self.time / self.solves, 3) if self.solves else None,
-            "mean_success_ms": round(1e3 * self.success_time / self.successes, 3) if self.successes else None,
-            "mean_failure_ms": round(1e3 * (self.time - self.success_time) / (self.solves - self.successes), 3)
-            if self.solves > self.successes else None,
-        }
 
 
 class IKGoalSource(RoundRobinGoalSource):
@@ -123,7 +50,7 @@ class IKGoalSource(RoundRobinGoalSource):
         regions: :class:`~lazyground.regions.PoseRegion` goal regions (placement
             regions need a world carrying an attached object).
         world: the :class:`~lazyground.drake.world.DrakeWorld` to solve in.
-        settings: IK tolerances and per-attempt limits (default: DEFAULT_IK_SETTINGS).
+        settings: IK tolerances and per-attempt limits (default: ``settings.DEFAULT_IK_SETTINGS``).
         **kwargs: :class:`RoundRobinGoalSource` options.
 
     Raises:
@@ -141,7 +68,7 @@ class IKGoalSource(RoundRobinGoalSource):
 
     def __init__(self, regions: tuple[PoseRegion, ...], world, settings: IKSettings | None = None, **kwargs):
         super().__init__(regions, **kwargs)
-        settings = DEFAULT_IK_SETTINGS if settings is None else settings
+        settings = ik_settings.DEFAULT_IK_SETTINGS if settings is None else settings
         attached = getattr(world, "attached", None)
         frames = []
         for r in self.regions:
@@ -154,7 +81,7 @@ class IKGoalSource(RoundRobinGoalSource):
         # X_WT = X_WR · X_RS(v) · X_SE · X_ET, where robot_target's X_ET takes the region's
         # target to the robot frame (identity, or the carried object's grasp); the approach,
         # given in the target's axes, is d = X_ET^-1 · T(approach) · X_ET in the robot frame's
-        self._frames = dict(zip((r.id for r in self.regions), frames))
+        self.frames = tuple(frames)  # per region: the robot frame its targets are for
         self._factors = {}
         for r in self.regions:
             X_ET = r.robot_target(Pose(), attached)[1].matrix()
@@ -168,29 +95,21 @@ class IKGoalSource(RoundRobinGoalSource):
         self.settings = settings
         self.counters = IKCounters()
         self.region_counters = [IKCounters() for _ in self.regions]
-        self._plant = world.plant
         self._kinematics = world.kinematics
-        self._planned = np.asarray(world.planned, int)
-        self._lower = world.q_full.copy()
-        self._upper = world.q_full.copy()
-        self._lower[self._planned] = world.space.lower
-        self._upper[self._planned] = world.space.upper
-        self._last: list[np.ndarray | None] = [None] * len(self.regions)
-        accepted = accepted_error(settings.position_tolerance, settings.orientation_tolerance)
-        self._probes = {f: hand_probe(world, f, *accepted) for f in dict.fromkeys(frames)} if settings.hand_check else {}
+        self.planned = np.asarray(world.planned, int)
+        self.last: list[np.ndarray | None] = [None] * len(self.regions)  # per region: its last valid answer
+        self.target_screen = TargetScreen(world, frames, settings)
         problems = {f: problem_for_frame(world, f) for f in dict.fromkeys(frames)} if settings.solver == "batch" else {}
         # batches when the chain expresses every frame (else SNOPT on the plant, e.g. for a planar base)
-        self._batch = BatchAttempts(self, problems) if problems and None not in problems.values() else None
-        self._wanted = 1  # samples the current draw still wants (sizes the batch solver's look-ahead)
-        if settings.solver in ("batch", "snopt") and SnoptSolver().available() and SnoptSolver().enabled():
-            self._solver = SnoptSolver()
-            self._options = SolverOptions()
-            self._options.SetOption(SnoptSolver.id(), "Major iterations limit", settings.major_iterations)
-        else:
-            self._solver = IpoptSolver()
-            self._options = SolverOptions()
-            self._options.SetOption(IpoptSolver.id(), "max_iter", 3 * settings.major_iterations)
-            self._options.SetOption(IpoptSolver.id(), "print_level", 0)
+        self.batch = None
+        if problems and None not in problems.values():
+            # A pre-pose solved from its goal must not pass a joint's seam: the approach from it is
+            # a straight segment in the planner's space, which does not wrap there (a pre-pose across
+            # the seam of a [-pi, pi] roll made a full-turn "approach": ~600 checks, then blocked).
+            pre = {f: problem_for_frame(world, f, full_turns=False) for f in problems}
+            self.batch = BatchAttempts(self, BatchSolver(problems, settings), BatchSolver(pre, settings, PRE_POSE_ITERATIONS))
+        self.wanted = 1  # samples the current draw still wants (sizes the batch solver's look-ahead)
+        self.program = ProgramSolver(world, settings)
 
     # --- hooks -------------------------------------------------------------------------------
     def target_pose_for(self, region: PoseRegion, v: np.ndarray, approach: bool = False, scale: float = 1.0) -> tuple[str, Pose]:
@@ -203,8 +122,8 @@ class IKGoalSource(RoundRobinGoalSource):
         """
         X = self._target_matrix(region, v)
         if approach:
-            X = X @ self._approach_shift(region, scale)
-        return self._frames[region.id], Pose.from_matrix(X)
+            X = X @ self.approach_shift(region, scale)
+        return self.frames[self._index[region.id]], Pose.from_matrix(X)
 
     def _target_matrix(self, region: PoseRegion, v: np.ndarray) -> np.ndarray:
         """X_WT (4x4) of the robot frame for a draw ``v``: X_WR · X_RS(v) · X_ST, with X_ST from the region and robot."""
@@ -227,7 +146,7 @@ class IKGoalSource(RoundRobinGoalSource):
         V = from_unit(lo, span, wrapped, rng.random(lo.shape))
         return V, self.target_poses(j, V)
 
-    def _approach_shift(self, region: PoseRegion, scale: float) -> np.ndarray:
+    def approach_shift(self, region: PoseRegion, scale: float) -> np.ndarray:
         """The pre-pose of a target X_WT is X_WT times this: ``scale`` x the approach, in the robot frame's axes."""
         shift = np.eye(4)
         shift[:3, 3] = scale * self._factors[region.id][2]
@@ -242,7 +161,7 @@ class IKGoalSource(RoundRobinGoalSource):
         """
         frame, X_pre = self.target_pose_for(region, v, approach=True, scale=scale)
         pre_full = self.solve(frame, X_pre, q_full)
-        return None if pre_full is None else self._approach_free(pre_full[self._planned], q_full[self._planned])
+        return None if pre_full is None else self._approach_free(pre_full[self.planned], q_full[self.planned])
 
     def _approach_free(self, pre: np.ndarray, q: np.ndarray) -> np.ndarray | None:
         """``pre`` if it is within the limits and the segment pre -> q (q known free) is free, else None.
@@ -264,26 +183,16 @@ class IKGoalSource(RoundRobinGoalSource):
         return pre
 
     def screen(self, frame: str, X_WT: np.ndarray) -> list[str]:
-        """Why each target pose (B, 4, 4) of ``frame`` fails before any solve ("" for none): its wrist point is
-        out of reach, or the hand alone collides there (every answer would)."""
-        s = self.settings
-        reasons = [""] * len(X_WT)
-        if s.reach_check:
-            near = reach_map(self.world, frame).plausible_all(X_WT, s.reach_margin)
-            reasons = ["" if ok else "out of reach" for ok in near]
-        rest = [i for i, r in enumerate(reasons) if not r]  # the probe costs ~30 us a target: only where reach did not decide
-        if frame in self._probes and rest:
-            for i in np.asarray(rest)[self._probes[frame].blocked(X_WT[rest])]:
-                reasons[i] = "hand in collision"
-        return reasons
+        """Why each target pose (B, 4, 4) of ``frame`` fails before any solve ("" for none): :class:`TargetScreen`."""
+        return self.target_screen.reasons(frame, X_WT)
 
     # --- one attempt -------------------------------------------------------------------------
     def attempt(self, j: int, rng: np.random.Generator, deadline: float) -> tuple[GoalSample | None, str]:
-        if self._batch is not None:
+        if self.batch is not None:
             if self._stop(deadline) <= time.perf_counter():  # the stop first: a zero budget is spent at once
                 return None, "time"
-            items = self._batch.prepare([(j, -1)], rng)
-            self._batch.check(items)
+            items = self.batch.prepare([(j, -1)], rng)
+            self.batch.check(items)
             return self._finish(items[0], deadline)
         region = self.regions[j]
         v = region.sample(rng)
@@ -291,9 +200,9 @@ class IKGoalSource(RoundRobinGoalSource):
         reason = self.screen(frame, X_WT.matrix()[None])[0]
         if reason:
             return None, reason
-        seeds = [self._last[j]] if self._last[j] is not None and self.settings.warm_start else []
+        seeds = [self.last[j]] if self.last[j] is not None and self.settings.warm_start else []
         item = Prepared(j, -1, v, frame, X_WT.matrix())
-        return self._first_valid(item, deadline, lambda k: self.solve(frame, X_WT, seeds[k] if k < len(seeds) else self._random_full(rng),
+        return self._first_valid(item, deadline, lambda k: self.solve(frame, X_WT, seeds[k] if k < len(seeds) else self.random_full(rng),
                                                                         counters=self.region_counters[j]),
                                  lambda k, q_full, scale: self.approach_from(region, v, q_full, scale))
 
@@ -323,7 +232,7 @@ class IKGoalSource(RoundRobinGoalSource):
             if q_full is None:
                 reason = "ik failed" if reason != "in collision" else reason
                 continue
-            q = q_full[self._planned]
+            q = q_full[self.planned]
             if not self.world.space.within_bounds(q):
                 reason = "outside limits"
                 continue
@@ -336,8 +245,8 @@ class IKGoalSource(RoundRobinGoalSource):
     def _sample(self, item: Prepared, k: int, q_full: np.ndarray, approach: Callable) -> GoalSample:
         """The goal sample of a free grasp ``q_full`` (restart k), aimed at the longest free approach."""
         j, region = item.j, self.regions[item.j]
-        self._last[j] = q_full
-        q = q_full[self._planned]
+        self.last[j] = q_full
+        q = q_full[self.planned]
         extra = {"X_WG": Pose.from_matrix(item.X_WT), "v": item.v, "frame": item.frame}
         # Aim at a pre-pose when its straight approach is free: the full distance, then
         # shorter ones; under a low shelf board only the goal itself may be left.
@@ -350,18 +259,18 @@ class IKGoalSource(RoundRobinGoalSource):
     # --- many attempts at once (solver "batch") ----------------------------------------------
     def batch_size(self, wanted: int) -> int:
         # The whole draw's budget is planned; attempts() solves it a look-ahead at a time, lazily.
-        self._wanted = wanted
-        return 1 if self._batch is None else wanted * self._attempts_per_sample
+        self.wanted = wanted
+        return 1 if self.batch is None else wanted * self.attempts_per_sample
 
     def attempts(self, plan, rng, deadline):
-        if self._batch is None:
+        if self.batch is None:
             yield from super().attempts(plan, rng, deadline)
             return
         for i, (j, after) in enumerate(plan):
-            item = self._batch.take(j, after, plan[i - 1][1] if i else self._next, rng, lambda i=i: self._look_ahead(len(plan) - i))
+            item = self.batch.take(j, after, plan[i - 1][1] if i else self.next_region, rng, lambda i=i: self._look_ahead(len(plan) - i))
             a0 = time.perf_counter()
             sample, reason = self._finish(item, deadline)
-            self._wanted -= sample is not None
+            self.wanted -= sample is not None
             yield sample, reason, item.seconds + time.perf_counter() - a0
 
     def _look_ahead(self, left: int) -> int:
@@ -379,7 +288,7 @@ class IKGoalSource(RoundRobinGoalSource):
         """
         valid, attempts = sum(st.valid for st in self.stats), sum(st.attempts for st in self.stats)
         rate = (valid + 1) / (attempts + 8)
-        need = math.ceil(1.5 * max(self._wanted, 1) / rate)
+        need = math.ceil(1.5 * max(self.wanted, 1) / rate)
         return int(min(max(need, LOOK_AHEAD_MIN), max(self.settings.batch_attempts, 1), max(left, LOOK_AHEAD_MIN)))
 
     def _finish(self, item: Prepared, deadline: float) -> tuple[GoalSample | None, str]:
@@ -390,7 +299,7 @@ class IKGoalSource(RoundRobinGoalSource):
         def approach(k, q_full, scale):
             answers, ok = item.pre[k]
             i = APPROACH_SCALES.index(scale)
-            return self._approach_free(answers[i][self._planned], q_full[self._planned]) if ok[i] else None
+            return self._approach_free(answers[i][self.planned], q_full[self.planned]) if ok[i] else None
 
         return self._sample(item, item.k, item.answers[item.k], approach), ""
 
@@ -406,31 +315,13 @@ class IKGoalSource(RoundRobinGoalSource):
         Returns:
             the positions, judged by forward kinematics (not by the solver's status), or None.
         """
-        s = self.settings
-        plant = self._plant
         t0 = time.perf_counter()
-        ik = InverseKinematics(plant, with_joint_limits=False)
-        q = ik.q()
-        prog = ik.get_mutable_prog()
-        prog.AddBoundingBoxConstraint(self._lower, self._upper, q)
-        G = plant.GetFrameByName(frame)
-        X = X_WT.matrix()
-        p_WT = X[:3, 3]
-        tol = np.full(3, s.position_tolerance)
-        ik.AddPositionConstraint(G, np.zeros(3), plant.world_frame(), p_WT - tol, p_WT + tol)
-        ik.AddOrientationConstraint(plant.world_frame(), RotationMatrix(X[:3, :3]), G, RotationMatrix(), s.orientation_tolerance)
-        result = self._solver.Solve(prog, np.clip(seed_full, self._lower, self._upper), self._options)
-        q_sol = np.asarray(result.GetSolution(q), float)
-        ok = bool(np.all(np.isfinite(q_sol)))
-        if ok:  # judge the answer by forward kinematics, not by the solver's status
-            dp, angle = self.pose_error(frame, q_sol, X_WT)
-            max_dp, max_angle = accepted_error(s.position_tolerance, s.orientation_tolerance)
-            ok = dp <= max_dp and angle <= max_angle
+        q_sol = self.program.solve_pose(frame, X_WT.matrix(), seed_full)
         dt = time.perf_counter() - t0
         for c in (self.counters, counters):
             if c is not None:
-                c.add(1, int(ok), dt)
-        return q_sol if ok else None
+                c.add(1, int(q_sol is not None), dt)
+        return q_sol
 
     # --- kinematics helpers ------------------------------------------------------------------
     def frame_pose(self, frame: str, q_full: np.ndarray) -> np.ndarray:
@@ -439,21 +330,15 @@ class IKGoalSource(RoundRobinGoalSource):
 
     def pose_error(self, frame: str, q_full: np.ndarray, X_WT: Pose) -> tuple[float, float]:
         """(position error in m, rotation angle in rad) of ``frame`` at ``q_full`` from ``X_WT``."""
-        X = self.frame_pose(frame, q_full)
-        T = X_WT.matrix()
-        R = T[:3, :3].T @ X[:3, :3]
-        angle = float(np.arccos(np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0)))
-        return float(np.linalg.norm(X[:3, 3] - T[:3, 3])), angle
+        return pose_error(self._kinematics, frame, q_full, X_WT.matrix())
 
-    def _random_full(self, rng: np.random.Generator) -> np.ndarray:
+    def random_full(self, rng: np.random.Generator) -> np.ndarray:
+        """Full plant positions with the planned ones drawn uniformly."""
         q = self.world.q_full.copy()
-        q[self._planned] = self.world.space.sample(rng)
+        q[self.planned] = self.world.space.sample(rng)
         return q
 
 
 def region_coordinates(region: PoseRegion, X_WG: np.ndarray) -> np.ndarray:
     """The end-effector pose ``X_WG`` (4x4) as a 6-vector in the region's sampled frame (:meth:`PoseRegion.coordinates_of`)."""
     return region.coordinates_of(X_WG)
-
-
-register_goal_source((WorkspaceRegion.kind, PlacementRegion.kind), IKGoalSource)

@@ -1,0 +1,22 @@
+"""IK goal sampling for pose regions (workspace, placement).
+
+- :mod:`~lazyground.drake.ik.settings`: how hard it tries (:class:`IKSettings`) and its counters.
+- :mod:`~lazyground.drake.ik.solvers`: the solver protocol, the batch least-squares solver and the Drake program.
+- :mod:`~lazyground.drake.ik.batch`: the damped-least-squares math on the numpy chain.
+- :mod:`~lazyground.drake.ik.screen`: the target screen (:mod:`~lazyground.drake.ik.reach`, :mod:`~lazyground.drake.ik.hand_probe`).
+- :mod:`~lazyground.drake.ik.attempts`: attempts prepared many at a time for the batch solver.
+- :mod:`~lazyground.drake.ik.source`: :class:`IKGoalSource`, round robin over the regions and the approach.
+
+Importing this package registers :class:`IKGoalSource` for workspace and placement regions
+(:func:`lazyground.goals.register_goal_source`).
+"""
+
+from lazyground.drake.ik.reach import reach_map
+from lazyground.drake.ik.settings import DEFAULT_IK_SETTINGS, IKCounters, IKSettings
+from lazyground.drake.ik.source import IKGoalSource, region_coordinates
+from lazyground.goals import register_goal_source
+from lazyground.regions import PlacementRegion, WorkspaceRegion
+
+__all__ = ["DEFAULT_IK_SETTINGS", "IKCounters", "IKGoalSource", "IKSettings", "reach_map", "region_coordinates"]
+
+register_goal_source((WorkspaceRegion.kind, PlacementRegion.kind), IKGoalSource)
