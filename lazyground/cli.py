@@ -28,15 +28,15 @@ class UsageError(Exception):
     """Bad command-line input (exit 2)."""
 
 
-class _StoreOnce(argparse._StoreAction):
-    """A value option given twice is refused (argparse would keep the last one silently)."""
+class _StoreOnce(argparse.Action):
+    """A value option given twice is refused (argparse's own "store" keeps the last one silently)."""
 
     def __call__(self, parser, namespace, values, option_string=None):
         given = namespace.__dict__.setdefault(_GIVEN, set())
         if self.dest in given:
             raise argparse.ArgumentError(self, "given twice; give it once")
         given.add(self.dest)
-        super().__call__(parser, namespace, values, option_string)
+        setattr(namespace, self.dest, values)
 
 
 _GIVEN = "_options_given"
@@ -331,9 +331,9 @@ def _main(argv: list[str]) -> int:
         parser = build_parser()
         args = parser.parse_args(argv)
         if args.version:
-            from lazyground import __version__
+            import lazyground
 
-            print(f"lazyground {__version__}")
+            print(f"lazyground {lazyground.__version__}")
             return EXIT_OK
         if args.command is None:
             parser.print_help()
