@@ -2,8 +2,10 @@
 
 Pure Python (no pydrake). ``ground(request, scene)`` is the entry point; the
 words live in ``lexicon.yaml`` (extend it, or set $LAZYGROUND_LEXICON), the
-goal-region definitions per type in ``lazyground/scene/types.yaml``. The request language is
-documented in docs/requests.md.
+grammar in ``grammar.lark`` (its meanings in ``parse.py``, the parse's data
+model in ``phrases.py``), the goal-region definitions per type in
+``lazyground/scene/types.yaml``. The request language is documented in
+docs/requests.md.
 """
 
 from grounding.model import ACTIONS, Grounding, GroundingError, Interpretation

@@ -19,13 +19,15 @@ from dataclasses import replace
 from grounding.grasps import fit_note
 from grounding.lexicon import Lexicon, load_lexicon, plural
 from grounding.model import Grounding, GroundingError, Interpretation
-from grounding.parse import NounPhrase, Phrase, parse
+from grounding.parse import parse
+from grounding.phrases import Clause, Location, NounPhrase, Request
 from grounding.regions import check_types, regions_for
 from grounding.resolve import Resolver, inventory
 from lazyground.robots.end_effector import end_effector_of
 from lazyground.scene.schema import Scene, SceneObject
 
 MAX_CHARS = 500
+AND_REFUSED = "not supported: {!r} joins two objects or actions; ask for one at a time"
 
 
 def ground(request: str, scene: Scene, lexicon: Lexicon | None = None) -> Grounding:
@@ -44,31 +46,70 @@ def ground(request: str, scene: Scene, lexicon: Lexicon | None = None) -> Ground
     text = _check_text(request)
     check_types(scene)
     lex = (lexicon or load_lexicon()).for_scene(scene)
-    phrase = parse(lex.tokens(text), lex, inventory(scene))
+    clause = one_clause(parse(lex.tokens(text), lex, inventory(scene)))
     res = Resolver(scene, lex)
-    action, obj, target = _frame(phrase, res)
+    action, obj, target = _frame(clause, res)
+    ee = end_effector_of(scene.robot) if action != "park" else None
     notes: list[str] = []
     if action == "park":
         spots = res.choice(target, "park")
         notes += _ambiguity(target, spots, "free parking spots")
-        interps = [_interpretation("park", s, None, scene) for s in spots]
+        interps = [_interpretation("park", s, None, scene, clause.manner) for s in spots]  # a manner only shapes parking
+        if clause.manner:
+            notes.append(f"{clause.manner} into the spot only")
     else:
         objs = res.choice(obj, "pick")
         notes += _ambiguity(obj, objs, _what(obj, objs))
         if action == "pick":
-            interps = [_interpretation("pick", o, None, scene) for o in objs]
+            interps = [_interpretation("pick", o, None, scene, ee=ee) for o in objs]
         else:
             targets = res.choice(target, "support")
             notes += _ambiguity(target, targets, "surfaces")
-            interps = [_interpretation("place", o, t, scene) for o in objs for t in targets if o.id != t.id]
+            memo: dict = {}
+            interps = [_interpretation("place", o, t, scene, ee=ee, memo=memo) for o in objs for t in targets if o.id != t.id]
             if not interps:
                 raise GroundingError(f"nothing to place: {objs[0].id} cannot be put on itself")
-        interps, unfit = _graspable(interps, scene)
+        interps, unfit = _graspable(interps, scene, ee)
         notes += unfit
     return Grounding(request, action, tuple(interps), tuple(notes + res.notes))
 
 
-def _graspable(interps: list[Interpretation], scene: Scene) -> tuple[list[Interpretation], list[str]]:
+def one_clause(request: Request) -> Clause:
+    """The single action a request asks for: joins "find a spot and park" and "grab X and put it on Y".
+
+    Raises:
+        GroundingError: a negated action, or two actions that do not make one.
+    """
+    clauses = list(request.clauses)
+    for c in clauses:
+        if c.negated:
+            raise GroundingError(f"not supported: a negated action ('{c.verb.text}' after 'not'); say what to do instead")
+    while len(clauses) > 1:
+        a, b = clauses[0], clauses[1]
+        if _refers_back(b) and a.objects and b.verb.value == "place" and a.verb.value == "pick":
+            joined = Clause(b.verb, a.objects, a.pps + b.pps, b.manner, to_person=b.to_person, free_target=b.free_target)
+        elif _parks(a) and _parks(b) and not (a.objects and b.objects and not _refers_back(b)):
+            first, second = (a, b) if a.objects or a.pps else (b, a)
+            pps = first.pps + tuple(pp for pp in second.pps if not all(x.head == "pronoun" for x in pp.alternatives))
+            verb = a.verb if a.verb.value == "park" else b.verb
+            joined = Clause(verb, first.objects, pps, a.manner or b.manner, free_target=a.free_target or b.free_target)
+        else:
+            raise GroundingError(AND_REFUSED.format(request.conjunction or "and"))
+        clauses[:2] = [joined]
+    return clauses[0]
+
+
+def _refers_back(c: Clause) -> bool:
+    """A clause whose object is "it"/"them", the car, or missing ("... and put it on the table", "... and park the car")."""
+    return not c.objects or all(a.head in ("pronoun", "robot") for alts in c.objects for a in alts)
+
+
+def _parks(c: Clause) -> bool:
+    return c.verb.value == "park" or (c.verb.value == "pick" and any(a.head in ("noun", "idref") and a.value == "parking_spot"
+                                                                     for alts in c.objects for a in alts))
+
+
+def _graspable(interps: list[Interpretation], scene: Scene, ee) -> tuple[list[Interpretation], list[str]]:
     """Drop interpretations whose object no grasp fits (grounding/grasps.py), with a note each.
 
     Raises:
@@ -76,7 +117,6 @@ def _graspable(interps: list[Interpretation], scene: Scene) -> tuple[list[Interp
     """
     keep = [i for i in interps if i.goal_regions]
     dropped = sorted({i.objects[0] for i in interps if not i.goal_regions})
-    ee = end_effector_of(scene.robot)
     unfit = [fit_note(scene.object(o), ee) for o in dropped]
     if not keep:
         raise GroundingError("; ".join(unfit))
@@ -94,52 +134,95 @@ def _check_text(request) -> str:
     return request
 
 
-def _frame(p: Phrase, res: Resolver) -> tuple[str, tuple[NounPhrase, ...], tuple[NounPhrase, ...]]:
+def _frame(c: Clause, res: Resolver) -> tuple[str, tuple[NounPhrase, ...], tuple[NounPhrase, ...]]:
     """Decide the action and which phrases are the object and the target (spot or surface)."""
-    verb, obj, pps = p.verb, p.object, list(p.pps)
-    if verb.value == "park" or _is_spot(obj, res):
-        if obj and not _is_spot(obj, res) and not all(a.head in ("robot", "pronoun") for a in obj):
+    verb, pps = c.verb, list(c.pps)
+    if verb.value == "clear":
+        raise GroundingError(f"not supported: {verb.text!r} asks to move every object off a surface; the robot handles one object at a time")
+    if len(c.objects) > 1:
+        raise GroundingError(AND_REFUSED.format(c.conjunction or "and"))
+    obj = c.object
+    if not obj and c.free_target and verb.value == "pick":  # "take any of them"
+        obj, c = (NounPhrase("", "wildcard", determiner="indefinite", free=True),), replace(c, free_target=False)
+    robot_only = bool(obj) and all(a.head == "robot" or (a.head == "pronoun" and verb.value == "park") for a in obj)
+    for a in obj:
+        if a.head in ("robot", "") and not a.quantity.single:  # "park 2 cars"
+            raise GroundingError(f"not supported: {a.quantity.word!r} asks for several objects; the robot handles one at a time")
+    leave = robot_only and verb.value == "place" and (not pps or c.free_target or _is_spot(pps[-1].alternatives, res))
+    anything = bool(obj) and all(a.free or (a.head in ("wildcard", "") and all(m.kind == "relation" for m in a.modifiers)) for a in obj)
+    if verb.value == "park" or _is_spot(obj, res) or leave:
+        if obj and not _is_spot(obj, res) and not robot_only and not anything:
             raise GroundingError(f"{verb.text!r} needs a parking spot, not {obj[0].full()!r}; try 'park in a free spot'")
-        if _is_spot(obj, res):
+        rows = lambda pp: all(a.head == "row" for a in pp.alternatives)  # noqa: E731  ("in row c" locates, it is no spot)
+        if _is_spot(obj, res) or (anything and not robot_only):
             spot = obj
-        elif pps:
-            spot = pps.pop()[1]
+        elif not c.free_target and any(not rows(pp) for pp in pps):
+            spot = pps.pop(max(i for i, pp in enumerate(pps) if not rows(pp))).alternatives
         else:
             spot = (NounPhrase("", determiner="indefinite"),)
+        if robot_only and obj[0].modifiers:  # "park the car next to spot 3": the relation places the spot
+            spot = tuple(replace(a, modifiers=a.modifiers + obj[0].modifiers) for a in spot)
         return "park", (), _located(spot, pps)
-    action = "place" if verb.value == "place" or (pps and pps[-1][0].value == "target") else "pick"
+    action = "place" if verb.value == "place" or (pps and pps[-1].prep.value == "target") or c.free_target else "pick"
+    if c.to_person and not (pps and pps[-1].prep.value == "target"):
+        action = "pick"  # "bring the can to me": the robot carries it
     if not obj:
         raise GroundingError(f"{verb.text!r} needs an object, e.g. '{verb.text} a can'")
     for a in obj:
-        if a.plural and a.determiner != "indefinite":
-            raise GroundingError(f"not supported: {a.full()!r} asks for several objects; the robot handles one at a time (try 'one of the {a.word}')")
+        if not a.quantity.single:
+            word = a.word if a.plural else plural(a.word or "object")
+            raise GroundingError(f"not supported: {a.full()!r} asks for several objects; the robot handles one at a time (try 'one of the {word}')")
+        if a.head == "pronoun":
+            raise GroundingError(f"not supported: {a.word!r} (nothing to refer back to); name the object, e.g. 'pick up the can'")
     if action == "pick":
         return "pick", _located(obj, pps), ()
+    if c.free_target:
+        return "place", _located(obj, pps), (NounPhrase("", determiner="indefinite", free=True),)
     if not pps:
+        rel = next((m for a in obj for m in a.modifiers if m.kind == "relation"), None)
+        if rel is not None:  # "put the box under the table": a place beside an object is no goal region
+            raise GroundingError(f"not supported: placing {rel.word} {rel.landmark.full()}; say a surface to put it on, e.g. 'on the table'")
         raise GroundingError(f"{verb.text!r} needs a place, e.g. '{verb.text} the can on the table'")
-    target = pps.pop()[1]
+    target = pps.pop().alternatives
     return "place", _located(obj, pps), target
 
 
 def _is_spot(alts: tuple[NounPhrase, ...], res: Resolver) -> bool:
     def spot(a: NounPhrase) -> bool:
-        type_name = a.value if a.head == "noun" else res.scene.object(a.value).type if a.head == "id" else None
+        type_name = a.value if a.head in ("noun", "idref") and a.value else res.scene.object(a.value).type if a.head == "id" else None
+        if a.head == "idref" and not a.value:
+            return any(res.has_role(o.type, "park") for o in res.scene.objects)
         return type_name is not None and res.has_role(type_name, "park") and not res.has_role(type_name, "pick")
     return bool(alts) and all(spot(a) for a in alts)
 
 
 def _located(alts: tuple[NounPhrase, ...], pps: list) -> tuple[NounPhrase, ...]:
     """Attach location phrases ("on the table") to every alternative."""
-    locs = tuple((prep.text, choice) for prep, choice in pps)
+    locs = tuple(Location(pp.prep.text, pp.alternatives) for pp in pps)
     return tuple(replace(a, locations=a.locations + locs) for a in alts)
 
 
-def _interpretation(action: str, obj: SceneObject, target: SceneObject | None, scene: Scene) -> Interpretation:
+def _interpretation(action: str, obj: SceneObject, target: SceneObject | None, scene: Scene, manner: str = "",
+                    ee=None, memo: dict | None = None) -> Interpretation:
     iid = f"{action}:{obj.id}" + (f":{target.id}" if target is not None else "")
     if action == "park":
-        return Interpretation(iid, action, (obj.id,), None, regions_for(obj, "park", iid, scene))
-    place = regions_for(target, "support", iid, scene) if target is not None else ()
-    return Interpretation(iid, action, (obj.id,), target.id if target else None, regions_for(obj, "pick", iid, scene), place)
+        regions = regions_for(obj, "park", iid, scene)
+        if manner:  # "reverse into spot 4": only the goal regions with that heading
+            regions = tuple(r for r in regions if r.label == manner) or regions
+        return Interpretation(iid, action, (obj.id,), None, regions)
+    place = _regions(target, "support", iid, scene, ee, memo) if target is not None else ()
+    return Interpretation(iid, action, (obj.id,), target.id if target else None, _regions(obj, "pick", iid, scene, ee, memo), place)
+
+
+def _regions(obj: SceneObject, role: str, iid: str, scene: Scene, ee, memo: dict | None) -> tuple:
+    """``regions_for``, built once per (object, role) in a request and relabelled per interpretation
+    ("put a box on a shelf": 5 boxes x 9 boards share 5 + 9 region sets)."""
+    if memo is None:
+        return regions_for(obj, role, iid, scene, ee)
+    key = (obj.id, role)
+    if key not in memo:
+        memo[key] = regions_for(obj, role, iid, scene, ee)
+    return tuple(r if r.interpretation == iid else replace(r, interpretation=iid) for r in memo[key])
 
 
 def _what(alts: tuple[NounPhrase, ...], objs: list[SceneObject]) -> str:

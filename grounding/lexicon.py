@@ -24,16 +24,23 @@ WORD = re.compile(r"[a-z0-9_]+(?:'[a-z]+)?")
 
 # section -> category for the flat word lists; mapping sections are handled below
 FLAT = {
-    "robot": "robot", "floor": "floor", "wildcards": "wildcard", "multiple": "multiple", "polite": "polite",
-    "fillers": "filler", "particles": "particle", "conjunctions": "conjunction", "disjunctions": "disjunction",
-    "negations": "negation", "pronouns": "pronoun",
+    "robot": "robot", "person": "person", "floor": "floor", "wildcards": "wildcard", "one": "one", "free": "free",
+    "number_marks": "number_mark", "coloured": "coloured", "between": "between", "through": "through",
+    "relativizers": "which", "participles": "participle", "negations": "negation", "exceptions": "exception",
+    "but": "but", "different": "different", "polite": "polite", "fillers": "filler", "particles": "particle",
+    "conjunctions": "conjunction", "disjunctions": "disjunction", "pronouns": "pronoun", "layout": "layout", "rows": "row",
 }
 # section -> category for "value: [phrases]" sections
 MAPPED = {
-    "verbs": "verb", "nouns": "noun", "determiners": "determiner", "colours": "colour", "sizes": "size",
-    "positions": "position", "superlatives": "superlative", "states": "state", "prepositions": "preposition",
-    "ordinals": "ordinal",
+    "verbs": "verb", "manners": "manner", "nouns": "noun", "determiners": "determiner", "quantifiers": "quantifier",
+    "numbers": "number", "colours": "colour", "sizes": "size", "positions": "position", "superlatives": "superlative",
+    "states": "state", "prepositions": "preposition", "ordinals": "ordinal", "relations": "relation",
+    "distances": "distance",
 }
+# "no. 3", "#3", "nr 3" -> "number 3" (so "no" stays a plain word elsewhere)
+NUMBER_SIGN = re.compile(r"(?:#|\bno\.?|\bnr\.?|\bnum\.?)\s*(?=\d)")
+SIDES = {"left", "right", "top", "bottom"}
+IDTAIL = re.compile(r"[a-z]{0,3}[0-9]+[a-z]?")
 SPLIT = re.compile(r"[a-z]+|[0-9]+")
 
 
@@ -103,16 +110,17 @@ class Lexicon:
                 phrases[key] = Entry("id", ids.pop())
         return Lexicon(phrases, self.data)
 
-    def hint(self, word: str, cat: str | None = None) -> str:
+    def hint(self, word: str, cat: str | None = None, only: bool = False) -> str:
         """"; did you mean 'pick'?" and "; ids with 'b1': spot_b1, ..." for an unknown word ("" if none).
 
         Args:
             cat: a category the word should have had (e.g. "verb"): its words are suggested first.
+            only: suggest words of ``cat`` only (a verb's place: "throw" is no typo of "row").
         """
         close: list[str] = []
-        for only in ((cat,) if cat else ()) + (None,):  # ids are listed by ids_with, not guessed at
-            known = sorted({w for key, e in self.phrases.items() if e.cat != "id" and only in (None, e.cat)
-                            for w in key if not w.isdigit() and w != word})
+        for want in ((cat,) if cat else ()) + (() if only and cat else (None,)):  # ids are listed by ids_with, not guessed at
+            known = sorted({key[0] for key, e in self.phrases.items() if e.cat != "id" and want in (None, e.cat)
+                            and len(key) == 1 and not key[0].isdigit() and key[0] != word})  # words said alone
             swapped = [w for w in known if sorted(w) == sorted(word)]  # "pikc", "cna": two letters swapped
             near = [w for w in difflib.get_close_matches(word, known, n=3, cutoff=0.75)
                     if w not in swapped and abs(len(w) - len(word)) <= 2]  # a typo, not a longer or shorter word
@@ -127,10 +135,12 @@ class Lexicon:
 
     def tokens(self, text: str) -> list[Token]:
         """Greedy longest-phrase segmentation of lower-cased ``text``."""
-        words = WORD.findall(text.lower())
+        words = WORD.findall(NUMBER_SIGN.sub(" number ", text.lower()))
         out, i, n = [], 0, self.max_len
         while i < len(words):
-            for k in range(min(n, len(words) - i), 0, -1):
+            # "from the right next to ...": after "from (the)", a side word stands alone ("right", not "right next to")
+            side = words[i] in SIDES and (words[i - 1:i] == ["from"] or words[max(i - 2, 0):i] == ["from", "the"])
+            for k in range(1 if side else min(n, len(words) - i), 0, -1):
                 entry = self.phrases.get(tuple(words[i:i + k]))
                 if entry is not None:
                     out.append(Token(" ".join(words[i:i + k]), entry))
@@ -151,9 +161,11 @@ def id_spellings(object_id: str) -> set[tuple[str, ...]]:
 
 
 def _number(word: str) -> Entry | None:
-    """Digits: "1" reads as "one"; larger counts ask for several objects."""
+    """Digits are numbers (a count before a noun, an id after it); "b1", "12a" are id tails ("park at b1")."""
     if word.isdigit():
-        return Entry("determiner", "indefinite") if int(word) == 1 else Entry("multiple", word)
+        return Entry("number", str(int(word)))
+    if IDTAIL.fullmatch(word):
+        return Entry("idtail", word)
     return None
 
 

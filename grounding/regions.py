@@ -9,55 +9,62 @@ from __future__ import annotations
 
 import difflib
 import math
+from pathlib import Path
 
 from grounding.grasps import GRASP_TEMPLATES, make_region
-from grounding.lexicon import load_lexicon
 from grounding.model import GroundingError
 from lazyground.geometry import Pose
 from lazyground.regions import ConfigRegion, GoalRegion, PlacementRegion
 from lazyground.robots.end_effector import LEGACY_FRAME, EndEffectorSpec, end_effector_of
 from lazyground.scene.schema import Scene, SceneObject
+from lazyground.typed_yaml import line_of
 from lazyground.scene.types import type_definitions
 
 DEG = math.pi / 180
 END_EFFECTOR = LEGACY_FRAME  # the end effector when there is no scene
 
 
-def check_types(scene: Scene, source: str | None = None) -> None:
+def check_types(scene: Scene) -> None:
     """Every object type must be defined (``types.yaml``) or declared by the scene (``grasp_types: {pillar: {}}``).
 
     A misspelt type would otherwise turn a goal into a plain obstacle without a word.
-
-    Args:
-        source: the file the message names (default: the scene's own; "" for none).
 
     Raises:
         GroundingError: the first undefined type, with the closest defined names.
     """
     known = type_definitions(scene)
-    source = scene.source if source is None else source
     for i, obj in enumerate(scene.objects):
         if obj.type not in known:
-            where = f"{source}: " if source else ""
-            raise GroundingError(f"{where}objects[{i}].type: object {obj.id!r}: unknown type {obj.type!r}; "
-                                 f"{_type_hint(obj.type, known)}(types: lazyground/scene/types.yaml; "
-                                 f"a scene declares its own under grasp_types, e.g. 'grasp_types: {{{obj.type}: {{}}}}')")
+            close = difflib.get_close_matches(obj.type, sorted(known), n=2, cutoff=0.6) or _by_synonym(obj.type, known)
+            hint = f"did you mean {' or '.join(repr(c) for c in close)}? " if close else ""
+            raise GroundingError(f"object {obj.id!r}: unknown type {obj.type!r}; {hint}(types: lazyground/scene/types.yaml; "
+                                 f"a scene declares its own under grasp_types, e.g. 'grasp_types: {{{obj.type}: {{}}}}')"
+                                 f"{_where(scene, f'objects[{i}].type')}")
 
 
-def _type_hint(name: str, known) -> str:
-    """"did you mean 'cup' (a 'mug' is one)? " for a misspelt type or a word naming one (the lexicon's nouns)."""
-    nouns = {w.replace(" ", "_"): t for t, words in load_lexicon().data.get("nouns", {}).items() if t in known for w in words}
-    nouns.update({t: t for t in known})
-    close = difflib.get_close_matches(name.lower(), sorted(nouns), n=4, cutoff=0.6)
-    first = {}  # type -> the closest word naming it
-    for w in close:
-        first.setdefault(nouns[w], w)
-    said = [f"{t!r}" + (f" (a {w!r} is one)" if w != t else "") for t, w in list(first.items())[:2]]
-    return f"did you mean {' or '.join(said)}? " if said else ""
+def _by_synonym(type_name: str, known: dict) -> list[str]:
+    """Types whose lexicon words are close to a misspelt type ("mugg" -> "mug", a word for cup)."""
+    from grounding.lexicon import load_lexicon  # the word table, read once
+
+    words = {str(w).lower(): t for t, ws in (load_lexicon().data.get("nouns") or {}).items() for w in ws or [] if t in known}
+    close = difflib.get_close_matches(type_name.lower().replace("_", " "), sorted(words), n=2, cutoff=0.7)
+    return list(dict.fromkeys(words[w] for w in close))
 
 
-def regions_for(obj: SceneObject, role: str, interpretation: str, scene: Scene | None = None) -> tuple[GoalRegion, ...]:
+def _where(scene: Scene, path: str) -> str:
+    """" (scene.yaml line 12)" for a key of the scene's file, "" when the file cannot be read."""
+    try:
+        line = line_of(Path(scene.source).read_text(), path) if scene.source else None
+    except (OSError, UnicodeDecodeError):
+        line = None
+    return f" ({scene.source} line {line})" if line else ""
+
+
+def regions_for(obj: SceneObject, role: str, interpretation: str, scene: Scene | None = None,
+                ee: EndEffectorSpec | None = None) -> tuple[GoalRegion, ...]:
     """Goal regions for ``obj`` in ``role`` ("pick", "support" or "park").
+
+    ``ee``: the scene robot's end effector when the caller has it already (it is read from the robot's files).
 
     Raises:
         GroundingError: the type has no definition for that role.
@@ -65,7 +72,8 @@ def regions_for(obj: SceneObject, role: str, interpretation: str, scene: Scene |
     definition = type_definitions(scene).get(obj.type, {}).get(role)
     if not definition:
         raise GroundingError(f"no {role} definition for type {obj.type!r} (see lazyground/scene/types.yaml)")
-    ee = end_effector_of(scene.robot) if scene is not None else EndEffectorSpec(frame=END_EFFECTOR)
+    if ee is None:
+        ee = end_effector_of(scene.robot) if scene is not None else EndEffectorSpec(frame=END_EFFECTOR)
     out: list[GoalRegion] = []
     try:
         for spec in definition:

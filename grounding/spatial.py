@@ -6,8 +6,8 @@
   resting on nothing within 3 cm of z = 0 is on the ``floor``. Only direct
   support counts (a can on a tray on a table is on the tray).
 * **directions** — the robot looks along its base +x: "left" is +y and "right"
-  is -y in the robot's base frame (the world frame when the scene gives no
-  base pose); "top" is +z.
+  is -y in the robot's base frame (its start pose when the scene gives no base
+  pose: the car's ``car_x``, ``car_y``, ``car_qz``); "top" is +z.
 * **units** — boards of one piece of furniture (shelf boards of one rack): the
   objects of one type sharing ``attributes: {unit: NAME}``, else those whose
   footprints overlap (stacked boards). "left/right shelf" compares whole units;
@@ -23,11 +23,12 @@
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 from itertools import product
 
 import numpy as np
 
-from lazyground.scene.schema import Scene, SceneObject
+from lazyground.scene.schema import PoseSpec, Scene, SceneObject
 
 TOUCH_TOL = 0.03
 SPREAD = 0.05
@@ -37,10 +38,16 @@ FLOOR = "floor"
 
 def world_box(obj: SceneObject) -> tuple[np.ndarray, np.ndarray]:
     """Axis-aligned world bounds of the object's shape."""
-    h = np.asarray(obj.geometry.half_extents())
-    corners = np.array(list(product(*[(-v, v) for v in h])))
-    pts = obj.pose.pose().transform_points(corners)
-    return pts.min(axis=0), pts.max(axis=0)
+    lo, hi = _box(tuple(obj.geometry.half_extents()), tuple(obj.pose.xyz), tuple(obj.pose.rpy))
+    return np.array(lo), np.array(hi)
+
+
+@lru_cache(maxsize=4096)
+def _box(half: tuple, xyz: tuple, rpy: tuple) -> tuple[tuple, tuple]:
+    """Bounds of a box of half extents ``half`` at pose (xyz, rpy); cached (requests ask the same objects again)."""
+    corners = np.array(list(product(*[(-v, v) for v in half])))
+    pts = PoseSpec(xyz=xyz, rpy=rpy).pose().transform_points(corners)
+    return tuple(pts.min(axis=0)), tuple(pts.max(axis=0))
 
 
 def _over_footprint(point: np.ndarray, support: SceneObject) -> bool:
@@ -69,15 +76,25 @@ def support_of(obj: SceneObject, scene: Scene) -> str | None:
     return best
 
 
+def robot_yaw(scene: Scene) -> float:
+    """The robot's heading: its base yaw, else a start heading joint (the car's ``car_qz``), else 0."""
+    if scene.robot.base is not None:
+        return float(scene.robot.base.rpy[2])
+    yaws = [v for k, v in scene.robot.start.items() if k.endswith(("_qz", "_theta", "_yaw")) or k in ("theta", "yaw")]
+    return float(yaws[0]) if yaws else 0.0
+
+
+def robot_frame(point, scene: Scene) -> tuple[float, float]:
+    """(ahead, left) of a world point in the robot's base frame: its base pose, else its start pose."""
+    o = robot_position(scene)
+    yaw = robot_yaw(scene)
+    dx, dy = float(point[0]) - o[0], float(point[1]) - o[1]
+    return math.cos(yaw) * dx + math.sin(yaw) * dy, -math.sin(yaw) * dx + math.cos(yaw) * dy
+
+
 def lateral(obj: SceneObject, scene: Scene) -> float:
     """The object's y in the robot's base frame: larger is further left."""
-    base = scene.robot.base
-    x, y, _ = obj.pose.xyz
-    if base is None:
-        return float(y)
-    yaw = base.rpy[2]
-    dx, dy = x - base.xyz[0], y - base.xyz[1]
-    return float(-math.sin(yaw) * dx + math.cos(yaw) * dy)
+    return robot_frame(obj.pose.xyz, scene)[1]
 
 
 def top_height(obj: SceneObject) -> float:
@@ -141,3 +158,29 @@ def distance_to_point(obj: SceneObject, p: np.ndarray) -> float:
 def distance_between(a: SceneObject, b: SceneObject) -> float:
     """Ground-plane distance from ``a``'s centre to ``b``'s bounds ("the can nearest the table")."""
     return distance_to_point(b, np.asarray(a.pose.xyz, float))
+
+
+def rows(objs: list[SceneObject], tol: float = 0.5) -> list[list[SceneObject]]:
+    """Rows of a layout (parking spots): the same heading (mod 180 degrees), on one line across it, and no
+    gap wider than 1.5 spacings between neighbours (a gap starts a new row)."""
+    lines: dict[tuple, list[SceneObject]] = {}
+    for o in objs:
+        yaw = o.pose.rpy[2] % math.pi
+        x, y = o.pose.xyz[0], o.pose.xyz[1]
+        along = math.cos(yaw) * x + math.sin(yaw) * y  # the same for spots side by side
+        key = next((k for k in lines if abs(k[0] - yaw) < 0.02 and abs(k[1] - along) < tol), (yaw, along))
+        lines.setdefault(key, []).append(o)
+    out = []
+    for (yaw, _), line in lines.items():
+        pos = {o.id: -math.sin(yaw) * o.pose.xyz[0] + math.cos(yaw) * o.pose.xyz[1] for o in line}
+        line = sorted(line, key=lambda o: pos[o.id])
+        steps = [pos[b.id] - pos[a.id] for a, b in zip(line, line[1:])]
+        spacing = min(steps, default=0.0)
+        row = [line[0]]
+        for step, o in zip(steps, line[1:]):
+            if step > 1.5 * spacing + 1e-6:
+                out.append(row)
+                row = []
+            row.append(o)
+        out.append(row)
+    return out

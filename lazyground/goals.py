@@ -15,14 +15,15 @@ is imported (any ``DrakeWorld`` has imported it).
 
 from __future__ import annotations
 
-import time
 from typing import Callable, Iterator
 
 import numpy as np
 
 from lazyground.planning.problem import GoalSample, RegionStats, ValidityChecker
 from lazyground.planning.space import ConfigSpace
+from lazyground.planning.stop import StopCondition
 from lazyground.regions import REGION_KINDS, ConfigRegion, GoalRegion
+from lazyground.settings import GoalSamplingSettings
 
 
 REACHED_FACTOR = 4  # a region whose goals are reached but collide gets this many times the attempts
@@ -40,11 +41,18 @@ class RoundRobinGoalSource:
 
     reached_reasons: tuple[str, ...] = ()
 
-    def __init__(self, regions: tuple[GoalRegion, ...], give_up_after: int = 50, attempts_per_sample: int = 10):
+    def __init__(self, regions: tuple[GoalRegion, ...], give_up_after: int | None = None,
+                 attempts_per_sample: int | None = None, sampling: GoalSamplingSettings | None = None):
+        """Args:
+            regions: the goal regions.
+            give_up_after, attempts_per_sample: override ``sampling``'s (for tools and tests).
+            sampling: the run's goal-sampling settings (default: their declared defaults).
+        """
+        sampling = GoalSamplingSettings() if sampling is None else sampling
         self.regions = tuple(regions)
         self.stats = [RegionStats() for _ in self.regions]
-        self._give_up_after = give_up_after
-        self.attempts_per_sample = attempts_per_sample
+        self._give_up_after = sampling.give_up_after if give_up_after is None else give_up_after
+        self.attempts_per_sample = sampling.attempts_per_sample if attempts_per_sample is None else attempts_per_sample
         self.next_region = 0
         self._time = 0.0
 
@@ -64,17 +72,19 @@ class RoundRobinGoalSource:
     def exhausted(self) -> bool:
         return all(self.region_exhausted(j) for j in range(len(self.regions)))
 
-    def draw(self, n: int, rng: np.random.Generator, deadline: float) -> list[GoalSample]:
+    def draw(self, n: int, rng: np.random.Generator, stop: StopCondition) -> list[GoalSample]:
+        """Up to n new valid samples, round-robin over the regions; fewer if attempts run out or ``stop``
+        says so (its deadline or interrupt: the iteration cap is the planner's)."""
         out: list[GoalSample] = []
         budget = n * self.attempts_per_sample
-        t0 = time.perf_counter()
+        t0 = stop.now()
         try:
-            while len(out) < n and budget > 0 and not self.exhausted() and time.perf_counter() < deadline:
+            while len(out) < n and budget > 0 and not self.exhausted() and not stop.should_stop():
                 plan = self.plan(self.next_region, min(budget, self.batch_size(n - len(out))))
-                results = self.attempts(plan, rng, deadline)
+                results = self.attempts(plan, rng, stop)
                 try:
                     for j, after in plan:  # the attempts in round-robin order, as if made one by one
-                        if len(out) >= n or budget <= 0 or time.perf_counter() >= deadline:
+                        if len(out) >= n or budget <= 0 or stop.should_stop():
                             break
                         sample, reason, seconds = next(results)
                         self.next_region = after
@@ -90,7 +100,7 @@ class RoundRobinGoalSource:
                 finally:
                     results.close()
         finally:
-            self._time += time.perf_counter() - t0
+            self._time += stop.now() - t0
         return out
 
     def plan(self, position: int, k: int) -> list[tuple[int, int]]:
@@ -120,18 +130,18 @@ class RoundRobinGoalSource:
         return 1
 
     def attempts(self, plan: list[tuple[int, int]], rng: np.random.Generator,
-                 deadline: float) -> Iterator[tuple[GoalSample | None, str, float]]:
+                 stop: StopCondition) -> Iterator[tuple[GoalSample | None, str, float]]:
         """(sample or None, failure reason, seconds) for the planned attempts, in order, made lazily.
 
         The caller stops taking results once it has enough (closing the generator);
         the default makes each :meth:`attempt` only when its result is asked for.
         """
         for j, _ in plan:
-            a0 = time.perf_counter()
-            sample, reason = self.attempt(j, rng, deadline)
-            yield sample, reason, time.perf_counter() - a0
+            a0 = stop.now()
+            sample, reason = self.attempt(j, rng, stop)
+            yield sample, reason, stop.now() - a0
 
-    def attempt(self, j: int, rng: np.random.Generator, deadline: float) -> tuple[GoalSample | None, str]:
+    def attempt(self, j: int, rng: np.random.Generator, stop: StopCondition) -> tuple[GoalSample | None, str]:
         """One try at a valid sample in region j: (sample, "") or (None, reason)."""
         raise NotImplementedError
 
@@ -147,7 +157,7 @@ class ConfigGoalSource(RoundRobinGoalSource):
         self._space = space
         self._checker = checker
 
-    def attempt(self, j, rng, deadline):
+    def attempt(self, j, rng, stop):
         q = self.regions[j].sample(rng)
         if not self._space.within_bounds(q):
             return None, "outside limits"
@@ -171,12 +181,14 @@ def register_goal_source(kinds: tuple[str, ...], factory: Callable[..., RoundRob
         GOAL_SOURCES[kind] = factory
 
 
-def goal_source_for(regions: tuple[GoalRegion, ...], world) -> RoundRobinGoalSource:
+def goal_source_for(regions: tuple[GoalRegion, ...], world,
+                    sampling: GoalSamplingSettings | None = None) -> RoundRobinGoalSource:
     """The goal source registered for these regions' kind, built over ``world``.
 
     Args:
         regions: the goal regions, all sampled by one source.
         world: the world to sample in (a DrakeWorld, or any object the factory accepts).
+        sampling: the run's goal-sampling settings, handed to the factory as ``sampling=`` (None: its defaults).
 
     Raises:
         ValueError: no regions, a kind without a registered source, or kinds needing different sources.
@@ -192,11 +204,11 @@ def goal_source_for(regions: tuple[GoalRegion, ...], world) -> RoundRobinGoalSou
             factories.append(factory)
     if len(factories) > 1:
         raise ValueError(f"regions of kinds {', '.join(sorted({r.kind for r in regions}))} need different goal sources")
-    return factories[0](tuple(regions), world)
+    return factories[0](tuple(regions), world) if sampling is None else factories[0](tuple(regions), world, sampling=sampling)
 
 
-def _config_source(regions, world) -> ConfigGoalSource:
-    return ConfigGoalSource(regions, world.space, world)
+def _config_source(regions, world, sampling: GoalSamplingSettings | None = None) -> ConfigGoalSource:
+    return ConfigGoalSource(regions, world.space, world, sampling=sampling)
 
 
 register_goal_source((ConfigRegion.kind,), _config_source)

@@ -5,7 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from grounding.model import Grounding, Interpretation
-from lazyground.planning.problem import PlannerSettings, PlanResult, PlanStatus
+from lazyground.planning.problem import PlanResult, PlanStatus
+from lazyground.settings import RunSettings
 from lazyground.tasks.outcome import Outcome, Step
 
 
@@ -20,13 +21,27 @@ class PlanReport:
     request: str
     scene: str
     seed: int
-    settings: PlannerSettings
+    settings: RunSettings  # the run's: settings.planner, .goal_sampling, .motion, .task
     grounding: Grounding
     result: PlanResult
     joint_names: tuple[str, ...]
     grounding_s: float
     setup_s: float  # building the Drake world(s)
     outcome: Outcome | None = None  # None: a bare result (e.g. a viewer test)
+    total_s: float | None = None  # api.plan's wall time less setup_s: the request as the user waits for it
+
+    @property
+    def total_split_s(self) -> dict[str, float] | None:
+        """``total_s`` split: grounding, search (goal sampling, checks and the rest of the planner), motion
+        (shortening and timing every step), and the rest (loading the scene, goal sources, the report); the
+        parts add up to ``total_s``."""
+        if self.total_s is None:
+            return None
+        motion = sum(s.motion.shortcut_s + s.motion.timing_s for s in (self.outcome.steps if self.outcome else ())
+                     if s.motion is not None)
+        split = {"grounding": self.grounding_s, "search": self.result.time_s, "motion": motion}
+        split["rest"] = self.total_s - sum(split.values())
+        return split
 
     @property
     def steps(self) -> tuple[Step, ...]:
@@ -44,6 +59,12 @@ class PlanReport:
         if self.outcome is None or len(self.outcome.steps) != 1:
             return None
         return self.outcome.steps[0].motion
+
+    @property
+    def cusps(self) -> int | None:
+        """A car's gear changes along its path (its motion's; None: not a car, or not solved)."""
+        motion = self.motion
+        return motion.cusps if motion is not None else None
 
     @property
     def status(self) -> PlanStatus:

@@ -26,10 +26,10 @@ def report_to_json(report: PlanReport) -> dict:
         "request": report.request,
         "scene": report.scene,
         "seed": report.seed,
-        "strategy": report.settings.strategy,
-        "algorithm": report.settings.algorithm,
-        "goal_bias": report.settings.goal_bias,
-        "kinematics": report.settings.kinematics,
+        "strategy": report.settings.planner.strategy,
+        "algorithm": report.settings.planner.algorithm,
+        "goal_bias": report.settings.planner.goal_bias,
+        "kinematics": report.settings.planner.kinematics,
         "action": report.grounding.action,
         "ambiguous": report.grounding.ambiguous,
         "interpretations": [i.to_json() for i in report.grounding.interpretations],
@@ -44,7 +44,7 @@ def report_to_json(report: PlanReport) -> dict:
         "joint_names": list(report.joint_names),
         "path": res.path.round(9).tolist() if res.path is not None else None,
         "path_length": _r(res.path_length),
-        "cusps": res.cusps,  # car kinematics: gear changes along the path (path_length is then the driven length)
+        "cusps": report.cusps,  # car kinematics: gear changes along the path (path_length is then the driven length)
         "time_s": _r(report.time_s),
         "time_split_s": {
             "grounding": _r(report.grounding_s),
@@ -53,6 +53,9 @@ def report_to_json(report: PlanReport) -> dict:
             "other": _r(res.other_s),
         },
         "setup_s": _r(report.setup_s),
+        # the whole request as the user waits for it (api.plan's wall time less setup_s), split into parts adding up to it
+        "total_s": _r(report.total_s) if report.total_s is not None else None,
+        "total_split_s": {k: _r(v) for k, v in report.total_split_s.items()} if report.total_s is not None else None,
         "iterations": res.iterations,
         "tree_size": res.tree_size,
         "goal_samples": len(res.goal_samples),
@@ -94,7 +97,7 @@ def report_lines(report: PlanReport) -> list[str]:
     """A short human summary."""
     res = report.result
     g = report.grounding
-    lines = [f"request: {report.request!r} on scene {report.scene} (seed {report.seed}, {_planner_label(report.settings)})"]
+    lines = [f"request: {report.request!r} on scene {report.scene} (seed {report.seed}, {_planner_label(report.settings.planner)})"]
     kinds = "ambiguous: " if g.ambiguous else ""
     lines.append(f"interpretations ({kinds}{len(g.interpretations)}): " + ", ".join(i.id for i in g.interpretations))
     for note in g.notes + report.notes:
@@ -103,7 +106,7 @@ def report_lines(report: PlanReport) -> list[str]:
         lines.append(
             f"reached: {report.chosen.id} via goal region {res.goal_region.id}"
         )
-        driven = "" if res.cusps is None else f" driven, {res.cusps} gear change(s)"
+        driven = "" if report.cusps is None else f" driven, {report.cusps} gear change(s)"
         lines.append(
             f"path: {len(res.path)} waypoints, length {res.path_length:.3f}{driven}; time {report.time_s:.3f} s "
             f"(goal sampling {res.goal_sampling_s:.3f}, collision {res.collision_s:.3f}); "
@@ -113,6 +116,9 @@ def report_lines(report: PlanReport) -> list[str]:
     else:
         lines.append(f"status: {res.status.value}: {res.message}")
         lines.append(f"time {report.time_s:.3f} s; {res.iterations} iterations, tree {res.tree_size}, {len(res.goal_samples)} goal samples")
+    if report.total_s is not None:
+        split = ", ".join(f"{k} {v:.3f}" for k, v in report.total_split_s.items())
+        lines.append(f"request: {report.total_s:.3f} s ({split}); world build {report.setup_s:.3f} s")
     return lines
 
 

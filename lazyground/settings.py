@@ -1,8 +1,12 @@
-"""Every planner setting, declared once: name, type, default, allowed values, one-line doc, layers.
+"""Every setting, declared once: a field of a frozen dataclass, with its type, default, allowed values,
+one-line doc and layers in the field's metadata (:func:`setting`).
 
-Everything else derives from :data:`SETTINGS`:
+One run's settings are a :class:`RunSettings` composed of :class:`PlannerSettings` (the search),
+:class:`GoalSamplingSettings` (goal sources and IK), :class:`MotionSettings` (shortcutting and
+timing after the solve) and :class:`TaskSettings`; :class:`SceneKeys` declares the scene's other
+``planner:`` keys. :data:`SETTINGS` collects the declarations, and everything else derives from it:
 
-* :class:`PlannerSettings` (the planner's frozen settings; validated on construction),
+* every settings class checks its fields on construction (:meth:`Setting.coerce`),
 * the scene file's ``planner:`` block and its ``per_algorithm`` entries
   (:mod:`lazyground.scene.schema`),
 * the ``lazyground plan`` flags (:func:`lazyground.cli_options.add_cli_options`) and the ``bench`` sweep checks,
@@ -22,6 +26,7 @@ import dataclasses
 import enum
 import math
 import numbers
+import typing
 from dataclasses import dataclass
 from typing import Any
 
@@ -32,6 +37,7 @@ class Strategy(enum.StrEnum):
     REWARD_PENALTY = "reward-penalty"
     CONSECUTIVE = "consecutive"
     RANDOM = "random"
+    COVER = "cover"  # reward-penalty covering the regions as samples get stuck (planning/cover.py, issue #33)
 
 
 class Algorithm(enum.StrEnum):
@@ -139,56 +145,217 @@ def _range_phrase(s: Setting) -> str:
 _PLANNER = frozenset({Layer.SCENE, Layer.API})
 _EVERYWHERE = frozenset({Layer.SCENE, Layer.API, Layer.CLI})
 _MOTION = frozenset({Layer.API, Layer.CLI})
+_API = frozenset({Layer.API})
 
-SETTINGS: tuple[Setting, ...] = (
-    Setting("strategy", Strategy, Strategy.REWARD_PENALTY, "goal-selection strategy",
-            _EVERYWHERE | {Layer.BENCH}),
-    Setting("algorithm", Algorithm, Algorithm.RRT,
-            "`rrt`: one tree from the start (the paper's Algorithm 1); `bidirectional`: a start tree and a goal "
-            "tree per goal sample, the strategy choosing which goal tree grows in a fraction `goal_bias` of the "
-            "goal turns (`lazyground/planning/birrt.py`)", _EVERYWHERE | {Layer.BENCH}),
-    Setting("goal_bias", float, 0.05, "probability of a goal-biased extension", _EVERYWHERE | {Layer.BENCH},
-            low=0.0, high=1.0),
-    Setting("step_size", float, 0.5, "the longest extension ε, in the space's metric",
-            _EVERYWHERE | {Layer.PER_ALGORITHM}, low=0.0, low_open=True),
-    Setting("edge_resolution", float, None, "spacing of the collision checks along an edge; every returned "
-            "path is re-checked at `validation_factor` times finer", _PLANNER | {Layer.PER_ALGORITHM},
-            low=0.0, low_open=True, optional=True, default_doc="`step_size / 10`"),
-    Setting("goal_extension", GoalExtension, GoalExtension.PARTIAL,
-            "the one-tree planner's goal-biased step: `partial` keeps the free part of a blocked step and counts "
-            "it as a reward if it moved at all (the authors' MoveIt planner, OMPL's `checkMotion` with a last "
-            "valid state); `extend` is one step, all or nothing; `connect` repeats free steps until blocked",
-            _EVERYWHERE | {Layer.PER_ALGORITHM}),
-    Setting("kinematics", Kinematics, Kinematics.HOLONOMIC,
-            "car scenes: `holonomic` (the paper's setup: the car slides and turns on the spot), `reeds-shepp` "
-            "(forwards and reverse along curves no tighter than the minimum turning radius from "
-            "`kinematics:` in `models/<robot>/robot.yaml`) or `dubins` (forwards only); returned car paths are "
-            "sampled along the curves at most 0.1 m apart (`lazyground/planning/car.py`)",
-            _EVERYWHERE | {Layer.BENCH}),
-    Setting("time_limit", float, 10.0, "seconds", _EVERYWHERE | {Layer.BENCH}, low=0.0, low_open=True),
-    Setting("max_iterations", int, 10_000_000, "iterations before giving up", _PLANNER, low=0.0, low_open=True),
-    Setting("seed", int, 0, "the default random seed", frozenset({Layer.SCENE, Layer.CLI, Layer.BENCH}), low=0.0),
-    Setting("initial_goal_samples", int, 10, "goal samples drawn before the search starts",
-            _PLANNER | {Layer.PER_ALGORITHM}, low=0.0, low_open=True),
-    Setting("resample_threshold", float, 0.2, "a penalised weight below this draws more samples",
-            _PLANNER | {Layer.PER_ALGORITHM}, low=0.0, high=1.0),
-    Setting("resample_count", int, 10, "samples added per resampling", _PLANNER | {Layer.PER_ALGORITHM},
-            low=0.0, low_open=True),
-    Setting("validation_factor", float, 10.0, "returned paths are re-checked at `edge_resolution` / this",
-            frozenset({Layer.API}), low=1.0),
-    Setting("collision_padding", float, 0.0, "metres, robot–environment and robot–robot",
-            frozenset({Layer.SCENE}), low=0.0),
-    # after the solve (lazyground.motion, issue #16): shortcutting and time parameterisation
-    Setting("shortcut_iterations", int, 100, "shortcut attempts after the solve (0: keep the raw path; "
-            "`--no-shortcut`)", _MOTION, low=0.0),
-    Setting("shortcut_time", float, 1.0, "seconds the shortcutting may take", _MOTION, low=0.0),
+
+class IKSolver(enum.StrEnum):
+    """How IK goal sampling solves (lazyground/drake/ik.py)."""
+
+    BATCH = "batch"  # numpy damped least squares, many attempts at once
+    SNOPT = "snopt"  # one Drake InverseKinematics program per restart
+    IPOPT = "ipopt"
+
+
+def setting(default, doc: str, layers: frozenset[Layer], *, low: float | None = None, high: float | None = None,
+            low_open: bool = False, optional: bool = False, default_doc: str | None = None):
+    """A settings dataclass field declared with its doc, layers and range (kept in the field's metadata).
+
+    The field's name and type come from the class; :data:`SETTINGS` collects every declared field.
+    """
+    meta = dict(doc=doc, layers=frozenset(layers), low=low, high=high, low_open=low_open, optional=optional,
+                default_doc=default_doc)
+    return dataclasses.field(default=default, metadata={"setting": meta})
+
+
+def _coerce_fields(self) -> None:
+    """Convert a settings object's declared fields in place (frozen: once, so every later read is typed)."""
+    for f in dataclasses.fields(self):
+        if "setting" in f.metadata:
+            object.__setattr__(self, f.name, BY_NAME[f.name].coerce(getattr(self, f.name)))
+
+
+MAX_FINE_CHECKS_PER_STEP = 100_000  # configurations the fine re-check tests along an edge of step_size (default 100)
+
+
+@dataclass(frozen=True)
+class PlannerSettings:
+    """Settings of the reward-penalty RRT (defaults as in the authors' code); checked on construction."""
+
+    strategy: Strategy = setting(Strategy.REWARD_PENALTY, "goal-selection strategy", _EVERYWHERE | {Layer.BENCH})
+    algorithm: Algorithm = setting(
+        Algorithm.RRT,
+        "`rrt`: one tree from the start (the paper's Algorithm 1); `bidirectional`: a start tree and a goal "
+        "tree per goal sample, the strategy choosing which goal tree grows in a fraction `goal_bias` of the "
+        "goal turns (`lazyground/planning/birrt.py`)", _EVERYWHERE | {Layer.BENCH})
+    goal_bias: float = setting(0.05, "probability of a goal-biased extension", _EVERYWHERE | {Layer.BENCH},
+                               low=0.0, high=1.0)
+    step_size: float = setting(0.5, "the longest extension ε, in the space's metric",
+                               _EVERYWHERE | {Layer.PER_ALGORITHM}, low=0.0, low_open=True)
+    edge_resolution: float | None = setting(
+        None, "spacing of the collision checks along an edge; every returned path is re-checked at "
+        "`validation_factor` times finer", _PLANNER | {Layer.PER_ALGORITHM}, low=0.0, low_open=True, optional=True,
+        default_doc="`step_size / 10`")
+    goal_extension: GoalExtension = setting(
+        GoalExtension.PARTIAL,
+        "the one-tree planner's goal-biased step: `partial` keeps the free part of a blocked step and counts "
+        "it as a reward if it moved at all (the authors' MoveIt planner, OMPL's `checkMotion` with a last "
+        "valid state); `extend` is one step, all or nothing; `connect` repeats free steps until blocked",
+        _EVERYWHERE | {Layer.PER_ALGORITHM})
+    kinematics: Kinematics = setting(
+        Kinematics.HOLONOMIC,
+        "car scenes: `holonomic` (the paper's setup: the car slides and turns on the spot), `reeds-shepp` "
+        "(forwards and reverse along curves no tighter than the minimum turning radius from "
+        "`kinematics:` in `models/<robot>/robot.yaml`) or `dubins` (forwards only); returned car paths are "
+        "sampled along the curves at most 0.1 m apart (`lazyground/planning/car.py`, docs/spaces.md)",
+        _EVERYWHERE | {Layer.BENCH})
+    time_limit: float = setting(10.0, "seconds", _EVERYWHERE | {Layer.BENCH}, low=0.0, low_open=True)
+    max_iterations: int = setting(10_000_000, "iterations before giving up", _PLANNER, low=0.0, low_open=True)
+    initial_goal_samples: int = setting(10, "goal samples drawn before the search starts",
+                                        _PLANNER | {Layer.PER_ALGORITHM}, low=0.0, low_open=True)
+    resample_threshold: float = setting(0.2, "a penalised weight below this draws more samples",
+                                        _PLANNER | {Layer.PER_ALGORITHM}, low=0.0, high=1.0)
+    resample_count: int = setting(10, "samples added per resampling", _PLANNER | {Layer.PER_ALGORITHM},
+                                  low=0.0, low_open=True)
+    validation_factor: float = setting(10.0, "returned paths are re-checked at `edge_resolution` / this", _API,
+                                       low=1.0)
+    # trying 3 nearest nodes instead of 1 cut the mean iterations by 19-25 % on fetch_cans_1 / cans_2 / boxes_3 and
+    # the mean CPU time by 5-7 % (120 seeds each, paired, interleaved; #19)
+    connect_from: int = setting(3, "the two-tree planner's greedy connection starts from this many of the tree's "
+                                "nearest nodes in turn, until one reaches the new node", _API, low=0.0, low_open=True)
+
+    def __post_init__(self) -> None:
+        _coerce_fields(self)
+        fine = self.step_size * self.validation_factor / self.resolution
+        if fine > MAX_FINE_CHECKS_PER_STEP:  # 2e10 configurations per edge (edge_resolution 1e-9) ran out of memory
+            finest = self.step_size * self.validation_factor / MAX_FINE_CHECKS_PER_STEP
+            raise ValueError(f"edge_resolution: {self.resolution:g} is too fine for step_size {self.step_size:g}: the "
+                             f"re-check of one edge would test {fine:.3g} configurations (at most "
+                             f"{MAX_FINE_CHECKS_PER_STEP:,}); give edge_resolution >= {finest:.3g}")
+
+    @property
+    def resolution(self) -> float:
+        """The collision-check spacing along edges: ``edge_resolution``, default ``step_size / 10``."""
+        return self.edge_resolution if self.edge_resolution is not None else self.step_size / 10.0
+
+
+@dataclass(frozen=True)
+class GoalSamplingSettings:
+    """How goal sources turn goal regions into valid goal configurations (lazyground/goals.py, drake/ik.py)."""
+
+    give_up_after: int = setting(50, "attempts on a goal region without one valid sample before it is given up",
+                                 _API, low=0.0, low_open=True)
+    attempts_per_sample: int = setting(10, "attempts one draw may make per goal sample it asks for", _API,
+                                       low=0.0, low_open=True)
+    ik_restarts: int = setting(3, "IK solves per attempt, each from another random start (workspace regions)",
+                               _API, low=0.0, low_open=True)
+    ik_solver: IKSolver = setting(IKSolver.BATCH, "IK solver: `batch` (numpy damped least squares, many attempts "
+                                  "at once), `snopt` or `ipopt` (a Drake program per restart)", _API)
+
+    def __post_init__(self) -> None:
+        _coerce_fields(self)
+
+
+@dataclass(frozen=True)
+class MotionSettings:
+    """After the solve (lazyground.motion, issue #16): shortcutting and time parameterisation."""
+
+    shortcut_iterations: int = setting(100, "shortcut attempts after the solve (0: keep the raw path; "
+                                       "`--no-shortcut`)", _MOTION, low=0.0)
+    shortcut_time: float = setting(1.0, "seconds the shortcutting may take", _MOTION, low=0.0)
     # the bounds keep a trajectory within ~1,000 times the default's samples (a slower or denser one ran out of
     # memory: --speed 1e-6 asked for 3e9 samples on parking_1, --sample-rate 1e9 for 3e10)
-    Setting("speed", float, 1.0, "trajectory speed s: velocity limits x s, acceleration limits x s²", _MOTION,
-            low=0.01, high=1.0),
-    Setting("sample_rate", float, 100.0, "trajectory samples per second", _MOTION, low=0.0, high=1000.0,
-            low_open=True),
-)
+    speed: float = setting(1.0, "trajectory speed s: velocity limits x s, acceleration limits x s²", _MOTION,
+                           low=0.01, high=1.0)
+    sample_rate: float = setting(100.0, "trajectory samples per second", _MOTION, low=0.0, high=1000.0,
+                                 low_open=True)
+
+    def __post_init__(self) -> None:
+        _coerce_fields(self)
+
+
+@dataclass(frozen=True)
+class TaskSettings:
+    """How a task shares its run between steps (lazyground/place.py)."""
+
+    place_share: float = setting(0.4, "pick and place: the share of the time limit one placement attempt may "
+                                 "use before the planner goes back for another object", _API, low=0.0, high=1.0,
+                                 low_open=True)
+    lift_min: float = setting(0.02, "pick and place: metres the gripper lifts the object at least (the lift stops at "
+                              "the first clear height from here on)", _API, low=0.0)
+    lift_max: float = setting(0.08, "pick and place: metres the lift may reach before the object counts as stuck",
+                              _API, low=0.0, low_open=True)
+    lift_step: float = setting(0.01, "pick and place: metres per IK step of the lift (each seeded by the last)", _API,
+                               low=0.0, low_open=True)
+
+    def __post_init__(self) -> None:
+        _coerce_fields(self)
+
+
+@dataclass(frozen=True)
+class SceneKeys:
+    """Keys of a scene's ``planner:`` block that are not a run's settings: its default seed, the world's padding."""
+
+    seed: int = setting(0, "the default random seed", frozenset({Layer.SCENE, Layer.CLI, Layer.BENCH}), low=0.0)
+    collision_padding: float = setting(0.0, "metres, robot–environment and robot–robot", frozenset({Layer.SCENE}),
+                                       low=0.0)
+
+
+@dataclass(frozen=True)
+class RunSettings:
+    """One run's settings: the planner's, goal sampling's, the motion's after the solve, the task's."""
+
+    planner: PlannerSettings = dataclasses.field(default_factory=PlannerSettings)
+    goal_sampling: GoalSamplingSettings = dataclasses.field(default_factory=GoalSamplingSettings)
+    motion: MotionSettings = dataclasses.field(default_factory=MotionSettings)
+    task: TaskSettings = dataclasses.field(default_factory=TaskSettings)
+
+    @classmethod
+    def of(cls, **values) -> "RunSettings":
+        """Settings from flat names (``step_size=1.0, speed=0.5``), each routed to its group.
+
+        Raises:
+            ValueError: an unknown setting, or a value out of its range / choices.
+        """
+        unknown = sorted(set(values) - set(_GROUP_OF))
+        if unknown:
+            raise ValueError(f"unknown planner setting {unknown[0]!r} (known: {', '.join(_GROUP_OF)})")
+        parts = {group: {} for group in _GROUPS}
+        for name, value in values.items():
+            parts[_GROUP_OF[name]][name] = value
+        return cls(**{group: kind(**parts[group]) for group, kind in _GROUPS.items()})
+
+    def replace(self, **values) -> "RunSettings":
+        """A copy with flat-named settings changed (each in its group)."""
+        out = {}
+        for name, value in values.items():
+            group = _GROUP_OF.get(name)
+            if group is None:
+                raise ValueError(f"unknown planner setting {name!r} (known: {', '.join(_GROUP_OF)})")
+            out.setdefault(group, {})[name] = value
+        return dataclasses.replace(self, **{g: dataclasses.replace(getattr(self, g), **v) for g, v in out.items()})
+
+
+_GROUPS: dict[str, type] = {"planner": PlannerSettings, "goal_sampling": GoalSamplingSettings,
+                            "motion": MotionSettings, "task": TaskSettings}  # RunSettings' fields
+_GROUP_OF: dict[str, str] = {f.name: group for group, kind in _GROUPS.items() for f in dataclasses.fields(kind)}
+
+
+def _declared_settings() -> tuple[Setting, ...]:
+    """Every field declared with :func:`setting`, as a :class:`Setting` (in declaration order, scene keys after
+    the planner's)."""
+    out = []
+    for kind in (PlannerSettings, SceneKeys, GoalSamplingSettings, MotionSettings, TaskSettings):
+        hints = typing.get_type_hints(kind)
+        for f in dataclasses.fields(kind):
+            meta = f.metadata["setting"]
+            typ = hints[f.name]
+            base = next((t for t in typing.get_args(typ) if t is not type(None)), typ)
+            out.append(Setting(f.name, base, f.default, meta["doc"], meta["layers"], meta["low"], meta["high"],
+                               meta["low_open"], meta["optional"], meta["default_doc"]))
+    return tuple(out)
+
+
+SETTINGS: tuple[Setting, ...] = _declared_settings()
 BY_NAME: dict[str, Setting] = {s.name: s for s in SETTINGS}
 
 
@@ -209,62 +376,28 @@ def coerce(name: str, value):
     return setting.coerce(value)
 
 
-# --- PlannerSettings: generated from the API layer ---------------------------------------------
-
-MAX_FINE_CHECKS_PER_STEP = 100_000  # configurations the fine re-check tests along an edge of step_size (default 100)
-
-
-def _post_init(self) -> None:
-    for s in declared(Layer.API):  # frozen: convert in place once, so every later read is typed
-        object.__setattr__(self, s.name, s.coerce(getattr(self, s.name)))
-    fine = self.step_size * self.validation_factor / _resolution(self)
-    if fine > MAX_FINE_CHECKS_PER_STEP:  # 2e10 configurations per edge (edge_resolution 1e-9) ran out of memory
-        finest = self.step_size * self.validation_factor / MAX_FINE_CHECKS_PER_STEP
-        raise ValueError(f"edge_resolution: {_resolution(self):g} is too fine for step_size {self.step_size:g}: the re-check "
-                         f"of one edge would test {fine:.3g} configurations (at most {MAX_FINE_CHECKS_PER_STEP:,}); "
-                         f"give edge_resolution >= {finest:.3g}")
-
-
-def _resolution(self) -> float:
-    """The collision-check spacing along edges: ``edge_resolution``, default ``step_size / 10``."""
-    return self.edge_resolution if self.edge_resolution is not None else self.step_size / 10.0
-
-
-def _field_type(s: Setting):
-    return s.type | None if s.optional else s.type
-
-
-PlannerSettings = dataclasses.make_dataclass(
-    "PlannerSettings",
-    [(s.name, _field_type(s), dataclasses.field(default=s.default)) for s in declared(Layer.API)],
-    frozen=True,
-    namespace={"__module__": __name__, "__post_init__": _post_init, "resolution": property(_resolution),
-               "__doc__": "Settings of the reward-penalty RRT (defaults as in the authors' code); "
-                          "fields and checks from :data:`lazyground.settings.SETTINGS`."},
-)
-
-
-def from_scene(spec, **overrides) -> PlannerSettings:
+def from_scene(spec, **overrides) -> RunSettings:
     """The settings a run uses: the scene's ``planner:`` values, then its ``per_algorithm``
     values for the algorithm that will run, then the non-None ``overrides``.
 
     Args:
         spec: a scene's PlannerSpec (``scene.planner``).
-        **overrides: PlannerSettings fields; None means "not given".
+        **overrides: settings by name (any group's: ``step_size``, ``speed``, ``ik_restarts``, ...);
+            None means "not given".
 
     Raises:
         ValueError: an unknown setting name, or a value out of its range / choices.
     """
-    unknown = sorted(set(overrides) - {s.name for s in declared(Layer.API)})
+    unknown = sorted(set(overrides) - set(_GROUP_OF))
     if unknown:
-        raise ValueError(f"unknown planner setting {unknown[0]!r} (known: {', '.join(s.name for s in declared(Layer.API))})")
+        raise ValueError(f"unknown planner setting {unknown[0]!r} (known: {', '.join(_GROUP_OF)})")
     given = {k: v for k, v in overrides.items() if v is not None}
     values = {s.name: getattr(spec, s.name) for s in declared(Layer.API) if Layer.SCENE in s.layers}
     per = spec.per_algorithm.get(coerce("algorithm", given.get("algorithm", spec.algorithm)))
     if per is not None:
         values.update({s.name: getattr(per, s.name) for s in declared(Layer.PER_ALGORITHM)
                        if getattr(per, s.name) is not None})
-    return PlannerSettings(**{**values, **given})
+    return RunSettings.of(**{**values, **given})
 
 
 # --- the docs ---------------------------------------------------------------------------------------
@@ -281,5 +414,14 @@ def markdown_table() -> str:
     keys = ", ".join(f"`{s.name}`" for s in declared(Layer.PER_ALGORITHM))
     rows += ["", f"`per_algorithm` (default none): settings that apply only when one algorithm runs: "
              f"`{{rrt: {{step_size: 2.65}}}}` (keys {keys}); the CLI's and API's own values still win."]
+    rows += ["", "Settings of a run that a scene file does not hold (`api.plan(..., name=value)`; the CLI's flags "
+             "where shown), each in its group of `lazyground.settings.RunSettings`:", "",
+             "| name | group | default | allowed | meaning | also |", "| --- | --- | --- | --- | --- | --- |"]
+    for s in declared(Layer.API):
+        if Layer.SCENE not in s.layers:
+            default = f"`{s.default}`" if s.choices else f"{s.default:,}" if s.type is int else f"{s.default:g}"
+            allowed = ", ".join(f"`{c}`" for c in s.choices) if s.choices else s.allowed()
+            also = f"`{s.flag}`" if Layer.CLI in s.layers else ""
+            rows.append(f"| `{s.name}` | {_GROUP_OF[s.name]} | {default} | {allowed} | {s.doc} | {also} |")
     return "\n".join(rows) + "\n"
 

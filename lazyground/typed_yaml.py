@@ -8,6 +8,8 @@ problem, e.g. ``scene.yaml: objects[2].geometry.radius: must be > 0, got -1``.
 from __future__ import annotations
 
 import dataclasses
+import difflib
+import re
 import types
 import typing
 from typing import Any, Union, get_args, get_origin, get_type_hints
@@ -187,7 +189,9 @@ def load_dataclass(value: Any, cls, path: str):
     for key in value:
         if key not in fields:
             known = ", ".join(sorted(fields))
-            _fail(f"{path}.{key}" if path else str(key), f"unknown key (known keys: {known})")
+            close = difflib.get_close_matches(str(key), sorted(fields), n=1, cutoff=0.6)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            _fail(f"{path}.{key}" if path else str(key), f"unknown key{hint} (known keys: {known})")
     kwargs = {}
     for name, field in fields.items():
         sub = f"{path}.{name}" if path else name
@@ -234,3 +238,27 @@ def in_range(lo: float, hi: float):
 def checked(check, **kwargs):
     """A dataclass field whose value must pass ``check``."""
     return dataclasses.field(metadata={"check": check}, **kwargs)
+
+
+def line_of(text: str, path: str) -> int | None:
+    """The 1-based line of the key a ``SceneError`` path names ("objects[2].type", "planer"), or None."""
+    try:
+        node = yaml.compose(text, Loader=yaml.SafeLoader)
+    except yaml.YAMLError:
+        return None
+    line = None
+    for part in re.findall(r"[^.\[\]]+|\[\d+\]", path):
+        if isinstance(node, yaml.SequenceNode) and part.startswith("["):
+            i = int(part[1:-1])
+            if i >= len(node.value):
+                return line
+            node = node.value[i]
+            line = node.start_mark.line + 1
+        elif isinstance(node, yaml.MappingNode):
+            hit = next(((k, v) for k, v in node.value if str(getattr(k, "value", "")) == part), None)
+            if hit is None:
+                return line
+            line, node = hit[0].start_mark.line + 1, hit[1]
+        else:
+            return line
+    return line

@@ -10,10 +10,8 @@ attempt is bounded by ``restarts`` x ``major_iterations`` alone.
 from __future__ import annotations
 
 import importlib.util
-import sys
 import time
 from dataclasses import replace
-from types import SimpleNamespace
 
 import pytest
 
@@ -46,31 +44,52 @@ def iteration_bound_ik():
     patch.undo()
 
 
-CPU_CLOCK = SimpleNamespace(perf_counter=time.process_time, monotonic=time.process_time, time=time.time, sleep=time.sleep)
-"""A stand-in for the ``time`` module whose clock is this process's CPU time."""
-
-
 @pytest.fixture
 def cpu_clock(monkeypatch):
     """Time limits counted in this process's CPU time, for the tests of time-limit adherence.
 
     Whether the planner stops within its limit is a property of the code (how long one
     iteration or one IK solve runs past the deadline), but on a shared machine the wall
-    clock also counts the time other processes hold the cores. Every ``lazyground``
-    module that reads ``time.perf_counter`` reads CPU time instead while the test runs,
-    so deadlines, reported times and overshoots are measured in work done. Modules are
-    found by what they import, not by name, so the fixture survives refactoring.
+    clock also counts the time other processes hold the cores. The stop conditions'
+    default clock (:data:`lazyground.planning.stop.CLOCK`, which every deadline and the
+    reported times are read on) reads CPU time instead while the test runs, so deadlines,
+    reported times and overshoots are measured in work done. No module's ``time`` is patched.
     """
-    import lazyground.api  # noqa: F401  (the planning stack: imported, so its modules are found below)
-    import lazyground.goals  # noqa: F401
-    import lazyground.planning.search  # noqa: F401
+    from lazyground.planning import stop
 
-    if importlib.util.find_spec("pydrake") is not None:
-        import lazyground.drake.ik  # noqa: F401
-        import lazyground.tasks.place  # noqa: F401
-    patched = [name for name, module in list(sys.modules.items())
-               if name.split(".")[0] in ("lazyground", "grounding") and getattr(module, "time", None) is time]
-    for name in patched:
-        monkeypatch.setattr(sys.modules[name], "time", CPU_CLOCK)
-    assert "lazyground.planning.search" in patched  # the planner's deadline at least
-    return CPU_CLOCK
+    monkeypatch.setattr(stop, "CLOCK", time.process_time)
+    return time.process_time
+
+
+REAL_CLOCKS = (time.monotonic, time.perf_counter, time.time)
+
+
+@pytest.fixture(autouse=True)
+def no_outcome_on_the_real_clock(request, monkeypatch):
+    """Fail a test in which a stop condition's deadline fired on the real clock (docs/reliability.md).
+
+    A deadline that fires on the wall clock lets the machine's load decide what the test sees; tests bound
+    plans by ``max_iterations`` (tests/counts.py), drive a ``FakeClock``, or measure CPU time (``cpu_clock``).
+    A test that must see a real deadline fire (the CLI's time-limit message, a subprocess) says so with
+    ``@pytest.mark.real_clock``. Active once ``lazyground.planning.stop`` exists; plans in child processes
+    are not seen.
+    """
+    if importlib.util.find_spec("lazyground.planning.stop") is None or request.node.get_closest_marker("real_clock"):
+        yield
+        return
+    from lazyground.planning import stop
+
+    fired = []
+    original = stop.StopCondition.timed_out
+
+    def timed_out(self):
+        out = original(self)
+        if out and self.clock is stop.default_clock and stop.CLOCK in REAL_CLOCKS:
+            fired.append(self.budget)
+        return out
+
+    monkeypatch.setattr(stop.StopCondition, "timed_out", timed_out)
+    yield
+    if fired:
+        pytest.fail(f"a {fired[0]:g} s deadline fired on the real clock ({len(fired)} readings past it): bound the "
+                    "run by max_iterations (tests/counts.py), drive a FakeClock, or mark the test real_clock", False)

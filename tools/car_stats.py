@@ -58,9 +58,9 @@ def main() -> None:
         r, motion = report.result, report.motion
         row = dict(seed=seed, status=r.status.value, iterations=r.iterations, search_cpu_s=round(cpu[-1], 3),
                    region=r.goal_region.id if r.goal_region else "")
-        if r.solved and r.cusps is not None:
+        if r.solved and report.cusps is not None:
             raw = motion.raw_path if motion is not None else r.path
-            row.update(raw_cusps=space.cusps(raw), cusps=r.cusps, raw_length=round(motion.raw_length if motion else r.path_length, 2),
+            row.update(raw_cusps=space.cusps(raw), cusps=report.cusps, raw_length=round(motion.raw_length if motion else r.path_length, 2),
                        length=round(r.path_length, 2), shortcut_s=round(motion.shortcut_s, 3) if motion else 0.0)
         rows.append(row)
         print(json.dumps(row), flush=True)

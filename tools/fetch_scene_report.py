@@ -66,7 +66,7 @@ def plan_report(scene, world, request: str, seeds: int, time_limit: float, confi
             times.append(r.time_s)
             sampling.append(res.goal_sampling_s)
             if res.solved:
-                assert path_is_valid(world.space, world, res.path, r.settings.step_size / 100) < 0, f"seed {seed}: invalid path"
+                assert path_is_valid(world.space, world, res.path, r.settings.planner.step_size / 100) < 0, f"seed {seed}: invalid path"
                 solved += 1
                 reached[res.goal_region.id] += 1
         lines.append(f"| {strategy} | {bias:g} | {solved}/{seeds} | {statistics.mean(times):.2f} | {statistics.median(times):.2f} | "

@@ -10,6 +10,7 @@ import grounding
 from lazyground.drake.ik import IKGoalSource, IKSettings, region_coordinates
 from lazyground.drake.world import DrakeWorld
 from lazyground.geometry import wrap_angle
+from lazyground.planning.stop import StopCondition
 from lazyground.scene import load_scene
 
 def excess(region, v):
@@ -31,7 +32,7 @@ for name, req in (("fetch_cans_1", "pick up a can"), ("fetch_boxes_3", "pick up 
         s = IKSettings(position_tolerance=pt, orientation_tolerance=ot)
         src = IKGoalSource(regions, world, s)
         t0 = time.perf_counter()
-        samples = src.draw(int(sys.argv[1]) if len(sys.argv) > 1 else 30, np.random.default_rng(0), time.perf_counter() + 120)
+        samples = src.draw(int(sys.argv[1]) if len(sys.argv) > 1 else 30, np.random.default_rng(0), StopCondition.after(120))
         dt = time.perf_counter() - t0
         ex = [excess(src.regions[x.region], region_coordinates(src.regions[x.region], src.frame_pose(src.regions[x.region].frame, world.full(x.end)))) for x in samples]
         c = src.counters

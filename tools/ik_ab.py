@@ -28,6 +28,7 @@ import grounding  # noqa: E402
 from lazyground.api import planner_settings  # noqa: E402
 from lazyground.drake.ik import DEFAULT_IK_SETTINGS, IKGoalSource  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
+from lazyground.planning.stop import StopCondition  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 
 SCENES = Path(__file__).resolve().parents[1] / "yaml_scenes"
@@ -38,9 +39,9 @@ def one_run(world, regions, settings, ik_settings, seed: int, resamples: int) ->
     rng = np.random.default_rng(seed)
     checks0 = world.checks
     t0 = time.process_time()
-    samples = source.draw(settings.initial_goal_samples, rng, float("inf"))
+    samples = source.draw(settings.initial_goal_samples, rng, StopCondition())
     for _ in range(resamples):
-        samples += source.draw(settings.resample_count, rng, float("inf"))
+        samples += source.draw(settings.resample_count, rng, StopCondition())
     cpu = time.process_time() - t0
     return {"cpu": cpu, "valid": len(samples), "attempts": sum(st.attempts for st in source.stats),
             "solves": source.counters.solves, "ik_ok": source.counters.successes, "checks": world.checks - checks0}

@@ -40,9 +40,9 @@ def main() -> None:
             if r.result.solved:
                 solved += 1
                 spots[r.chosen_object] += 1
-                cusps.append(r.result.cusps or 0)
+                cusps.append(r.cusps or 0)
         mean_cusps = f"{statistics.mean(cusps):.1f}" if cusps else "-"
-        print(f"{scene.name} {r.settings.kinematics} {strategy}: solved {solved}/{args.seeds}, "
+        print(f"{scene.name} {r.settings.planner.kinematics} {strategy}: solved {solved}/{args.seeds}, "
               f"mean time {statistics.mean(times):.2f} s (max {max(times):.2f}), mean gear changes {mean_cusps}; "
               f"reached {dict(sorted(spots.items()))}")
 

@@ -116,7 +116,7 @@ def check_report(report, scene, world) -> list[str]:
     from lazyground.planning import path_is_valid
 
     res = report.result
-    fine = report.settings.resolution / 10
+    fine = report.settings.planner.resolution / 10
     if report.steps:  # pick and place: both steps, the lift and the carried object
         from lazyground.tasks.place import validate_pick_and_place
 

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from lazyground.planning.stop import StopCondition
 from lazyground.settings import Algorithm
 
 
@@ -85,8 +86,8 @@ def peer_setup(problem, spec, counterpart: Algorithm) -> PeerSetup:
     from lazyground.bench import arms
     from lazyground.goals import ConfigGoalSource
 
-    t0 = time.perf_counter()
-    deadline = t0 + spec.time_limit
+    stop = StopCondition.after(spec.time_limit, clock=time.perf_counter)  # the peers read perf_counter too
+    t0, deadline = stop.start, stop.deadline
     world = problem.world
     regions, grounding_s = problem.ground()
     if problem.regions:
@@ -97,8 +98,8 @@ def peer_setup(problem, spec, counterpart: Algorithm) -> PeerSetup:
         source = make_goal_source(world, regions)
     rng = np.random.default_rng(spec.seed)
     samples = []
-    while not samples and not source.exhausted() and time.perf_counter() < deadline:
-        samples = source.draw(settings.initial_goal_samples, rng, deadline)
+    while not samples and not source.exhausted() and not stop.should_stop():
+        samples = source.draw(settings.initial_goal_samples, rng, stop)
     fields = dict(grounding_s=grounding_s, goal_sampling_s=source.sample_time, goal_samples=len(samples), resamplings=0,
                   goal_attempts=sum(st.attempts for st in source.stats))
     return PeerSetup(world, tuple(regions), settings, samples, fields, t0, deadline, world.check_time, world.checks)

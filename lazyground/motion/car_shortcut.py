@@ -13,19 +13,20 @@ as every returned path) is put back as it was driven.
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, replace
 
 import numpy as np
 
 from lazyground.geometry import wrap_angle
-from lazyground.motion.pipeline import Motion
+from lazyground.motion.pipeline import Motion, motion_for_world
 from lazyground.motion.shortcut import ShortcutStatus
 from lazyground.planning import curves
 from lazyground.planning.car import DENSE_SPACING, CarSpace, drive_profile
 from lazyground.planning.problem import PlanResult, ValidityChecker
-from lazyground.planning.search import path_is_valid, samples_free
-from lazyground.settings import PlannerSettings
+from lazyground.planning.motion_validator import samples_free
+from lazyground.planning.search import path_is_valid
+from lazyground.planning.stop import StopCondition
+from lazyground.settings import RunSettings
 
 _SPARSE = 8  # the first pass of a candidate curve's collision check takes every 8th sample
 
@@ -70,7 +71,7 @@ def shorten_car_path(
     resolution: float,
     validation_factor: float,
     max_iterations: int,
-    time_budget: float,
+    stop: StopCondition,
     rng: np.random.Generator,
 ) -> CarShortcut:
     """Shortcut a dense car path by curves between its own samples (start and goal kept).
@@ -82,13 +83,14 @@ def shorten_car_path(
         resolution: the planner's edge resolution; candidate curves are checked at it.
         validation_factor: new curves of the result are re-checked at ``resolution / validation_factor``.
         max_iterations: shortcut attempts (pairs of samples tried).
-        time_budget: seconds; whichever budget runs out first stops the attempts.
+        stop: when to stop trying (its deadline: the shortcut's time budget); whichever of it and
+            ``max_iterations`` comes first stops the attempts.
         rng: the only source of randomness (the plan's generator).
 
     Returns:
         A CarShortcut; every curve of its path that is not a piece of ``dense`` passed the fine re-check.
     """
-    t0 = time.perf_counter()
+    t0 = stop.now()
     dense = np.asarray(dense, float)
     steps = driven_lengths(space, dense)
     gears = drive_profile(space.reference(dense))
@@ -98,7 +100,7 @@ def shorten_car_path(
     hop_len = [float(v) for v in steps]
     hop_gears = [[g] if g else [] for g in gears.tolist()]
     iterations = accepted = 0
-    while iterations < max_iterations and len(keep) > 2 and time.perf_counter() - t0 < time_budget:
+    while iterations < max_iterations and len(keep) > 2 and not stop.should_stop():
         iterations += 1
         i, j = sorted(rng.choice(len(keep), size=2, replace=False).tolist())
         if j - i < 2:
@@ -123,7 +125,7 @@ def shorten_car_path(
     length = float(sum(steps[a:b].sum() if b == a + 1 else space.distance(dense[a], dense[b])
                        for a, b in zip(keep[:-1], keep[1:])))
     return CarShortcut(path, dense, length, float(steps.sum()), space.cusps(path), space.cusps(dense),
-                       iterations, accepted, reverted, time.perf_counter() - t0)
+                       iterations, accepted, reverted, stop.now() - t0)
 
 
 def _curve_free(space: CarSpace, checker: ValidityChecker, a: np.ndarray, b: np.ndarray, resolution: float) -> bool:
@@ -161,7 +163,7 @@ def _densified(space: CarSpace, dense: np.ndarray, keep: list[int]) -> np.ndarra
     return np.vstack(parts)
 
 
-def shorten_car_result(space: CarSpace, checker: ValidityChecker, result: PlanResult, planner: PlannerSettings,
+def shorten_car_result(space: CarSpace, checker: ValidityChecker, result: PlanResult, settings: RunSettings,
                        rng: np.random.Generator) -> tuple[PlanResult, CarShortcut | None]:
     """The task's hook: a solved car result with its path shortened along curves.
 
@@ -169,18 +171,19 @@ def shorten_car_result(space: CarSpace, checker: ValidityChecker, result: PlanRe
         space: the car space it was planned in.
         checker: the planner's validity checker.
         result: the planner's result (its path dense along the curves).
-        planner: the settings it was planned with (resolution, validation factor, shortcut budgets).
+        settings: the run's (the planner's resolution and validation factor, the motion's shortcut budgets).
         rng: the plan's generator (continues its stream, so the shortcut follows from the seed).
 
     Returns:
         (the result with the shortened path, its driven length and gear changes, the CarShortcut);
         (result, None) when it is not solved or shortcutting is off.
     """
-    if not result.solved or result.path is None or planner.shortcut_iterations <= 0:
+    motion, planner = settings.motion, settings.planner
+    if not result.solved or result.path is None or motion.shortcut_iterations <= 0:
         return result, None
     cut = shorten_car_path(space, checker, result.path, planner.resolution, planner.validation_factor,
-                           planner.shortcut_iterations, planner.shortcut_time, rng)
-    return replace(result, path=cut.path, path_length=cut.length, cusps=cut.cusps), cut
+                           motion.shortcut_iterations, StopCondition.after(motion.shortcut_time), rng)
+    return replace(result, path=cut.path, path_length=cut.length), cut
 
 
 def with_car_shortcut(motion: Motion | None, cut: CarShortcut | None) -> Motion | None:
@@ -196,3 +199,15 @@ def with_car_shortcut(motion: Motion | None, cut: CarShortcut | None) -> Motion 
                     length=cut.length, direct_length=float("nan"), iterations=cut.iterations,
                     accepted=cut.accepted - cut.reverted, time_s=cut.time_s)
     return replace(motion, shortcut=short, shortcut_s=cut.time_s)
+
+
+def shorten_and_time_car(space: CarSpace, world, result: PlanResult, settings: RunSettings,
+                         rng: np.random.Generator) -> tuple[PlanResult, Motion | None]:
+    """A car's post-processing (``CarSpace.post_processing``, lazyground.motion.post): shortened along its
+    curves (#17), then timed as driven, resting at every gear change (a straight shortcut would leave the
+    curves); the motion records the gear changes (``cusps``)."""
+    result, cut = shorten_car_result(space, world, result, settings, rng)
+    stops = space.cusp_indices(result.path) if result.solved else None
+    result, motion = motion_for_world(world, result, settings, rng, stops=stops, car=space)
+    motion = with_car_shortcut(motion, cut)
+    return result, None if motion is None else replace(motion, cusps=space.cusps(result.path))

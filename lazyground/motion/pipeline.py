@@ -11,17 +11,17 @@ from lazyground.motion.shortcut import ShortcutResult, ShortcutSettings, Shortcu
 from lazyground.motion.trajectory import Limits, MotionError, TimingSettings, Trajectory, time_path
 from lazyground.planning.car import CarSpace
 from lazyground.planning.problem import PlanResult, ValidityChecker
-from lazyground.settings import PlannerSettings
+from lazyground.settings import MotionSettings, RunSettings
 from lazyground.planning.space import ConfigSpace
 
 
-def shortcut_settings(settings: PlannerSettings) -> ShortcutSettings:
-    """The shortcut's settings from the planner's (declared in lazyground.settings)."""
+def shortcut_settings(settings: MotionSettings) -> ShortcutSettings:
+    """The shortcut's settings from the run's motion settings (declared in lazyground.settings)."""
     return ShortcutSettings(enabled=settings.shortcut_iterations > 0, max_iterations=settings.shortcut_iterations,
                             time_budget=settings.shortcut_time)
 
 
-def timing_settings(settings: PlannerSettings) -> TimingSettings:
+def timing_settings(settings: MotionSettings) -> TimingSettings:
     return TimingSettings(speed=settings.speed, sample_rate=settings.sample_rate)
 
 
@@ -34,6 +34,7 @@ class Motion:
     shortcut_s: float
     timing_s: float
     note: str = ""  # why there is no trajectory
+    cusps: int | None = None  # a car's gear changes along the path (None: not a car; lazyground.motion.car_shortcut)
 
     @property
     def raw_path(self) -> np.ndarray:
@@ -56,7 +57,7 @@ def make_motion(
     space: ConfigSpace,
     checker: ValidityChecker,
     result: PlanResult,
-    planner: PlannerSettings,
+    settings: RunSettings,
     limits: Limits | None,
     rng: np.random.Generator,
     stops: tuple[int, ...] | None = None,
@@ -68,7 +69,7 @@ def make_motion(
         space: the planner's configuration space.
         checker: the planner's validity checker.
         result: a solved PlanResult (its goal's ``final`` marks a straight approach to keep).
-        planner: the settings it was planned with (resolution, validation factor) and the motion's
+        settings: the run's: the planner's (resolution, validation factor) and the motion's
             (shortcut_iterations, shortcut_time, speed, sample_rate).
         limits: velocity/acceleration limits; None: no trajectory.
         rng: the plan's generator (continues its stream, so the motion follows from the seed).
@@ -81,7 +82,8 @@ def make_motion(
         The Motion; its ``shortcut.path`` passed the fine re-check.
     """
     approach = result.goal is not None and result.goal.final is not None
-    cut = shortcut_settings(planner)
+    planner = settings.planner
+    cut = shortcut_settings(settings.motion)
     short = shortcut_path(space, checker, result.path, planner.resolution, planner.validation_factor,
                           replace(cut, enabled=False) if stops is not None else cut, rng, keep_last_segment=approach)
     if limits is None:
@@ -94,7 +96,7 @@ def make_motion(
             # The whole sampled curve is checked, not only the corners off the (fine-checked) path: the re-check
             # at the same resolution tests other points of those segments, and a path grazing an obstacle
             # between the two sets failed it (panda_tabletop, "pick up cup_shelf", seed 3).
-            timing = timing_settings(planner) if stops is not None else timing_settings(planner).for_shortened()
+            timing = timing_settings(settings.motion) if stops is not None else timing_settings(settings.motion).for_shortened()
             traj = time_path(space, checker, attempt.path, limits, fine, timing, stops=rests, car=car)
         except MotionError as exc:
             if attempt.path is attempt.raw_path:
@@ -113,7 +115,7 @@ def with_motion(result: PlanResult, motion: Motion) -> PlanResult:
     return replace(result, path=motion.shortcut.path, path_length=motion.shortcut.length)
 
 
-def motion_for_world(world, result: PlanResult, planner: PlannerSettings,
+def motion_for_world(world, result: PlanResult, settings: RunSettings,
                      rng: np.random.Generator, stops: tuple[int, ...] | None = None,
                      car: CarSpace | None = None) -> tuple[PlanResult, Motion | None]:
     """The API's hook: shorten and time a result planned in a DrakeWorld.
@@ -131,7 +133,7 @@ def motion_for_world(world, result: PlanResult, planner: PlannerSettings,
         limits, note = world_limits(world), ""
     except SceneError as exc:
         limits, note = None, f"no trajectory: {exc}"
-    motion = make_motion(world.space, world, result, planner, limits, rng, stops, car)
+    motion = make_motion(world.space, world, result, settings, limits, rng, stops, car)
     if note and not motion.note:
         motion = replace(motion, note=note)
     if stops is not None:  # timed as driven, not shortened: the path and its (driven) length stay the planner's

@@ -31,7 +31,6 @@ from __future__ import annotations
 
 import enum
 import functools
-import time
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -41,6 +40,7 @@ from lazyground.motion.edges import bisected_edge
 from lazyground.motion.relax import relax
 from lazyground.planning.problem import ValidityChecker
 from lazyground.planning.space import ConfigSpace
+from lazyground.planning.stop import StopCondition
 
 
 class ShortcutStatus(str, enum.Enum):
@@ -132,6 +132,7 @@ def shortcut_path(
     settings: ShortcutSettings,
     rng: np.random.Generator,
     keep_last_segment: bool = False,
+    stop: StopCondition | None = None,
 ) -> ShortcutResult:
     """Shorten ``path`` (start and goal kept).
 
@@ -144,32 +145,35 @@ def shortcut_path(
         settings: budgets and the shares of the three kinds of shortcut.
         rng: the only source of randomness (the plan's generator).
         keep_last_segment: keep the last segment as it is (a goal sample's straight approach).
+        stop: when the random shortcuts and the relaxation stop trying (default: ``settings.time_budget``
+            seconds from now).
 
     Returns:
         A ShortcutResult; ``path`` is never longer than ``raw_path`` and every segment of it is
         free at the fine resolution.
     """
-    t0 = time.perf_counter()
+    if stop is None:
+        stop = StopCondition.after(settings.time_budget)
+    t0 = stop.now()
     raw = np.asarray(path, float)
     raw_length = space.path_length(raw)
 
     def done(status, out, iterations=0, accepted=0):
         return ShortcutResult(status, out, raw, raw_length, space.path_length(out), iterations, accepted,
-                              time.perf_counter() - t0, space.distance(raw[0], raw[-1]))
+                              stop.now() - t0, space.distance(raw[0], raw[-1]))
 
     if not settings.enabled:
         return done(ShortcutStatus.DISABLED, raw)
     body, tail = (raw[:-1], raw[-1:]) if keep_last_segment and len(raw) > 2 else (raw, raw[:0])
     start = _drop_redundant(space, _Path(space, list(body), [0] * (len(body) - 1)))
-    deadline = t0 + settings.time_budget
     fine = _FineCheck(space, checker, resolution / validation_factor, raw)
     checked = bisected_edge(space, checker, resolution)
     edge = _remembered(checked)  # a redo's greedy pass asks the same edges again
     probe = _remembered(lambda a, b: checked(a, b, "probes"))
-    versions, iterations, backtracked = _shorten(space, edge, fine, start, settings, rng, deadline, lazy=True, probe=probe)
+    versions, iterations, backtracked = _shorten(space, edge, fine, start, settings, rng, stop, lazy=True, probe=probe)
     if versions is None:  # a segment of the unchecked greedy pass failed the fine check: again, checking each as chosen
         rest = replace(settings, max_iterations=settings.max_iterations - iterations)  # attempts in all stay within it
-        versions, more, backtracked = _shorten(space, edge, fine, start, rest, rng, deadline, lazy=False, probe=probe)
+        versions, more, backtracked = _shorten(space, edge, fine, start, rest, rng, stop, lazy=False, probe=probe)
         iterations += more
     if not versions:  # a piece of the input path (version 0's) fails: the input path itself
         return done(ShortcutStatus.BACKTRACKED, raw, iterations, 0)
@@ -200,7 +204,7 @@ def _remembered(edge):
 
 
 def _shorten(space: ConfigSpace, edge, fine: "_FineCheck", start: _Path, settings: ShortcutSettings,
-             rng: np.random.Generator, deadline: float, lazy: bool, probe=None) -> tuple[list | None, int, bool]:
+             rng: np.random.Generator, stop: StopCondition, lazy: bool, probe=None) -> tuple[list | None, int, bool]:
     """Greedy pass, random shortcuts, relaxation, then the fine check of the result, going back to the newest
     version whose segments all pass. Returns (versions, attempts, whether it went back); versions is [] when
     a piece of the input path fails.
@@ -217,9 +221,9 @@ def _shorten(space: ConfigSpace, edge, fine: "_FineCheck", start: _Path, setting
         versions.append(_drop_redundant(space, _greedy(space, edge, None, start, born=1, probe=probe)))
     elif settings.greedy and len(start.q) > 2:
         versions[0] = _drop_redundant(space, _greedy(space, edge, fine.segment_free, start, probe=probe))
-    iterations = _random_shortcuts(space, edge, versions, settings, rng, deadline)
-    _relax(space, edge, versions, settings, deadline)
-    if settings.regreedy and len(versions) > 1 + lazy and len(versions[-1].q) > 2 and time.perf_counter() < deadline:
+    iterations = _random_shortcuts(space, edge, versions, settings, rng, stop)
+    _relax(space, edge, versions, settings, stop)
+    if settings.regreedy and len(versions) > 1 + lazy and len(versions[-1].q) > 2 and not stop.should_stop():
         versions.append(_drop_redundant(space, _greedy(space, edge, fine.segment_free, versions[-1], probe=probe)))
     backtracked = False
     while (bad := fine.first_failure(versions[-1])) is not None:
@@ -233,12 +237,12 @@ def _shorten(space: ConfigSpace, edge, fine: "_FineCheck", start: _Path, setting
 
 
 def _random_shortcuts(space: ConfigSpace, edge, versions: list, settings: ShortcutSettings, rng: np.random.Generator,
-                      deadline: float) -> int:
-    """Random shortcuts until ``settings.max_iterations`` attempts, the deadline or ``patience`` attempts
+                      stop: StopCondition) -> int:
+    """Random shortcuts until ``settings.max_iterations`` attempts, the stop condition or ``patience`` attempts
     in a row without gain; every shorter path is appended to ``versions``. Returns the attempts."""
     work = versions[-1]
     iterations = idle = 0
-    while (iterations < settings.max_iterations and idle < settings.patience and time.perf_counter() < deadline
+    while (iterations < settings.max_iterations and idle < settings.patience and not stop.should_stop()
            and len(work.q) > 2):
         iterations += 1
         idle += 1
@@ -260,14 +264,14 @@ def _random_shortcuts(space: ConfigSpace, edge, versions: list, settings: Shortc
     return iterations
 
 
-def _relax(space: ConfigSpace, edge, versions: list, settings: ShortcutSettings, deadline: float) -> None:
+def _relax(space: ConfigSpace, edge, versions: list, settings: ShortcutSettings, stop: StopCondition) -> None:
     """Relaxation sweeps over the newest version (lazyground.motion.relax); each sweep that moves a waypoint
     appends a version, so a segment failing the fine check costs only the sweeps from its own on."""
     work = versions[-1]
     if not settings.relax_pieces or len(work.q) < 3:
         return
     sweeps = relax(space, edge, work.q, work.new, len(versions), settings.relax_pieces, settings.relax_sweeps,
-                   settings.relax_halvings, settings.min_gain * work.cum[-1], lambda: time.perf_counter() < deadline)
+                   settings.relax_halvings, settings.min_gain * work.cum[-1], lambda: not stop.should_stop())
     versions.extend(_drop_redundant(space, _Path(space, q, new)) for q, new in sweeps)
 
 

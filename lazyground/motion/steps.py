@@ -54,7 +54,7 @@ def report_trajectory(report) -> Trajectory | None:
     return join(steps, ["close gripper"] * (len(steps) - 1) + ["open gripper"])
 
 
-def pick_and_place_motions(world, carrying, pick, lift_path: np.ndarray, place, planner, rng):
+def pick_and_place_motions(world, carrying, pick, lift_path: np.ndarray, place, settings, rng):
     """Shorten and time both steps of a pick and place.
 
     The pick is shortened and timed in ``world``; the place step in ``carrying`` (the object
@@ -68,11 +68,12 @@ def pick_and_place_motions(world, carrying, pick, lift_path: np.ndarray, place, 
     from lazyground.motion.pipeline import motion_for_world, timing_settings
     from lazyground.motion.trajectory import time_path
 
-    pick, pick_motion = motion_for_world(world, pick, planner, rng)
-    place, place_motion = motion_for_world(carrying, place, planner, rng)
+    pick, pick_motion = motion_for_world(world, pick, settings, rng)
+    place, place_motion = motion_for_world(carrying, place, settings, rng)
     if place_motion is not None and place_motion.trajectory is not None:
-        lift = time_path(world.space, world, lift_path, place_motion.trajectory.limits,
-                         planner.resolution / planner.validation_factor, replace(timing_settings(planner), speed=1.0, blends=()))
+        planner = settings.planner
+        lift = time_path(world.space, world, lift_path, place_motion.trajectory.limits, planner.resolution / planner.validation_factor,
+                         replace(timing_settings(settings.motion), speed=1.0, blends=()))
         # the limits are already scaled by speed: time the lift under the same ones
         place_motion = replace(place_motion, trajectory=join([lift, place_motion.trajectory], []),
                                timing_s=place_motion.timing_s + lift.time_s)

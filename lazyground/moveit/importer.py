@@ -169,7 +169,7 @@ def _check_types(scene, source: Path) -> None:
     from grounding.regions import check_types
 
     try:
-        check_types(scene, source="")
+        check_types(scene)
     except GroundingError as exc:
         raise SceneError(f"{source}: {str(exc).split(' (types:')[0]} (from a --type or --rules rule; the types are "
                          f"those of lazyground/scene/types.yaml, or 'obstacle')") from None

@@ -28,17 +28,15 @@ from __future__ import annotations
 import numpy as np
 
 from lazyground.planning.problem import PlanResult, PlanStatus
-from lazyground.planning.search import Search, edge_free, path_is_valid
+from lazyground.planning.search import Search, path_is_valid
 from lazyground.planning.tree import Tree
 
 # Where along a start-tree edge a step checks a configuration besides its end (the rest waits for _join).
 LAZY_PROBES = (0.5,)
 # A greedy connection starts from the tree's nearest node, then from its next nearest ones, until one
-# reaches the new node: most connections stop at their first step (the straight line from the nearest
-# node is blocked), and another nearby node often sees the new one. Trying 3 instead of 1 cut the mean
-# iterations by 19-25 % on fetch_cans_1 / cans_2 / boxes_3 and the mean CPU time by 5-7 % (120 seeds
-# each, paired, interleaved; #19). Trying them from distinct goal trees first was no better.
-CONNECT_FROM = 3
+# reaches the new node (``connect_from`` of them, a planner setting): most connections stop at their first
+# step (the straight line from the nearest node is blocked), and another nearby node often sees the new one.
+# Trying them from distinct goal trees first was no better.
 
 
 def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
@@ -124,7 +122,7 @@ def _step(s: Search, tree: Tree, parent: int, q_new: np.ndarray) -> int:
     """
     q_parent = tree.nodes[parent]
     if tree is not s.trees[0]:
-        return tree.add(q_new, parent) if edge_free(s.space, s.checker, q_parent, q_new, s.settings.resolution) else -1
+        return tree.add(q_new, parent) if s.motion.edge_free(q_parent, q_new, s.settings.resolution) else -1
     free = getattr(s.checker, "config_unpadded_free", s.checker.config_free)
     if not free(q_new) or not all(free(s.space.interpolate(q_parent, q_new, t)) for t in LAZY_PROBES):
         return -1  # (most steps end blocked: the probes are computed only past a free end)
@@ -132,9 +130,9 @@ def _step(s: Search, tree: Tree, parent: int, q_new: np.ndarray) -> int:
 
 
 def _connect(s: Search, tree: Tree, q_target: np.ndarray) -> tuple[int, bool]:
-    """Greedy steps towards q_target from each of the tree's :data:`CONNECT_FROM` nearest nodes in turn,
+    """Greedy steps towards q_target from each of the tree's ``connect_from`` nearest nodes in turn,
     until one reaches it: (that node, True), else (the last node nearest q_target, False)."""
-    nodes = tree.nearest_k(q_target, CONNECT_FROM)
+    nodes = tree.nearest_k(q_target, s.settings.connect_from)
     if len(nodes) <= 1:  # (a car's tree gives only its nearest node: no distances to compare)
         return _greedy(s, tree, nodes[0], q_target) if nodes else (-1, False)
     best, best_gap = -1, np.inf

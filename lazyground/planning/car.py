@@ -6,7 +6,9 @@ that), so goal regions, strategies and both planners are unchanged:
 - ``distance`` is the length of the shortest curve (metres driven);
 - ``steer`` moves at most ``step`` along that curve, ``interpolate`` and
   ``discretize`` walk it, so edges are collision-checked along the curve
-  (``linear_edges`` is False: see :func:`lazyground.planning.search.edge_free`);
+  (:meth:`CarSpace.motion_validator`: a sampled validator, not the checker's straight edges);
+- a returned path is its curves sampled densely (:meth:`CarSpace.dense_path`), shortened along
+  curves and timed as driven (``post_processing = "curves"``: lazyground.motion.post);
 - nearest neighbours: the ``nn_candidates`` nearest nodes in the inherited embedding
   (x, y, r cos th, r sin th), r the turning radius, re-ranked by curve length
   (:meth:`CarSpace.closest`). The embedding alone is a poor proxy (a sideways offset
@@ -35,6 +37,7 @@ import numpy as np
 
 from lazyground.geometry import wrap_angle
 from lazyground.planning import curves
+from lazyground.planning.motion_validator import SampledMotionValidator
 from lazyground.planning.space import ConfigSpace
 from lazyground.settings import Kinematics
 
@@ -59,7 +62,7 @@ class CarSpace(ConfigSpace):
     radius: float = 1.0
     offset: float = 0.0
     nn_candidates: int = NN_CANDIDATES
-    linear_edges = False  # class attribute, as ConfigSpace.linear_edges
+    post_processing = "curves"  # shortcut along curves, then timed as driven (class attribute, as ConfigSpace's)
 
     def __post_init__(self):
         super().__post_init__()
@@ -205,11 +208,14 @@ class CarSpace(ConfigSpace):
     def path_length(self, path: np.ndarray) -> float:
         return float(sum(self.distance(a, b) for a, b in zip(path[:-1], path[1:])))
 
-    def densify(self, path: np.ndarray, spacing: float = DENSE_SPACING) -> np.ndarray:
-        """The path's curves sampled at most ``spacing`` metres apart (waypoints kept)."""
+    def motion_validator(self, checker) -> SampledMotionValidator:
+        """Curve edges, checked at this space's samples along them (the checker interpolates straight lines)."""
+        return SampledMotionValidator(self, checker)
+
+    def dense_path(self, path: np.ndarray, spacing: float = DENSE_SPACING) -> np.ndarray:
+        """The path's curves sampled at most ``spacing`` metres apart (waypoints kept): what the car drives."""
         parts = [self.discretize(a, b, spacing, skip_first=k > 0) for k, (a, b) in enumerate(zip(path[:-1], path[1:]))]
         return np.vstack(parts) if parts else np.array(path, float)
-
 
     def cusps(self, dense: np.ndarray) -> int:
         """Gear changes along a dense path of this space (see :func:`gear_changes`)."""
@@ -252,13 +258,10 @@ def cusp_indices(path: np.ndarray) -> tuple[int, ...]:
     return tuple(int(k) for k in flips)
 
 
-def make_space(base: ConfigSpace, kinematics: str | Kinematics, radius: float, offset: float = 0.0) -> ConfigSpace:
-    """``base`` for a holonomic car, else a CarSpace over its bounds.
+def car_space(base: ConfigSpace, kinematics: Kinematics, radius: float, offset: float = 0.0) -> CarSpace:
+    """A CarSpace over ``base``'s bounds (registered in :data:`lazyground.planning.kinematics.SPACES`).
 
     Nearest neighbours weigh the heading by the turning radius (see the module docstring).
     """
-    kinematics = Kinematics(kinematics)
-    if kinematics is Kinematics.HOLONOMIC:
-        return base
     return CarSpace(base.names, base.lower, base.upper, np.array([1.0, 1.0, radius]), base.wrap,
                     kinematics=kinematics, radius=float(radius), offset=float(offset))

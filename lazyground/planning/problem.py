@@ -13,6 +13,7 @@ from typing import Protocol
 import numpy as np
 
 from lazyground.planning.space import ConfigSpace
+from lazyground.planning.stop import StopCondition
 from lazyground.regions import GoalRegion
 from lazyground.settings import PlannerSettings  # noqa: F401  (declared once in lazyground.settings)
 
@@ -94,8 +95,8 @@ class GoalSource(Protocol):
     regions: tuple[GoalRegion, ...]
     stats: list[RegionStats]
 
-    def draw(self, n: int, rng: np.random.Generator, deadline: float) -> list[GoalSample]:
-        """Up to n new valid samples spread over the regions; fewer if attempts or time run out."""
+    def draw(self, n: int, rng: np.random.Generator, stop: StopCondition) -> list[GoalSample]:
+        """Up to n new valid samples spread over the regions; fewer if attempts run out or ``stop`` says so."""
         ...
     def exhausted(self) -> bool:
         """True when no region can yield a valid sample any more."""
@@ -128,7 +129,6 @@ class PlanResult:
     path_length: float = 0.0
     invalid_paths_rejected: int = 0
     collision_checks: int = 0  # the planner's config and edge checks (an edge check counts once), not the goal sampler's
-    cusps: int | None = None  # car spaces: gear changes along the path (None: not a car)
 
     @property
     def solved(self) -> bool:

@@ -14,8 +14,9 @@ import numpy as np
 
 from lazyground.planning.birrt import grow_bidirectional
 from lazyground.planning.problem import GoalSource, PlannerSettings, PlanResult, PlanStatus, ValidityChecker
-from lazyground.planning.search import Search, edge_fraction, edge_free, path_is_valid
+from lazyground.planning.search import Search, path_is_valid
 from lazyground.planning.space import ConfigSpace
+from lazyground.planning.stop import StopCondition, StopReason
 from lazyground.planning.tree import Tree
 from lazyground.settings import Algorithm, GoalExtension
 
@@ -34,6 +35,7 @@ def solve(
     rng: np.random.Generator,
     seed: int | None = None,
     keep_tree: bool = False,
+    stop: StopCondition | None = None,
 ) -> PlanResult:
     """Plan from ``start`` to any goal region of ``goals``.
 
@@ -47,12 +49,15 @@ def solve(
         rng: the only source of randomness.
         seed: recorded in the result (the caller made ``rng`` from it).
         keep_tree: keep the trees and failed-extension origins for visualisation.
+        stop: when to give up (default: ``settings.time_limit`` seconds from now and
+            ``settings.max_iterations``); goal sampling shares it.
 
     Returns:
         A PlanResult; its status says whether a path was found. Every returned
         path has been re-checked at ``settings.resolution / validation_factor``.
     """
-    search = Search(space, checker, goals, settings, rng, seed, keep_tree)
+    search = Search(space, checker, goals, settings, rng, seed, keep_tree, stop)
+    stop = search.stop
     start = np.asarray(start, float)
     if not space.within_bounds(start):
         return search.result(PlanStatus.INVALID_START, "start configuration is outside the joint limits")
@@ -65,10 +70,13 @@ def solve(
             return found
     except KeyboardInterrupt:
         return search.result(PlanStatus.INTERRUPTED, "stopped by Ctrl-C")
+    if stop.reason is StopReason.INTERRUPTED:
+        return search.result(PlanStatus.INTERRUPTED, "stopped by Ctrl-C")
     if not search.samples and search.goals.exhausted():
         return search.no_goal()
-    within = (f"{settings.max_iterations} iterations (max_iterations)" if search.iterations >= settings.max_iterations
-              else f"{settings.time_limit:g} s ({search.iterations} iterations)")
+    cap = stop.max_iterations
+    within = (f"{cap} iterations (max_iterations)" if cap is not None and search.iterations >= cap
+              else f"{stop.budget:g} s ({search.iterations} iterations)")
     if not search.samples:  # the limit came before goal sampling had tried every region: not proof there is no goal
         return search.result(PlanStatus.TIMEOUT, f"no valid goal configuration found within {within}: {search.region_summary()}")
     return search.result(PlanStatus.TIMEOUT, f"no path within {within}{TRY_INSTEAD.get(settings.algorithm, '')}")
@@ -76,7 +84,7 @@ def solve(
 
 def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
     """Algorithm 1: one tree from the start, goal-biased steps towards the selected goal sample."""
-    space, checker, settings, rng = s.space, s.checker, s.settings, s.rng
+    space, motion, settings, rng = s.space, s.motion, s.settings, s.rng
     tree = Tree(space)
     tree.add_root(start)
     s.trees = [tree]
@@ -103,11 +111,11 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
             q_new = None  # the same edge as before: its answer has not changed
         elif gi is not None and settings.goal_extension is GoalExtension.PARTIAL:
             # the authors' RRTGoalRegion: a blocked goal step keeps its free part and counts as progress
-            t = edge_fraction(space, checker, q_near, q_new, resolution)
+            t = motion.edge_fraction(q_near, q_new, resolution)
             if t < 1.0:
                 reached = False
                 q_new = space.interpolate(q_near, q_new, t) if t > 0.0 else None
-        elif not edge_free(space, checker, q_near, q_new, resolution):
+        elif not motion.edge_free(q_near, q_new, resolution):
             q_new = None
         if q_new is None:
             if gi is not None:
@@ -121,7 +129,7 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
         # "connect" keeps stepping towards the goal sample while the steps are free
         while settings.goal_extension is GoalExtension.CONNECT and not reached and s.time_left():
             q_next, r = space.steer(q_new, q_towards, settings.step_size)
-            if not edge_free(space, checker, q_new, q_next, resolution):
+            if not motion.edge_free(q_new, q_next, resolution):
                 break
             node, q_new, reached = tree.add(q_next, node, True), q_next, r
         s.reward(gi)

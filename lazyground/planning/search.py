@@ -1,13 +1,11 @@
 """One planning query's bookkeeping, shared by the tree planners.
 
-The clock and deadline, the goal samples drawn so far and the goal-selection
+The stop condition (:mod:`lazyground.planning.stop`), the goal samples drawn so far and the goal-selection
 strategy over them (reward, penalty, resampling on demand), the counters, the
 fine re-check of a candidate path, and the PlanResult.
 """
 
 from __future__ import annotations
-
-import time
 
 import numpy as np
 
@@ -19,7 +17,9 @@ from lazyground.planning.problem import (
     PlanStatus,
     ValidityChecker,
 )
+from lazyground.planning.motion_validator import samples_free
 from lazyground.planning.space import ConfigSpace
+from lazyground.planning.stop import StopCondition
 from lazyground.planning.strategies import StrategySettings, make_strategy
 from lazyground.planning.tree import Tree
 
@@ -51,49 +51,9 @@ def path_is_valid(space: ConfigSpace, checker: ValidityChecker, path: np.ndarray
 TRIED = {"workspace": "grasps", "placement": "placements"}
 
 
-def samples_free(space: ConfigSpace, checker: ValidityChecker, qs: np.ndarray) -> np.ndarray:
-    """Which configurations ``qs`` (samples along edges) are valid: inside the space's bounds and free.
-
-    Nodes are sampled inside the bounds, and a straight edge between two stays inside them; a car's curve
-    need not (issue 34: paths around walls at a lot's edge drove up to 6 m outside it), so every sample is
-    held to the bounds where it is checked for collision."""
-    qs = np.asarray(qs, float)
-    inside = np.all((qs >= space.lower - 1e-9) & (qs <= space.upper + 1e-9), axis=1)
-    if inside.all():
-        return np.asarray(checker.configs_free(qs), bool)
-    free = np.zeros(len(qs), bool)
-    if inside.any():
-        free[inside] = np.asarray(checker.configs_free(qs[inside]), bool)
-    return free
-
-
 def _checks(checker: ValidityChecker) -> int:
     """The checker's check count (0 for a checker that does not count)."""
     return int(getattr(checker, "checks", 0))
-
-
-def edge_free(space: ConfigSpace, checker: ValidityChecker, a: np.ndarray, b: np.ndarray, resolution: float) -> bool:
-    """Whether the edge a -> b is free: the checker's own edge check for straight edges,
-    the space's samples along the curve otherwise (Drake's edge check interpolates linearly)."""
-    if space.linear_edges:
-        return checker.edge_free(a, b, resolution)
-    return bool(np.all(samples_free(space, checker, space.discretize(a, b, resolution, skip_first=True))))
-
-
-def edge_fraction(space: ConfigSpace, checker: ValidityChecker, a: np.ndarray, b: np.ndarray, resolution: float) -> float:
-    """The largest checked fraction t such that a -> interpolate(a, b, t) is free (the free prefix)."""
-    if space.linear_edges:
-        return checker.edge_fraction(a, b, resolution)
-    qs = space.discretize(a, b, resolution, skip_first=True)
-    blocked = np.flatnonzero(~samples_free(space, checker, qs))
-    if not len(blocked):
-        return 1.0
-    if blocked[0] == 0:
-        return 0.0
-    # samples need not be evenly spaced (a car samples each segment on its own): the fraction of the
-    # distance to the last free sample, which interpolate maps back to it (a shortest path's prefix
-    # is the shortest path to its end)
-    return space.distance(a, qs[blocked[0] - 1]) / space.distance(a, b)
 
 
 class Search:
@@ -106,11 +66,14 @@ class Search:
         rng: np.random.Generator,
         seed: int | None,
         keep_tree: bool,
+        stop: StopCondition | None = None,
     ):
         self.space, self.checker, self.goals, self.settings, self.rng = space, checker, goals, settings, rng
-        self.seed, self.keep_tree = seed, keep_tree
-        self.t0 = time.perf_counter()
-        self.deadline = self.t0 + settings.time_limit
+        if stop is None:  # the settings' own limits, from now
+            stop = StopCondition.after(settings.time_limit, max_iterations=settings.max_iterations)
+        self.seed, self.keep_tree, self.stop = seed, keep_tree, stop
+        self.motion = space.motion_validator(checker)  # edges as the space moves along them (OMPL's MotionValidator)
+        self.t0 = stop.now()
         self._check_t0, self._sample_t0 = checker.check_time, goals.sample_time
         self._sampling_checks = 0.0  # collision checks made by the goal sampler count as goal sampling
         self._checks0, self._sampling_count = _checks(checker), 0
@@ -118,17 +81,19 @@ class Search:
         self.dead: set[int] = set()  # samples whose approach segment failed the fine re-check
         self._verified: set[bytes] = set()  # segments (endpoint bytes) that passed the fine re-check
         self.selector = make_strategy(settings.strategy, StrategySettings(resample_threshold=settings.resample_threshold))
+        self._covers = bool(getattr(self.selector, "covers_regions", False))
         self.trees: list[Tree] = []  # the planner's trees, start tree first (for the result)
         self.failed_from: list[tuple[int, int]] = []  # (tree, node) of failed goal-directed extensions
         self.iterations = self.resamplings = self.rejected = 0
 
     def time_left(self) -> bool:
-        return time.perf_counter() < self.deadline and self.iterations < self.settings.max_iterations
+        """Whether the stop condition lets the search go on (one clock reading)."""
+        return not self.stop.should_stop(self.iterations)
 
     def draw(self, n: int) -> None:
         """Draw up to n more goal samples and hand them to the strategy."""
         c0, n0 = self.checker.check_time, _checks(self.checker)
-        new = self.goals.draw(n, self.rng, self.deadline)
+        new = self.goals.draw(n, self.rng, self.stop)
         self._sampling_checks += self.checker.check_time - c0
         self._sampling_count += _checks(self.checker) - n0
         first = len(self.samples)
@@ -136,9 +101,14 @@ class Search:
         self.selector.add(list(range(first, len(self.samples))))
 
     def have_samples(self) -> bool:
-        """Whether any goal sample exists yet; draws a batch when none does."""
+        """Whether any goal sample exists yet; draws a batch when none does.
+
+        A strategy that paces coverage (``covers_regions``) gets one more sample each iteration
+        until there are as many samples as goal regions (lazyground.planning.cover)."""
         if not self.samples:
             self.draw(self.settings.initial_goal_samples)
+        elif self._covers and len(self.samples) < len(self.goals.regions):
+            self.draw(1)
         return bool(self.samples)
 
     def select(self) -> int | None:
@@ -161,12 +131,12 @@ class Search:
         (with ``only_if_all_stuck``, only once every live sample's weight is below the threshold)."""
         self.samples[gi].penalties += 1
         wants_more = self.selector.penalize(gi)
-        if wants_more and only_if_all_stuck:
+        if wants_more and only_if_all_stuck and not getattr(self.selector, "resample_alone", False):
             threshold = self.settings.resample_threshold
             wants_more = all(self.selector.weight(i) < threshold for i in range(len(self.samples)) if i not in self.dead)
         if wants_more:
             self.resamplings += 1
-            self.draw(self.settings.resample_count)
+            self.draw(getattr(self.selector, "batch", self.settings.resample_count))
 
     def first_invalid_segment(self, path: np.ndarray) -> int:
         """The fine re-check every returned path passes (-1: valid); counts rejections.
@@ -191,10 +161,9 @@ class Search:
         for i, sample in enumerate(self.samples):
             sample.weight = self.selector.weight(i)
         goal = self.samples[gi] if gi is not None else None
-        length, cusps = (self.space.path_length(path) if path is not None else 0.0), None
-        if path is not None and not self.space.linear_edges:  # a car: return the curves it drives, densely
-            path = self.space.densify(path)
-            cusps = self.space.cusps(path)
+        length = self.space.path_length(path) if path is not None else 0.0
+        if path is not None:  # as the robot moves along it (a car: its curves, densely)
+            path = self.space.dense_path(path)
         return PlanResult(
             status=status,
             seed=self.seed,
@@ -205,7 +174,7 @@ class Search:
             tree_size=sum(len(t) for t in self.trees),
             goal_samples=self.samples,
             resamplings=self.resamplings,
-            time_s=time.perf_counter() - self.t0,
+            time_s=self.stop.now() - self.t0,
             goal_sampling_s=self.goals.sample_time - self._sample_t0,
             collision_s=self.checker.check_time - self._check_t0 - self._sampling_checks,
             message=message,
@@ -216,7 +185,6 @@ class Search:
             path_length=length,
             invalid_paths_rejected=self.rejected,
             collision_checks=_checks(self.checker) - self._checks0 - self._sampling_count,
-            cusps=cusps,
         )
 
     def region_summary(self) -> str:

@@ -1,9 +1,16 @@
 """Configuration spaces over numpy arrays: sampling, metric, interpolation.
 
-One class covers the car (x, y, heading) and arms: coordinates are bounded
+One class covers the holonomic car (x, y, heading) and arms: coordinates are bounded
 intervals, some of which may be wrapping angles. The metric is Euclidean in an
 embedding (angles as weighted unit circles), so a k-d tree over the embedding
 answers nearest-neighbour queries exactly.
+
+A space owns its motion, as OMPL's ``StateSpace``: interpolation, the motion
+validator built from a checker (:meth:`ConfigSpace.motion_validator`), the path it
+returns (:meth:`ConfigSpace.dense_path`) and the post-processing its paths get
+(:attr:`ConfigSpace.post_processing`, a key of ``lazyground.motion.post``). A space
+with other edges (the car's curves, :mod:`lazyground.planning.car`) overrides these;
+see docs/spaces.md.
 """
 
 from __future__ import annotations
@@ -14,13 +21,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from lazyground.geometry import wrap_angle
+from lazyground.planning.motion_validator import MotionValidator
 
 
 @dataclass(frozen=True)
 class ConfigSpace:
     """Bounded coordinates with per-coordinate metric weights; ``wrap`` marks angles."""
 
-    linear_edges = True  # edges are straight in these coordinates (a checker may interpolate linearly)
+    post_processing = "straight"  # shortcut by straight segments, then time (lazyground.motion.post)
     nn_candidates = 1  # nearest neighbours: the embedding's nearest is the nearest (see Tree.nearest)
 
     names: tuple[str, ...]
@@ -138,3 +146,11 @@ class ConfigSpace:
 
     def path_length(self, path: np.ndarray) -> float:
         return float(sum(self.distance(a, b) for a, b in zip(path[:-1], path[1:])))
+
+    def motion_validator(self, checker) -> MotionValidator:
+        """The validator of this space's edges over ``checker``: straight edges, the checker's own edge check."""
+        return MotionValidator(self, checker)
+
+    def dense_path(self, path: np.ndarray) -> np.ndarray:
+        """The path a planner returns for these waypoints: themselves (straight edges need no samples)."""
+        return path

@@ -14,7 +14,7 @@ from lazyground.robots.complete import complete_robot
 from lazyground.scene.file_kind import FileKind, kind_of_mapping, kind_of_text
 from lazyground.scene.robot_fill import fill_from_robot_defaults
 from lazyground.scene.schema import Scene, SceneObject
-from lazyground.typed_yaml import SceneError, load_dataclass, load_yaml
+from lazyground.typed_yaml import SceneError, line_of, load_dataclass, load_yaml
 
 MAX_SCENE_BYTES = 5 * 1024 * 1024
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -66,14 +66,27 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
         data = fill_from_robot_defaults(data, lambda model: resolve_model(model, scene_dir))
         scene = load_dataclass(data, Scene, "")
     except SceneError as exc:
-        raise SceneError(f"{source}: {exc}") from None
+        line = line_of(text, str(exc).split(": ", 1)[0])  # where the bad key is
+        raise SceneError(f"{source}: {exc}" + (f" (line {line})" if line else "")) from None
     model = resolve_model(scene.robot.model, scene_dir)
     if model is None:
         raise SceneError(f"{source}: robot.model: model file {scene.robot.model!r} not found (bundled: {_bundled()})")
     problem = _overlap_problem(scene) or _mesh_problem(scene, scene_dir)
     if problem:
         raise SceneError(f"{source}: {problem}")
-    robot = replace(scene.robot, model=str(model), **(robot_overrides or {}))
+    # imported here: lazyground.robots reads robot.yaml through this package's typed_yaml
+    from lazyground.robots.complete import complete_robot
+
+    overrides = dict(robot_overrides or {})
+    if "xacro_args" in overrides:  # --xacro-arg wins key by key over the scene's robot.xacro_args
+        overrides["xacro_args"] = {**scene.robot.xacro_args, **overrides["xacro_args"]}
+    tools = []
+    for i, tool in enumerate(scene.robot.tools):
+        tool_model = resolve_model(tool.model, scene_dir)
+        if tool_model is None:
+            raise SceneError(f"{source}: robot.tools[{i}].model: model file {tool.model!r} not found")
+        tools.append(replace(tool, model=str(tool_model)))
+    robot = replace(scene.robot, model=str(model), tools=tuple(tools), **overrides)
     robot = complete_robot(robot, scene_dir, source)
     return replace(scene, robot=robot, obstacles=_absolute_meshes(scene.obstacles, scene_dir), source=source)
 
@@ -125,7 +138,8 @@ def _bundled() -> str:
 
 
 def _overlap_problem(scene: Scene) -> str | None:
-    """A solid (object or obstacle) whose centre lies inside another solid is a modelling error."""
+    """An object whose centre lies inside another solid (an object or an obstacle) is a modelling error; obstacles
+    may overlap one another (boards that meet, generated racks)."""
     solids = [(f"objects[{i}]", "object", o) for i, o in enumerate(scene.objects) if o.collides]
     solids += [(f"obstacles[{i}]", "obstacle", o) for i, o in enumerate(scene.obstacles) if o.geometry.mesh is None]
     hits = []  # (the larger one holds the centre, later solid first, message)
@@ -133,7 +147,9 @@ def _overlap_problem(scene: Scene) -> str | None:
         centre = np.asarray(a.pose.xyz, dtype=float)
         for _, other_kind, b in solids:
             X = b.pose.pose()
-            if b is not a and b.geometry.contains((centre - np.asarray(X.xyz)) @ X.rotation()):
+            if b is a or kind == "obstacle":
+                continue
+            if b.geometry.contains((centre - np.asarray(X.xyz)) @ X.rotation()):
                 message = f"{key}.pose: {kind} {a.id!r} has its centre inside {other_kind} {b.id!r}"
                 hits.append((a.geometry.volume() > b.geometry.volume(), -n, message))
     return min(hits)[2] if hits else None

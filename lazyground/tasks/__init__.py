@@ -2,7 +2,7 @@
 
     outcome = tasks.run(scene, grounding, settings, rng, worlds, seed=seed)
 
-Every task is ``run(scene, grounding, settings, rng, worlds, *, seed, keep_tree) -> Outcome``
+Every task is ``run(scene, grounding, settings, rng, worlds, *, seed, keep_tree, clock) -> Outcome``
 (:mod:`lazyground.tasks.outcome`). Entries name their module, imported on first use, so
 importing this package does not import pydrake. A new task is one module plus one line here.
 """
@@ -35,6 +35,8 @@ def task(action: str):
     return importlib.import_module(module).run
 
 
-def run(scene, grounding, settings, rng, worlds: Worlds, *, seed: int | None = None, keep_tree: bool = False) -> Outcome:
-    """Run the task registered for ``grounding.action`` (see the module docstring)."""
-    return task(grounding.action)(scene, grounding, settings, rng, worlds, seed=seed, keep_tree=keep_tree)
+def run(scene, grounding, settings, rng, worlds: Worlds, *, seed: int | None = None, keep_tree: bool = False,
+        clock=None) -> Outcome:
+    """Run the task registered for ``grounding.action`` (see the module docstring); ``clock`` (default
+    :func:`lazyground.planning.stop.default_clock`) is the one its stop conditions read."""
+    return task(grounding.action)(scene, grounding, settings, rng, worlds, seed=seed, keep_tree=keep_tree, clock=clock)

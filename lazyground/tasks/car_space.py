@@ -4,10 +4,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from lazyground.planning.car import Kinematics, make_space
+from lazyground.planning.kinematics import make_space
 from lazyground.planning.space import ConfigSpace
 from lazyground.robots.defaults import defaults_for_model
 from lazyground.scene.loader import resolve_model
+from lazyground.settings import Kinematics
 from lazyground.typed_yaml import SceneError
 
 

@@ -13,7 +13,6 @@ plans step 1 again over the others; the report says so.
 
 from __future__ import annotations
 
-import time
 from dataclasses import replace
 
 import numpy as np
@@ -23,16 +22,16 @@ from lazyground.drake.world import DrakeWorld
 from lazyground.geometry import Pose
 from lazyground.goals import goal_source_for
 from lazyground.motion.steps import pick_and_place_motions
-from lazyground.planning.problem import PlannerSettings, PlanResult, PlanStatus
+from lazyground.planning.problem import PlanResult, PlanStatus
 from lazyground.planning.rrt import path_is_valid, solve
+from lazyground.planning.stop import Clock, StopCondition
 from lazyground.regions import GoalRegion
 from lazyground.robots.end_effector import frame_of
 from lazyground.scene.schema import Scene
+from lazyground.settings import RunSettings, TaskSettings
 from lazyground.tasks.outcome import Grasp, Lift, Outcome, Placement, Step
 from lazyground.tasks.worlds import Worlds
 
-PLACE_SHARE = 0.4  # of the time limit, for one placement attempt before falling back
-MIN_LIFT, MAX_LIFT, LIFT_STEP = 0.02, 0.08, 0.01  # m: the lift stops at the first clear height above MIN_LIFT
 
 
 def _regions_by_object(g: Grounding) -> tuple[list[GoalRegion], dict[str, list[GoalRegion]]]:
@@ -53,27 +52,28 @@ def _placement_regions(regions: list[GoalRegion], half_height: float) -> tuple[G
     return tuple(replace(r, X_SE=Pose((0.0, 0.0, half_height))) for r in regions)
 
 
-def lift_off(world: DrakeWorld, carrying: DrakeWorld, ik, frame: str, q_grasp: np.ndarray, resolution: float) -> Lift | None:
+def lift_off(world: DrakeWorld, carrying: DrakeWorld, ik, frame: str, q_grasp: np.ndarray, resolution: float,
+             task: TaskSettings = TaskSettings()) -> Lift | None:
     """Raise the gripper (and object) straight up until the carried object is clear of its support.
 
     ``ik`` is the goal source registered for pose regions (it solves IK to a pose: ``ik.solve``).
-    The lift is solved in 1 cm IK steps, each seeded by the last, so the path
+    The lift is solved in ``task.lift_step`` IK steps (1 cm), each seeded by the last, so the path
     stays close to a vertical line. The object rests on its support at the
     grasp, so the first millimetres may touch it; from the first collision-free
     configuration on, the whole lift must be free. It stops at the first height
-    of at least ``MIN_LIFT`` where the carried object is clear.
+    of at least ``task.lift_min`` where the carried object is clear, and gives up above ``task.lift_max``.
     """
     X_WG = world.frame_pose(frame, q_grasp)
     path = [np.asarray(q_grasp, float)]
     q_full = world.full(q_grasp)
-    for k in range(1, int(round(MAX_LIFT / LIFT_STEP)) + 1):
-        h = k * LIFT_STEP
+    for k in range(1, int(round(task.lift_max / task.lift_step)) + 1):
+        h = k * task.lift_step
         target = Pose((X_WG.xyz[0], X_WG.xyz[1], X_WG.xyz[2] + h), X_WG.rpy)
         q_full = ik.solve(frame, target, q_full)
         if q_full is None:
             return None
         path.append(q_full[world.planned])
-        if h < MIN_LIFT - 1e-9 or not carrying.config_free(path[-1]):
+        if h < task.lift_min - 1e-9 or not carrying.config_free(path[-1]):
             continue
         if lift_is_clear(world, carrying, np.array(path), resolution):
             return Lift(np.array(path), h)
@@ -107,20 +107,22 @@ def _combine(results: list[PlanResult], status: PlanStatus, path, goal, region, 
     )
 
 
-def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Generator, worlds: Worlds, *,
-        seed: int | None = None, keep_tree: bool = False, place_share: float = PLACE_SHARE) -> Outcome:
+def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Generator, worlds: Worlds, *,
+        seed: int | None = None, keep_tree: bool = False, place_share: float | None = None,
+        clock: Clock | None = None) -> Outcome:
     """Plan "put X on Y": a grasp of any X, then a placement on any Y, with fallback (the "place" task);
     then each step is shortened and timed (lazyground.motion.steps).
 
     Args:
         scene: the Scene.
         g: the grounding (action "place": grasp regions and per-object placement regions).
-        settings: PlannerSettings; ``time_limit`` bounds both steps and every fallback.
+        settings: the run's RunSettings; the planner's ``time_limit`` bounds both steps and every fallback.
         rng: the only source of randomness.
         worlds: the scene's worlds (the caller's prebuilt world is used for the pick).
         seed: recorded in the results.
         keep_tree: keep the search trees (for viewers).
-        place_share: the share of the time limit one placement attempt may use.
+        place_share: the share of the time limit one placement attempt may use (default: the task setting's).
+        clock: the clock the time limit is read on (default: the stop condition's).
 
     Returns:
         An Outcome: on success the pick and the place step (the place step carries the
@@ -128,19 +130,21 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
         Its result's ``time_s`` counts planning (IK, lift, search), not building worlds.
     """
     world = worlds.get()
-    t0 = time.perf_counter()
+    # one budget for every step: the pick gets what is left, a placement attempt its share (StopCondition.share)
+    planner = settings.planner
+    place_share = settings.task.place_share if place_share is None else place_share
+    stop = StopCondition.after(planner.time_limit, max_iterations=planner.max_iterations, clock=clock)
     setup_before = worlds.setup_s  # world building from here on is set-up, not planning
-    deadline = t0 + settings.time_limit
     frame = frame_of(scene.robot)
     grasps, places = _regions_by_object(g)
     excluded: list[str] = []
-    notes: list[str] = []
+    notes: list[str] = list(world.model_notes)
     results: list[PlanResult] = []
 
     motion_s = 0.0  # shortening and timing the steps after the solve (lazyground.motion): not planning
 
     def planning_s() -> float:
-        return time.perf_counter() - t0 - (worlds.setup_s - setup_before) - motion_s
+        return stop.elapsed() - (worlds.setup_s - setup_before) - motion_s
 
     def finish(status: PlanStatus, message: str, **done) -> Outcome:
         if results:
@@ -151,16 +155,15 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
                        done.get("placement"), len(excluded) if done.get("steps") else 0)
 
     while True:
-        remaining = deadline - time.perf_counter()
         candidates = [r for r in grasps if r.object not in excluded]
-        if remaining <= 0 or not candidates:
+        if stop.remaining() <= 0 or not candidates:
             break
-        pick = solve(world.space, world, goal_source_for(tuple(candidates), world), world.start,
-                     replace(settings, time_limit=remaining), rng, seed=seed, keep_tree=keep_tree)
+        pick = solve(world.space, world, goal_source_for(tuple(candidates), world, settings.goal_sampling),
+                     world.start, planner, rng, seed=seed, keep_tree=keep_tree, stop=stop.share())
         results.append(pick)
         if not pick.solved:
             return finish(pick.status, f"pick: {pick.message}")
-        if time.perf_counter() >= deadline:  # grasped at the limit: no time to lift and place (timeout)
+        if stop.timed_out():  # grasped at the limit: no time to lift and place (timeout)
             break
         obj = scene.object(pick.goal_region.object)
         q_grasp = pick.path[-1]
@@ -174,17 +177,20 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
             notes.append(f"picked {obj.id} but it has no placement region; trying another object")
             excluded.append(obj.id)
             continue
-        source = goal_source_for(targets, carrying)
-        lift = lift_off(world, carrying, source, frame, q_grasp, settings.resolution)
+        source = goal_source_for(targets, carrying, settings.goal_sampling)
+        lift = lift_off(world, carrying, source, frame, q_grasp, planner.resolution, settings.task)
+        if lift is not None:
+            source.near = lift.q_lift  # placements prefer the full-turn equivalent nearest where the place step starts
         if lift is None:
             notes.append(f"picked {obj.id} ({pick.goal_region.label}) but could not lift it clear; trying another object")
             excluded.append(obj.id)
             continue
-        budget = min(deadline - time.perf_counter(), place_share * settings.time_limit)
+        share = stop.share(place_share)
+        budget = share.budget
         if budget <= 0:  # the lift used up the time: a timeout, not a reason to try another object
             break
-        place = solve(carrying.space, carrying, source, lift.q_lift, replace(settings, time_limit=max(budget, 1e-3)),
-                      rng, seed=seed, keep_tree=keep_tree)
+        place = solve(carrying.space, carrying, source, lift.q_lift, planner, rng, seed=seed, keep_tree=keep_tree,
+                      stop=share)
         results.append(place)
         if place.status is PlanStatus.INTERRUPTED:  # Ctrl-C is not a reason to try another object
             return finish(place.status, f"place: {place.message}")
@@ -194,9 +200,9 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
             excluded.append(obj.id)
             continue
         X_WO = carrying.frame_pose(frame, place.path[-1]).compose(grasp.X_GO)
-        t_motion = time.perf_counter()
+        t_motion = stop.now()
         pick, pick_motion, place, place_motion = pick_and_place_motions(world, carrying, pick, lift.path, place, settings, rng)
-        motion_s = time.perf_counter() - t_motion
+        motion_s = stop.now() - t_motion
         results[-2:] = [pick, place]  # the shortened steps (the combined result sums their lengths)
         steps = (Step(f"pick {obj.id}", pick, setup_before, motion=pick_motion),
                  Step(f"place {obj.id}", place, setup, grasp, motion=place_motion))
@@ -208,7 +214,7 @@ def run(scene: Scene, g: Grounding, settings: PlannerSettings, rng: np.random.Ge
     if not results:
         return finish(PlanStatus.TIMEOUT, "no time left")
     tried = ", ".join(excluded) or "none"
-    status = PlanStatus.TIMEOUT if deadline - time.perf_counter() <= 0 else PlanStatus.NO_VALID_GOAL
+    status = PlanStatus.TIMEOUT if stop.remaining() <= 0 else PlanStatus.NO_VALID_GOAL
     return finish(status, f"no object could be picked and placed in time (tried: {tried})")
 
 

@@ -6,7 +6,7 @@ used by every task (place included), and set-up time is counted the same way for
 
 from __future__ import annotations
 
-import time
+from lazyground.planning.stop import default_clock
 
 
 class Worlds:
@@ -39,9 +39,9 @@ class Worlds:
         if world is None:
             from lazyground.drake.world import Attachment, DrakeWorld
 
-            t0 = time.perf_counter()
+            t0 = default_clock()
             attached = None if grasp is None else Attachment(self.scene.object(grasp.object_id), grasp.frame, grasp.X_GO)
             world = DrakeWorld(self.scene, attached=attached, visual=self._visual)
-            self.setup_s += time.perf_counter() - t0
+            self.setup_s += default_clock() - t0
             self._cache[key] = world
         return world

@@ -213,7 +213,8 @@ class _StepView:
             if hide_tree:  # the page's button shows it
                 self.meshcat.SetProperty(f"{path}/tree", "visible", False)
         if self.motion is not None:
-            car = self.report.result.cusps is not None  # a car's path is already its curves, densely sampled
+            motion = getattr(self.report, "motion", None)  # a report's or a step's Motion
+            car = motion is not None and motion.cusps is not None  # a car's path is already its curves, densely sampled
             qs = self.motion if car else resample_path(self.motion, 200, self.world.space.wrap)
             dense = self.points(qs)
             self.meshcat.SetLine(f"{path}/path", dense, 4.0, Rgba(*PATH_RGBA))

@@ -65,8 +65,8 @@ def _times(report) -> str:
              ("collision checking", res.collision_s), ("other", res.other_s)]
     split = ", ".join(f"{name} {t:.3f}" for name, t in parts)
     return (f"time {report.time_s:.3f} s ({split}); {res.iterations} iterations, tree {res.tree_size}, "
-            f"{len(res.goal_samples)} goal samples; seed {report.seed}, {html.escape(report.settings.strategy)}, "
-            f"{html.escape(report.settings.algorithm)}")
+            f"{len(res.goal_samples)} goal samples; seed {report.seed}, {html.escape(report.settings.planner.strategy)}, "
+            f"{html.escape(report.settings.planner.algorithm)}")
 
 
 def _legend(layout: Layout) -> str:

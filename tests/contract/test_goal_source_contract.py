@@ -5,7 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tests.contract.conftest import NO_CLOCK, get_world, world_param
+from lazyground.planning.stop import FakeClock, StopCondition
+from tests.contract.conftest import get_world, world_param
+
+NEVER = StopCondition()  # goal sampling bounded by attempts, never by the clock
 
 SOURCES = [world_param(n) for n in ("toy", "parking_1", "fetch_cans_1")]  # config, config, IK
 N = 6
@@ -18,7 +21,7 @@ def w(request):
 
 def test_every_sample_is_valid_and_lies_in_its_region(w):
     source = w.goals("reachable")
-    samples = source.draw(N, np.random.default_rng(0), NO_CLOCK)
+    samples = source.draw(N, np.random.default_rng(0), NEVER)
     assert 0 < len(samples) <= N
     for s in samples:
         assert 0 <= s.region < len(source.regions)
@@ -30,8 +33,8 @@ def test_every_sample_is_valid_and_lies_in_its_region(w):
 
 def test_stats_count_every_attempt(w):
     source = w.goals("reachable")
-    samples = source.draw(N, np.random.default_rng(1), NO_CLOCK)
-    samples += source.draw(N, np.random.default_rng(2), NO_CLOCK)
+    samples = source.draw(N, np.random.default_rng(1), NEVER)
+    samples += source.draw(N, np.random.default_rng(2), NEVER)
     assert len(source.stats) == len(source.regions)
     assert sum(st.valid for st in source.stats) == len(samples)
     assert sum(st.attempts for st in source.stats) >= len(samples)
@@ -42,9 +45,9 @@ def test_stats_count_every_attempt(w):
 
 
 def test_equal_seeds_draw_equal_samples(w):
-    a = w.goals("reachable").draw(N, np.random.default_rng(3), NO_CLOCK)
-    b = w.goals("reachable").draw(N, np.random.default_rng(3), NO_CLOCK)
-    c = w.goals("reachable").draw(N, np.random.default_rng(4), NO_CLOCK)
+    a = w.goals("reachable").draw(N, np.random.default_rng(3), NEVER)
+    b = w.goals("reachable").draw(N, np.random.default_rng(3), NEVER)
+    c = w.goals("reachable").draw(N, np.random.default_rng(4), NEVER)
     assert [s.region for s in a] == [s.region for s in b]
     assert all(np.array_equal(x.q, y.q) and np.array_equal(x.end, y.end) for x, y in zip(a, b))
     assert not all(np.array_equal(x.q, y.q) for x, y in zip(a, c))  # the seed matters
@@ -58,13 +61,13 @@ def test_an_impossible_region_is_exhausted_and_yields_nothing(w):
     for _ in range(100):  # far more rounds than any give-up count needs
         if source.exhausted():
             break
-        drawn += source.draw(N, rng, NO_CLOCK)
+        drawn += source.draw(N, rng, NEVER)
     assert source.exhausted() and drawn == []
     assert all(st.valid == 0 and st.attempts > 0 for st in source.stats)
     attempts = sum(st.attempts for st in source.stats)
-    assert source.draw(N, rng, NO_CLOCK) == [] and sum(st.attempts for st in source.stats) == attempts
+    assert source.draw(N, rng, NEVER) == [] and sum(st.attempts for st in source.stats) == attempts
 
 
 def test_an_expired_deadline_draws_nothing(w):
     source = w.goals("reachable")
-    assert source.draw(N, np.random.default_rng(6), deadline=0.0) == []  # a deadline long past
+    assert source.draw(N, np.random.default_rng(6), StopCondition.after(0.0, clock=FakeClock())) == []  # a deadline already reached

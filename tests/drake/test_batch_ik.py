@@ -1,6 +1,5 @@
 """The batched damped-least-squares IK (lazyground.drake.ik.batch) and the goal source's batch mode (#19)."""
 
-import math
 from dataclasses import replace
 from pathlib import Path
 
@@ -15,11 +14,12 @@ from lazyground.drake.chain import chain_to_frame  # noqa: E402
 from lazyground.drake.ik import IKGoalSource, IKSettings  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.geometry import Pose  # noqa: E402
+from lazyground.planning.stop import StopCondition  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 from lazyground.tolerance import accepted_error  # noqa: E402
 
 SCENES = Path(__file__).resolve().parents[2] / "yaml_scenes"
-NO_DEADLINE = math.inf
+NO_DEADLINE = StopCondition()  # bounded by attempts and restarts, never by the clock
 
 
 @pytest.fixture(scope="module")

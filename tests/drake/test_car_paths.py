@@ -59,7 +59,7 @@ def test_returned_car_paths_are_drivable_and_free(name, kinematics, seeds):
         path = res.path
         assert np.allclose(path[0], world.start) and res.goal_region.contains(path[-1])
         assert_drivable(space, path)
-        assert res.cusps == space.cusps(path)
+        assert report.cusps == space.cusps(path)
         driven = np.hypot(*np.diff(space.reference(path)[:, :2], axis=0).T).sum()
         assert driven == pytest.approx(res.path_length, rel=1e-3)  # chords of 0.1 m arcs: within 1e-3
         # the motion reports the same driven metres (its line and JSON once gave the raw path in metres and
@@ -67,7 +67,7 @@ def test_returned_car_paths_are_drivable_and_free(name, kinematics, seeds):
         short = report.motion.shortcut
         assert short.length == pytest.approx(res.path_length) and short.length <= short.raw_length
         # the independent re-check: straight lines between the dense samples, at 1/10 of the edge resolution
-        fine = report.settings.resolution / 10
+        fine = report.settings.planner.resolution / 10
         assert path_is_valid(world.space, world, path, fine) == -1, f"seed {seed}: collides between samples"
     assert solved == len(seeds)
 
@@ -76,6 +76,6 @@ def test_holonomic_mode_is_the_papers_puck():
     scene = load_scene(SCENES / "parking_1.yaml")
     world = DrakeWorld(scene, visual=False)
     report = api.plan(scene, "park", seed=0, world=world, kinematics="holonomic", **UNBOUNDED)
-    assert report.result.solved and report.result.cusps is None
-    assert report.settings.kinematics == "holonomic"
+    assert report.result.solved and report.cusps is None
+    assert report.settings.planner.kinematics == "holonomic"
     assert planning_space(scene, world.space, "holonomic") is world.space

@@ -21,7 +21,7 @@ def test_fetch_json_states_the_goal_tolerance_and_the_goal_meets_it():
     report = api.plan(scene, "pick up the can on the table", seed=3, world=world, time_limit=1e6, max_iterations=12_000)  # by seed
     res = report.result
     assert res.solved, res.message
-    assert path_is_valid(world.space, world, res.path, report.settings.resolution / 10) == -1
+    assert path_is_valid(world.space, world, res.path, report.settings.planner.resolution / 10) == -1
     tol = report_to_json(report)["goal_tolerance"]
     assert tol == {"position_m": pytest.approx(accepted_error()[0], abs=1e-6), "orientation_rad": pytest.approx(accepted_error()[1], abs=1e-6)}
     region, drawn = res.goal_region, res.goal.extra["X_WG"]

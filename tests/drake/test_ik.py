@@ -1,7 +1,5 @@
 """IK goal sampling (lazyground.drake.ik) on the Fetch scenes."""
 
-import math
-import time
 from pathlib import Path
 
 import numpy as np
@@ -15,10 +13,11 @@ from lazyground.drake.ik import IKGoalSource, IKSettings, reach_map, region_coor
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.geometry import Pose  # noqa: E402
 from lazyground.planning.rrt import path_is_valid  # noqa: E402
+from lazyground.planning.stop import FakeClock, StopCondition  # noqa: E402
 from lazyground.regions import PlacementRegion, WorkspaceRegion  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 
-NO_DEADLINE = math.inf  # goal sampling bounded by attempts and restarts, never by the clock
+NO_DEADLINE = StopCondition()  # goal sampling bounded by attempts and restarts, never by the clock
 
 SCENES = Path(__file__).resolve().parents[2] / "yaml_scenes"
 
@@ -109,7 +108,7 @@ def test_failed_attempts_are_bounded_by_counts(cans1):
         assert slow.attempt(0, rng, NO_DEADLINE) == (None, "ik failed")
         assert slow.counters.solves == k * settings.restarts and slow.counters.successes == 0
     # the time budget and the deadline cut an attempt short; an expired one before any solve
-    for budget, deadline in ((0.0, NO_DEADLINE), (None, time.perf_counter() - 1.0)):
+    for budget, deadline in ((0.0, NO_DEADLINE), (None, StopCondition.after(-1.0, clock=FakeClock()))):
         cut = IKGoalSource((_far_region(),), world, IKSettings(reach_check=False, attempt_budget=budget))
         assert cut.attempt(0, rng, deadline) == (None, "time") and cut.counters.solves == 0
 
@@ -128,7 +127,7 @@ def test_pick_up_a_can_end_to_end(cans1):
     res = report.result
     assert res.solved, res.message
     assert report.chosen_object in ("Can3", "Can4")  # Can1/Can2 sit deep in shelf 1
-    assert path_is_valid(world.space, world, res.path, report.settings.step_size / 100) == -1
+    assert path_is_valid(world.space, world, res.path, report.settings.planner.step_size / 100) == -1
     assert np.allclose(res.path[0], world.start) and np.allclose(res.path[-1], res.goal.end)
     region = res.goal_region
     v = region_coordinates(region, IKGoalSource((region,), world).frame_pose(region.frame, world.full(res.goal.end)))

@@ -24,10 +24,11 @@ from lazyground.motion.validate import trajectory_problems  # noqa: E402
 from lazyground.planning import path_is_valid  # noqa: E402
 from lazyground.report import report_to_json  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
+from tests.counts import BY_COUNTS  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 # the iteration budget decides, never the clock (the time budget is out of reach)
-MOTION = {"shortcut_iterations": 60, "shortcut_time": 1e9}
+MOTION = BY_COUNTS | {"shortcut_iterations": 60}
 
 
 def planned(scene_file: str, request: str, seed: int):
@@ -60,7 +61,7 @@ def car_space(world):
 
 def assert_valid_trajectory(world, report):
     """Starts at the start, ends at the goal, free as a curve at the fine resolution, within the limits."""
-    tr, settings = report.motion.trajectory, report.settings
+    tr, settings = report.motion.trajectory, report.settings.planner
     fine = settings.resolution / settings.validation_factor
     assert trajectory_problems(tr, world.space, world, world.start, report.result.goal.end, fine) == []
     assert np.allclose(world.space.difference(tr.q[-1], report.result.goal.end), 0.0, atol=1e-9)
@@ -77,7 +78,7 @@ def test_fetch_trajectory_is_valid_and_the_path_shorter(fetch):
     assert m.shortcut.length < m.raw_length
     assert np.array_equal(report.result.path, m.shortcut.path)
     assert report.result.path_length == pytest.approx(m.shortcut.length)
-    fine = report.settings.resolution / report.settings.validation_factor
+    fine = report.settings.planner.resolution / report.settings.planner.validation_factor
     assert path_is_valid(world.space, world, report.result.path, fine) == -1
     # the straight approach to the grasp is kept as it was planned
     assert np.array_equal(report.result.path[-2:], m.raw_path[-2:])
@@ -116,7 +117,7 @@ def test_the_parked_car_drives_along_its_heading_near_its_fastest(parking):
 
 def test_half_speed_takes_twice_as_long(fetch):
     world, report = fetch
-    fine = report.settings.resolution / report.settings.validation_factor
+    fine = report.settings.planner.resolution / report.settings.planner.validation_factor
     limits = world_limits(world)
     path = report.result.path
     stops = (len(path) - 2,)
@@ -173,7 +174,7 @@ def test_pick_and_place_times_each_step_with_the_gripper_events_between():
     report = next(r for r in (api.plan(scene, "put a cup on the table", seed=s, **MOTION) for s in range(3)) if r.result.solved)
     pick, place = report.steps
     world = DrakeWorld(scene, visual=False)
-    fine = report.settings.resolution / report.settings.validation_factor
+    fine = report.settings.planner.resolution / report.settings.planner.validation_factor
     assert_valid_trajectory(world, report.step_report(pick))
     tp = place.motion.trajectory
     # the place step starts with the lift at the grasp and ends at the placement

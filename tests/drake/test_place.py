@@ -54,7 +54,7 @@ def test_put_a_cup_on_the_table():
     assert [s.result.status.value for s in report.steps] == ["solved", "solved"]
     assert report.chosen_object.startswith("cup_") and report.steps[1].attached == report.chosen_object
     assert report.chosen.id == f"place:{report.chosen_object}:table"
-    assert validate_pick_and_place(report, scene, report.settings.resolution / 10) == []
+    assert validate_pick_and_place(report, scene, report.settings.planner.resolution / 10) == []
     on_surface_upright(scene, report)
     doc = report_to_json(report)
     assert {"steps", "picked", "grasp", "placement"} <= set(doc)
@@ -90,7 +90,7 @@ def test_fallback_when_the_picked_cup_cannot_be_placed():
         interps.append(Interpretation(iid, "place", (cup.id,), target.id, regions_for(cup, "pick", iid, scene),
                                       regions_for(target, "support", iid, scene)))
     g = Grounding("put a cup somewhere", "place", tuple(interps))
-    settings = api.planner_settings(scene, **BY_ITERATIONS)
+    settings = api.run_settings(scene, **BY_ITERATIONS)
     fell_back = 0
     for seed in range(2):
         outcome = place.run(scene, g, settings, np.random.default_rng(seed), Worlds(scene), seed=seed)
@@ -98,7 +98,7 @@ def test_fallback_when_the_picked_cup_cannot_be_placed():
         if not report.result.solved:
             continue
         assert report.outcome.picked == "cup_green"
-        assert validate_pick_and_place(report, scene, settings.resolution / 10) == []
+        assert validate_pick_and_place(report, scene, settings.planner.resolution / 10) == []
         if report.outcome.fallbacks:
             fell_back += 1
             assert any("picked cup_red but could not place it" in n for n in report.notes)

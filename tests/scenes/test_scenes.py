@@ -59,7 +59,7 @@ def test_scene_expectation(path, k):
         if not res.solved:
             continue
         solved += 1
-        fine = report.settings.resolution / 10
+        fine = report.settings.planner.resolution / 10
         if report.steps:  # pick and place: both steps, the carried object included
             assert report.chosen_object in (expect.reachable or [report.chosen_object])
             assert validate_pick_and_place(report, scene, fine) == [], f"seed {seed}"
@@ -70,7 +70,7 @@ def test_scene_expectation(path, k):
             assert res.goal_region.contains(res.path[-1])
         assert path_is_valid(world.space, world, res.path, fine) == -1, f"seed {seed}: path collides at {fine:g}"
         if report.motion is None:  # a car driving Reeds-Shepp curves: its dense path is what it drives (#17)
-            assert res.cusps is not None, f"seed {seed}: no timed trajectory"
+            assert report.cusps is not None, f"seed {seed}: no timed trajectory"
             continue
         # the timed trajectory too, as a curve (issue #16)
         assert trajectory_problems(report.motion.trajectory, world.space, world, world.start, res.path[-1], fine) == [], f"seed {seed}"

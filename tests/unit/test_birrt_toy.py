@@ -16,7 +16,7 @@ def run(regions, seed, settings=BI, walls=WALLS):
     return world, solve(SPACE, world, goal_source(world, regions), START, settings, np.random.default_rng(seed), seed=seed)
 
 
-@pytest.mark.parametrize("strategy", ["reward-penalty", "consecutive", "random"])
+@pytest.mark.parametrize("strategy", ["reward-penalty", "consecutive", "random", "cover"])
 def test_reaches_the_only_reachable_grounding(strategy):
     settings = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=SOLVE_BUDGET, algorithm="bidirectional", strategy=strategy)
     for seed in range(6):
@@ -73,8 +73,8 @@ class _BadApproach:
     def __init__(self, inner):
         self.inner, self.regions, self.stats = inner, inner.regions, inner.stats
 
-    def draw(self, n, rng, deadline):
-        return [GoalSample(s.q, s.region, final=s.q + np.array([0.0, -1.5])) for s in self.inner.draw(n, rng, deadline)]
+    def draw(self, n, rng, stop):
+        return [GoalSample(s.q, s.region, final=s.q + np.array([0.0, -1.5])) for s in self.inner.draw(n, rng, stop)]
 
     def exhausted(self):
         return self.inner.exhausted()

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from lazyground.planning import curves
-from lazyground.planning.car import CarSpace, gear_changes, make_space
-from lazyground.planning.search import edge_fraction, edge_free
+from lazyground.planning.car import CarSpace, gear_changes
+from lazyground.planning.kinematics import make_space
 from lazyground.planning.space import ConfigSpace
 
 R = 3.86  # the bundled car's turning radius
@@ -134,7 +134,7 @@ def test_densify_keeps_waypoints_and_spacing():
     space = make_space(BASE, "reeds-shepp", R, OFFSET)
     rng = np.random.default_rng(5)
     path = np.array([space.sample(rng) for _ in range(4)])
-    dense = space.densify(path)
+    dense = space.dense_path(path)
     for q in path:
         assert np.min(np.abs(dense - q).sum(axis=1)) < 1e-9
     _assert_drivable(space, dense, 0.1)
@@ -165,14 +165,15 @@ def test_curve_edges_are_checked_along_the_curve():
     a, b = np.array([10.0, 5.0, 0.0]), np.array([10.0, 10.0, 0.0])  # a sideways shift: the curve swings past x = 11
     assert BASE.discretize(a, b, 0.05)[:, 0].max() < 11.0  # the straight line never does
     assert space.discretize(a, b, 0.05)[:, 0].max() > 11.0
-    assert not edge_free(space, checker, a, b, 0.05)
-    t = edge_fraction(space, checker, a, b, 0.05)
+    motion = space.motion_validator(checker)
+    assert not motion.edge_free(a, b, 0.05)
+    t = motion.edge_fraction(a, b, 0.05)
     assert 0.0 < t < 1.0
     q = space.interpolate(a, b, t)
     assert q[0] < 11.0  # the free prefix ends before the wall
     assert np.all(checker.configs_free(space.discretize(a, q, 0.01)))
     assert checker.edge_calls == 0  # the checker's linear edge check was never used
-    assert edge_free(BASE, checker, a, b, 0.05) and checker.edge_calls == 1  # straight spaces still use it
+    assert BASE.motion_validator(checker).edge_free(a, b, 0.05) and checker.edge_calls == 1  # straight spaces still use it
 
 
 def test_car_space_rejects_bad_input():
@@ -226,9 +227,8 @@ def test_planned_car_paths_are_drivable(kinematics):
         assert goal.contains(res.path[-1])
         _assert_drivable(space, res.path, 0.1)
         assert np.all(world.configs_free(res.path))
-        assert res.cusps == gear_changes(space.reference(res.path))
-        if kinematics == "dubins":
-            assert res.cusps == 0
+        if kinematics == "dubins":  # (the gear changes are the motion's: lazyground.motion.car_shortcut)
+            assert gear_changes(space.reference(res.path)) == 0
     assert solved == 3
 
 

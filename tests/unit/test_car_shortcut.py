@@ -4,13 +4,15 @@ import numpy as np
 import pytest
 
 from lazyground.motion.car_shortcut import driven_lengths, shorten_car_path
-from lazyground.planning.car import gear_changes, make_space
+from lazyground.planning.car import gear_changes
+from lazyground.planning.kinematics import make_space
 from lazyground.planning.search import path_is_valid
 from lazyground.planning.space import ConfigSpace
+from lazyground.planning.stop import StopCondition
 from tests.unit.test_car import BASE, OFFSET, R, _assert_drivable
 from tests.unit.toy import BoxWorld
 
-NO_CLOCK = 1e9  # tests stop on attempts, never on the clock
+NO_CLOCK = StopCondition()  # tests stop on attempts, never on the clock
 
 
 def _planned(space, world, seed):
@@ -36,7 +38,7 @@ def test_shortened_car_paths_are_drivable_free_shorter_and_straighter(seed):
     res = _planned(space, world, seed)
     cut = shorten_car_path(space, world, res.path, 0.1, 10.0, 200, NO_CLOCK, np.random.default_rng(seed))
     assert cut.raw_length == pytest.approx(res.path_length, rel=1e-6)  # driven length of the dense samples
-    assert cut.raw_cusps == res.cusps
+    assert cut.raw_cusps == gear_changes(space.reference(res.path))
     assert np.array_equal(cut.path[0], res.path[0]) and np.array_equal(cut.path[-1], res.path[-1])
     _assert_drivable(space, cut.path, 0.1)
     # the independent re-check: every curve between consecutive samples, finer than the planner's
@@ -53,7 +55,7 @@ def test_a_curve_that_fails_the_fine_recheck_is_put_back():
                                    None, np.array([False, False, True])), "reeds-shepp", 1.0)
     wall = BoxWorld([(4.994, -1.0, 5.006, 1.0)])  # 12 mm thick, at x = 5 across the straight line y = 0
     # the raw path: along y = 0, a lane change to y = 4 around the wall, and back
-    raw = space.densify(np.array([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [4.0, 4.0, 0.0], [6.0, 4.0, 0.0],
+    raw = space.dense_path(np.array([[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [4.0, 4.0, 0.0], [6.0, 4.0, 0.0],
                                   [8.0, 0.0, 0.0], [10.0, 0.0, 0.0]]))
     assert path_is_valid(space, wall, raw, 0.01) == -1
     cut = shorten_car_path(space, wall, raw, 1.0, 100.0, 300, NO_CLOCK, np.random.default_rng(0))

@@ -11,7 +11,7 @@ from lazyground.motion.car_timing import WINDOWS, time_drive
 from lazyground.motion.curve import unwrap_path
 from lazyground.motion.trajectory import Limits, TimingSettings, _sample, time_path
 from lazyground.motion.validate import trajectory_problems
-from lazyground.planning.car import make_space
+from lazyground.planning.kinematics import make_space
 from tests.unit.test_car import BASE, OFFSET, R
 from tests.unit.toy import BoxWorld
 
@@ -21,14 +21,14 @@ LIMITS = Limits(np.array([1.5, 1.5, 0.5]), np.array([1.0, 1.0, 1.0]))  # the bun
 LANE_WAYPOINTS = np.array([[2.0, 2.0, 0.0], [12.0, 6.0, 0.0], [20.0, 12.0, 1.2]])
 # a three-point turn: reverse gears in between (cusps)
 TURN_WAYPOINTS = np.array([[10.0, 10.0, 0.0], [14.0, 12.0, 2.0], [12.0, 9.0, 3.1]])
-LANE, TURN = CAR.densify(LANE_WAYPOINTS), CAR.densify(TURN_WAYPOINTS)
+LANE, TURN = CAR.dense_path(LANE_WAYPOINTS), CAR.dense_path(TURN_WAYPOINTS)
 WAYPOINTS = {id(LANE): LANE_WAYPOINTS, id(TURN): TURN_WAYPOINTS}
 
 
 def _planned_curve(path):
     """The planned curves at 1 mm (from the waypoints: between two samples of a straight the curve solver
     may return a tiny loop of the same length)."""
-    return cKDTree(CAR.densify(WAYPOINTS[id(path)], 0.001)[:, :2])
+    return cKDTree(CAR.dense_path(WAYPOINTS[id(path)], 0.001)[:, :2])
 
 
 def _rear_axle_slip(q, qd):
@@ -71,7 +71,7 @@ def test_averaged_curvature_is_continuous_within_the_radius_and_ends_on_the_plan
 
 def test_a_straight_line_takes_the_trapezoid_time():
     """Along x only the x limits bind: 1.5 m/s and 1 m/s^2 give 10 / 1.5 + 1.5 s for 10 m."""
-    q = unwrap_path(CAR, CAR.densify(np.array([[5.0, 5.0, 0.0], [15.0, 5.0, 0.0]])))
+    q = unwrap_path(CAR, CAR.dense_path(np.array([[5.0, 5.0, 0.0], [15.0, 5.0, 0.0]])))
     (drive,) = drives(CAR, q, 2.0)
     timed = time_drive(drive, LIMITS)
     assert timed.duration == pytest.approx(10.0 / 1.5 + 1.5, rel=0.01)

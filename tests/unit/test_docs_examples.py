@@ -66,3 +66,20 @@ def test_yaml_example_loads(text):
         load_dataclass(data, RobotDefaults, "robot.yaml")
     else:
         pytest.fail(f"a YAML example this test does not know how to load: keys {sorted(data)}")
+
+
+ROW = re.compile(r"^\| [^|]+ \| `([^`]+)` \| (\w+) \| ((?:`[^`]+` ?)+) \|$", re.M)
+CONSTRUCTIONS = [pytest.param(m.group(1), m.group(2), set(m.group(3).strip("` ").split()), id=m.group(1))
+                 for m in ROW.finditer((ROOT / "docs" / "requests.md").read_text())]
+
+
+def test_the_requests_page_has_a_construction_table():
+    assert len(CONSTRUCTIONS) >= 20
+
+
+@pytest.mark.parametrize("request_text, scene_name, expected", CONSTRUCTIONS)
+def test_construction_example_grounds_as_the_page_says(request_text, scene_name, expected):
+    from lazyground.scene import load_scene
+
+    scene = load_scene(ROOT / "yaml_scenes" / f"{scene_name}.yaml")
+    assert {i.id for i in grounding.ground(request_text, scene).interpretations} == expected

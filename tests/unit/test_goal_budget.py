@@ -4,6 +4,7 @@ free) and gives up as before on one it never reaches; the status says how many o
 import numpy as np
 
 from lazyground.goals import REACHED_FACTOR, RoundRobinGoalSource
+from lazyground.planning.stop import never
 from lazyground.regions import ConfigRegion
 
 
@@ -12,7 +13,7 @@ class Scripted(RoundRobinGoalSource):
 
     reached_reasons = ("in collision",)
 
-    def attempt(self, j, rng, deadline):
+    def attempt(self, j, rng, stop):
         return None, ("in collision", "out of reach")[j]
 
 
@@ -24,7 +25,7 @@ def test_a_region_whose_goals_are_reached_gets_more_attempts():
     source = Scripted(_regions(), give_up_after=20)
     rng = np.random.default_rng(0)
     while not source.exhausted():
-        assert source.draw(10, rng, deadline=float("inf")) == []
+        assert source.draw(10, rng, never()) == []
     assert [st.attempts for st in source.stats] == [20 * REACHED_FACTOR, 20]
 
 
@@ -33,5 +34,5 @@ def test_without_reached_reasons_every_region_gets_the_same_budget():
     source.reached_reasons = ()
     rng = np.random.default_rng(0)
     while not source.exhausted():
-        source.draw(10, rng, deadline=float("inf"))
+        source.draw(10, rng, never())
     assert [st.attempts for st in source.stats] == [20, 20]

@@ -148,7 +148,9 @@ CASES = [
     ("kitchen", "grab the brown thing", pick("box_small")),
     ("kitchen", "pick up the can or the box", pick(*ALL_CANS, *BOXES)),
     # --- location: support relations, racks, left/right/top --------------------------------------
-    ("kitchen", "a can on the table", None),  # no verb: error (checked in the error tests)
+    ("kitchen", "a can on the table", pick("can_red", "can_blue")),  # a noun phrase alone: get it (#29)
+    ("kitchen", "the green soda, please", pick("can_green")),
+    ("lot", "bay c please", park("bay_c")),
     ("kitchen", "pick up a can on the table", pick("can_red", "can_blue")),
     ("kitchen", "grab the can on the desk", pick("can_red", "can_blue")),
     ("kitchen", "get a can from the shelf", pick("can_green", "can_plain", "can_red2")),

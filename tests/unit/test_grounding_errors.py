@@ -28,7 +28,7 @@ ERRORS = [
     ("lot", "park the can", None),
     # unknown words and verbs: name the word, list the verbs
     ("kitchen", "frobnicate the can", "unknown word 'frobnicate'; supported verbs: pick up, grab, take, get, fetch, lift, grasp, put, place, set, move, park (see docs/requests.md)"),
-    ("kitchen", "a can on the table", "a request starts with a verb, not 'a'; supported verbs:"),
+    ("kitchen", "on the table", "a request starts with a verb, not 'on'; supported verbs:"),
     ("kitchen", "pick up the widget", "unknown word 'widget'; objects here: table x1, can x5, box x3, shelf x5; verbs:"),
     ("kitchen", "pick up the can quietly", "unknown word 'quietly'; objects here:"),
     # unsupported forms
@@ -38,7 +38,7 @@ ERRORS = [
     ("kitchen", "grab every box", "not supported: 'every box' asks for several objects; the robot handles one at a time (try 'one of the boxes')"),
     ("kitchen", "pick up the cans", "not supported: 'the cans' asks for several objects; the robot handles one at a time (try 'one of the cans')"),
     ("kitchen", "pick up the can and the box", "not supported: 'and' joins two objects or actions"),
-    ("kitchen", "pick up a can that is not red", "not supported: negation ('not')"),
+    ("kitchen", "do not pick up the red can", "not supported: a negated action ('pick up' after 'not')"),
     ("kitchen", "pick it up", "not supported: 'it' (nothing to refer back to)"),
     ("kitchen", "pick up the can put the box", "not supported: a second verb 'put'"),
     # wrong roles

@@ -1,21 +1,22 @@
 """The RRT of Algorithm 1 on a 2-D toy world with a fake checker."""
 
 from dataclasses import replace
-from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 from lazyground.planning import PlannerSettings, PlanStatus, path_is_valid, solve
+from lazyground.planning.stop import FakeClock, StopCondition, StopReason
 from tests.unit.toy import INVALID, REACHABLE, SPACE, START, UNREACHABLE, WALLS, BoxWorld, goal_source
 from tests.unit.toy import NO_CLOCK, SOLVE_BUDGET, TIMEOUT_BUDGET
 
 SETTINGS = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=SOLVE_BUDGET, goal_bias=0.1)
 
 
-def run(regions, seed, settings=SETTINGS, walls=WALLS, start=START):
+def run(regions, seed, settings=SETTINGS, walls=WALLS, start=START, stop=None):
     world = BoxWorld(walls)
-    return world, solve(SPACE, world, goal_source(world, regions), start, settings, np.random.default_rng(seed), seed=seed)
+    return world, solve(SPACE, world, goal_source(world, regions), start, settings, np.random.default_rng(seed), seed=seed,
+                        stop=stop)
 
 
 @pytest.mark.parametrize("strategy", ["reward-penalty", "consecutive", "random"])
@@ -98,36 +99,30 @@ def test_no_valid_goal_names_each_region():
     assert "block: 50 configurations tried, 0 valid (in collision x50)" in res.message
 
 
-def fake_clock(monkeypatch) -> None:
-    """The planner's and goal sampling's clock advances 1 ms per reading, whatever the machine's load."""
-    ticks = iter(range(10**9))
-    clock = SimpleNamespace(perf_counter=lambda: next(ticks) * 1e-3)
-    from lazyground import goals
-    from lazyground.planning import search
-
-    monkeypatch.setattr(search, "time", clock)
-    monkeypatch.setattr(goals, "time", clock)
+def fake_stop(settings: PlannerSettings) -> StopCondition:
+    """The settings' limits on a clock that advances 1 ms per reading, whatever the machine's load."""
+    return StopCondition.after(settings.time_limit, max_iterations=settings.max_iterations, clock=FakeClock(tick=1e-3))
 
 
 @pytest.mark.parametrize("algorithm", ["rrt", "bidirectional"])
-def test_a_limit_reached_before_every_region_was_tried_is_a_timeout(monkeypatch, algorithm):
+def test_a_limit_reached_before_every_region_was_tried_is_a_timeout(algorithm):
     # audit8: "--time-limit 0.001" on fetch_cans_1 said no_valid_goal ("no valid goal configuration in any
     # goal region"), with 11 of 12 regions "not tried": the limit ended goal sampling, not the regions
-    fake_clock(monkeypatch)
-    world, res = run([INVALID], 0, PlannerSettings(time_limit=0.01, algorithm=algorithm))
+    settings = PlannerSettings(time_limit=0.01, algorithm=algorithm)
+    world, res = run([INVALID], 0, settings, stop=fake_stop(settings))
     assert res.status is PlanStatus.TIMEOUT and res.path is None, res.message
     assert res.message.startswith("no valid goal configuration found within 0.01 s") and "block: " in res.message and "configurations tried, 0 valid" in res.message
-    fake_clock(monkeypatch)
-    world, res = run([INVALID], 0, PlannerSettings(time_limit=1.0, algorithm=algorithm))  # time to give up on the region
+    settings = PlannerSettings(time_limit=1.0, algorithm=algorithm)  # time to give up on the region
+    world, res = run([INVALID], 0, settings, stop=fake_stop(settings))
     assert res.status is PlanStatus.NO_VALID_GOAL, res.message
 
 
-def test_timeout_respects_the_limit(monkeypatch):
+def test_timeout_respects_the_limit():
     # The time limit itself, on a fake clock: the planner stops at the first reading past the limit.
-    fake_clock(monkeypatch)
     settings = PlannerSettings(step_size=0.5, time_limit=0.3, goal_bias=0.1)
-    world, res = run([UNREACHABLE], 0, settings)
-    assert res.status is PlanStatus.TIMEOUT and res.path is None
+    stop = fake_stop(settings)
+    world, res = run([UNREACHABLE], 0, settings, stop=stop)
+    assert res.status is PlanStatus.TIMEOUT and res.path is None and stop.reason is StopReason.TIMEOUT
     assert settings.time_limit <= res.time_s <= settings.time_limit + 0.1  # a few readings past the limit
     assert 0 < res.iterations < 300  # at least one reading per iteration
 

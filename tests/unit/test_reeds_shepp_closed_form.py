@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from lazyground.planning import curves
-from lazyground.planning.car import make_space
+from lazyground.planning.kinematics import make_space
 from lazyground.planning.space import ConfigSpace
 
 TURN = {"L": 1, "R": -1}

@@ -60,7 +60,7 @@ ERRORS = [
     (CANS_1, "pikc up a can", "unknown word 'pikc'; did you mean 'pick'?"),
     (CANS_1, "pick up a cna", "unknown word 'cna'; did you mean 'can'?"),
     ("parking_1", "pakr", "unknown word 'pakr'; did you mean 'park'?"),
-    ("parking_1", "park in b1", "unknown word 'b1'; ids with 'b1': spot_b1, spot_b10, spot_b11;"),
+    ("parking_1", "park in b12", "unknown word 'b12'; ids here: spot_b0, spot_t0, spot_b1"),
     (CANS_1, "pick up can 7", "no 'can 7' in this scene; ids with 'can': Can1, Can2, Can3, Can4"),
     (CANS_1, "pick up the fifth can", "no fifth can: there are only 4 cans"),
     (CANS_1, "grab a can from the top shelf",
@@ -106,18 +106,20 @@ def test_undefined_object_type_is_an_error_with_a_suggestion():
     with pytest.raises(GroundingError) as info:
         ground("park", parse_scene(TYPO, "typo"))
     msg = str(info.value)
-    assert msg.startswith("typo: objects[1].type: object 'spot_b': unknown type 'parking_sopt'; did you mean 'parking_spot'?"), msg
+    assert msg.startswith("object 'spot_b': unknown type 'parking_sopt'; did you mean 'parking_spot'?"), msg
     assert "grasp_types: {parking_sopt: {}}" in msg
 
 
-@pytest.mark.parametrize("typo", ["mug", "muggg", "Mug"])
-def test_a_type_named_by_a_word_of_another_suggests_that_type(typo):
+@pytest.mark.parametrize("typo", ["mug", "muggg"])
+def test_a_type_named_by_a_word_of_another_suggests_that_type(typo, tmp_path):
     # issue 34: 'type: mug' said "unknown type 'mug'; (types: ...)", no file, no suggestion ('mug' is a word for a cup)
-    scene = parse_scene(TYPO.replace("parking_sopt", typo), "my_table.yaml")
+    path = tmp_path / "my_table.yaml"
+    path.write_text(TYPO.replace("parking_sopt", typo))
     with pytest.raises(GroundingError) as info:
-        ground("park", scene)
-    assert str(info.value).startswith(f"my_table.yaml: objects[1].type: object 'spot_b': unknown type {typo!r}; "
-                                      "did you mean 'cup' (a 'mug' is one)?"), str(info.value)
+        ground("park", load_scene(path))
+    msg = str(info.value)
+    assert msg.startswith(f"object 'spot_b': unknown type {typo!r}; did you mean 'cup'?"), msg
+    assert msg.endswith(f"({path} line 5)"), msg
 
 
 def test_a_scene_declares_its_own_type():

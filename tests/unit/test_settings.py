@@ -16,7 +16,8 @@ from lazyground.planning.rrt import ALGORITHMS
 from lazyground.planning.strategies import STRATEGIES
 from lazyground.scene import SceneError, parse_scene
 from lazyground.scene.schema import AlgorithmSpec, PlannerSpec
-from lazyground.settings import BY_NAME, Algorithm, GoalExtension, Layer, Strategy, declared
+from lazyground.settings import (BY_NAME, Algorithm, GoalExtension, GoalSamplingSettings, IKSolver, Layer, MotionSettings,
+                                 RunSettings, SceneKeys, Strategy, TaskSettings, declared)
 
 ROOT = Path(__file__).resolve().parents[2]
 PARKING = ROOT / "yaml_scenes/parking_1.yaml"
@@ -25,12 +26,29 @@ CAR = "robot: {model: car, start: {car_x: 3, car_y: 3, car_qz: 0}, limits: {car_
 
 def test_every_layer_has_exactly_the_declared_fields():
     names = lambda cls: [f.name for f in dataclasses.fields(cls)]  # noqa: E731
-    assert names(PlannerSettings) == [s.name for s in declared(Layer.API)]
+    groups = [getattr(RunSettings(), f.name) for f in dataclasses.fields(RunSettings)]
+    assert [type(g) for g in groups] == [PlannerSettings, GoalSamplingSettings, MotionSettings, TaskSettings]
+    assert [n for g in groups for n in names(g)] == [s.name for s in declared(Layer.API)]
     assert names(PlannerSpec) == [s.name for s in declared(Layer.SCENE)] + ["per_algorithm"]
     assert names(AlgorithmSpec) == [s.name for s in declared(Layer.PER_ALGORITHM)]
-    defaults = PlannerSettings()
-    assert all(getattr(defaults, s.name) == s.default for s in declared(Layer.API))
+    assert all(getattr(g, s.name) == s.default for g in groups for s in declared(Layer.API) if hasattr(g, s.name))
     assert all(getattr(PlannerSpec(), s.name) == s.default for s in declared(Layer.SCENE))
+    # each setting is one dataclass field, declared with its doc and layers in the field's metadata
+    fields = [f for kind in (PlannerSettings, SceneKeys, GoalSamplingSettings, MotionSettings, TaskSettings)
+              for f in dataclasses.fields(kind)]
+    assert [f.name for f in fields] == [s.name for s in settings.SETTINGS]
+    assert all(f.metadata["setting"]["doc"] == BY_NAME[f.name].doc for f in fields)
+
+
+def test_flat_names_go_to_their_group():
+    run = RunSettings.of(step_size=1.0, speed=0.5, give_up_after=7, place_share=0.25, ik_solver="snopt")
+    assert run.planner.step_size == 1.0 and run.motion.speed == 0.5 and run.goal_sampling.give_up_after == 7
+    assert run.task.place_share == 0.25 and run.goal_sampling.ik_solver is IKSolver.SNOPT
+    assert run.replace(speed=0.25, goal_bias=0.5).motion.speed == 0.25 and run.replace(goal_bias=0.5).planner.goal_bias == 0.5
+    with pytest.raises(ValueError, match="unknown planner setting 'stepsize'"):
+        RunSettings.of(stepsize=1.0)
+    with pytest.raises(ValueError, match="place_share: must be in"):
+        RunSettings.of(place_share=0.0)
 
 
 def test_registries_are_keyed_by_the_enums():
@@ -49,7 +67,7 @@ def test_settings_hold_enum_members_and_compare_as_names():
     ("step_size", -1, "step_size: must be > 0, got -1"),
     ("goal_bias", 1.5, "goal_bias: must be in [0, 1], got 1.5"),
     ("algorithm", "foo", "algorithm: unknown algorithm 'foo' (known: rrt, bidirectional)"),
-    ("strategy", "greedy", "strategy: unknown strategy 'greedy' (known: reward-penalty, consecutive, random)"),
+    ("strategy", "greedy", "strategy: unknown strategy 'greedy' (known: reward-penalty, consecutive, random, cover)"),
     ("goal_extension", "jump", "goal_extension: unknown goal extension 'jump' (known: partial, extend, connect)"),
     ("max_iterations", 2.5, "max_iterations: expected an integer, got 2.5"),
     ("time_limit", float("inf"), "time_limit: must be finite, got inf"),
@@ -67,11 +85,11 @@ def test_api_rejects_an_unknown_setting():
 
 
 @pytest.mark.parametrize("planner, error", [
-    ("{step_size: -1}", "bad.yaml: planner.step_size: must be > 0, got -1"),
-    ("{algorithm: foo}", "bad.yaml: planner.algorithm: unknown algorithm 'foo' (known: rrt, bidirectional)"),
+    ("{step_size: -1}", "bad.yaml: planner.step_size: must be > 0, got -1 (line 3)"),
+    ("{algorithm: foo}", "bad.yaml: planner.algorithm: unknown algorithm 'foo' (known: rrt, bidirectional) (line 3)"),
     ("{per_algorithm: {rrt: {goal_extension: jump}}}",
-     "bad.yaml: planner.per_algorithm.rrt.goal_extension: unknown goal extension 'jump' (known: partial, extend, connect)"),
-    ("{per_algorithm: {prm: {}}}", "bad.yaml: planner.per_algorithm.prm: unknown algorithm (known: rrt, bidirectional)"),
+     "bad.yaml: planner.per_algorithm.rrt.goal_extension: unknown goal extension 'jump' (known: partial, extend, connect) (line 3)"),
+    ("{per_algorithm: {prm: {}}}", "bad.yaml: planner.per_algorithm.prm: unknown algorithm (known: rrt, bidirectional) (line 3)"),
 ])
 def test_scene_file_rejects_a_bad_setting(planner, error):
     with pytest.raises(SceneError) as info:

@@ -10,9 +10,11 @@ from lazyground.motion.shortcut import (ShortcutSettings, ShortcutStatus, _FineC
                                         shortcut_path)
 from lazyground.planning import PlannerSettings, path_is_valid, solve
 from lazyground.planning.space import ConfigSpace
+from lazyground.planning.stop import StopCondition
+from tests.counts import PLANNER_BY_COUNTS
 from tests.unit.toy import REACHABLE, SPACE, START, WALLS, BoxWorld, CountingWorld, goal_source
 
-SETTINGS = PlannerSettings(step_size=0.5, time_limit=30.0, goal_bias=0.1)
+SETTINGS = PlannerSettings(step_size=0.5, goal_bias=0.1, **PLANNER_BY_COUNTS)
 BUDGET = ShortcutSettings(max_iterations=200, time_budget=1e9)  # iterations decide, never the clock
 FINE = SETTINGS.resolution / SETTINGS.validation_factor
 
@@ -101,7 +103,7 @@ def test_the_lazy_greedy_pass_gives_the_checked_ones_path_with_fewer_checks():
             world = CountingWorld(WALLS)
             fine = _FineCheck(SPACE, world, FINE, path)
             edge = bisected_edge(SPACE, world, SETTINGS.resolution)
-            versions, _, _ = _shorten(SPACE, edge, fine, start, settings, np.random.default_rng(seed), 1e18, lazy)
+            versions, _, _ = _shorten(SPACE, edge, fine, start, settings, np.random.default_rng(seed), StopCondition(), lazy)
             out[lazy], asked[lazy] = np.array(versions[-1].q), world.asked
         assert np.array_equal(out[True], out[False])
         assert asked[True] <= asked[False]

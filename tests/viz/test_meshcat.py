@@ -76,14 +76,15 @@ FETCH_SCENE = """\
 def _step(world, g, q0, q1, regions, seed=0):
     """A hand-made solved step from q0 to q1 (no planning: the drawing is under test)."""
     from lazyground.plan_report import PlanReport
-    from lazyground.planning.problem import GoalSample, PlannerSettings, PlanResult, PlanStatus
+    from lazyground.planning.problem import GoalSample, PlanResult, PlanStatus
+    from lazyground.settings import RunSettings
 
     mid = (q0 + q1) / 2
     sample = GoalSample(q=q1, region=0, weight=0.3)
     tree = (np.array([q0, mid, q1, q0 + 0.1]), np.array([-1, 0, 1, 0]), np.array([False, True, True, False]))
     result = PlanResult(PlanStatus.SOLVED, seed, np.array([q0, mid, q1]), sample, regions[0], 3, 4, [sample], 0, 0.0, 0.0, 0.0,
                         regions=tuple(regions), tree=tree, failed_from=np.array([3]))
-    return PlanReport("step", "fetch_can_viz", seed, PlannerSettings(), g, result, world.space.names, 0.0, 0.0)
+    return PlanReport("step", "fetch_can_viz", seed, RunSettings(), g, result, world.space.names, 0.0, 0.0)
 
 
 def fetch_can_set_up(tmp_path):

@@ -145,7 +145,7 @@ class BatchAttempts:
             if not it.unchecked:
                 continue
             t = time.perf_counter()
-            it.k, _, it.reason = self.source.grasp(it, lambda k, it=it: it.answers[k] if it.ok[k] else None, math.inf)
+            it.k, _, it.reason = self.source.grasp(it, lambda k, it=it: it.answers[k] if it.ok[k] else None, None)
             it.unchecked = False
             it.seconds += time.perf_counter() - t
             if it.k is not None and any(self.source.regions[it.j].approach):

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import replace
 from typing import Callable
 
 import numpy as np
@@ -35,6 +36,8 @@ from lazyground.drake.ik.solvers import BatchSolver, ProgramSolver, pose_error, 
 from lazyground.geometry import Pose, rpy_to_matrices
 from lazyground.goals import RoundRobinGoalSource
 from lazyground.planning.problem import GoalSample
+from lazyground.planning.stop import StopCondition
+from lazyground.planning.turns import nearest_turns
 from lazyground.regions import PoseRegion
 from lazyground.regions.base import from_unit
 from lazyground.typed_yaml import SceneError
@@ -68,7 +71,10 @@ class IKGoalSource(RoundRobinGoalSource):
 
     def __init__(self, regions: tuple[PoseRegion, ...], world, settings: IKSettings | None = None, **kwargs):
         super().__init__(regions, **kwargs)
-        settings = ik_settings.DEFAULT_IK_SETTINGS if settings is None else settings
+        sampling = kwargs.get("sampling")
+        if settings is None:  # the run's restarts and solver over the IK defaults
+            settings = ik_settings.DEFAULT_IK_SETTINGS if sampling is None else replace(
+                ik_settings.DEFAULT_IK_SETTINGS, restarts=sampling.ik_restarts, solver=str(sampling.ik_solver))
         attached = getattr(world, "attached", None)
         frames = []
         for r in self.regions:
@@ -99,6 +105,8 @@ class IKGoalSource(RoundRobinGoalSource):
         self.planned = np.asarray(world.planned, int)
         self.last: list[np.ndarray | None] = [None] * len(self.regions)  # per region: its last valid answer
         self.target_screen = TargetScreen(world, frames, settings)
+        self.near = world.start  # goals prefer the full-turn equivalent nearest this (the step's start)
+        self._turns = getattr(getattr(world, "coordinates", None), "turns", None)
         problems = {f: problem_for_frame(world, f) for f in dict.fromkeys(frames)} if settings.solver == "batch" else {}
         # batches when the chain expresses every frame (else SNOPT on the plant, e.g. for a planar base)
         self.batch = None
@@ -187,13 +195,13 @@ class IKGoalSource(RoundRobinGoalSource):
         return self.target_screen.reasons(frame, X_WT)
 
     # --- one attempt -------------------------------------------------------------------------
-    def attempt(self, j: int, rng: np.random.Generator, deadline: float) -> tuple[GoalSample | None, str]:
+    def attempt(self, j: int, rng: np.random.Generator, stop: StopCondition) -> tuple[GoalSample | None, str]:
         if self.batch is not None:
-            if self._stop(deadline) <= time.perf_counter():  # the stop first: a zero budget is spent at once
+            if self._stop(stop).should_stop():  # the stop first: a zero budget is spent at once
                 return None, "time"
             items = self.batch.prepare([(j, -1)], rng)
             self.batch.check(items)
-            return self._finish(items[0], deadline)
+            return self._finish(items[0])
         region = self.regions[j]
         v = region.sample(rng)
         frame, X_WT = self.target_pose_for(region, v)
@@ -202,31 +210,32 @@ class IKGoalSource(RoundRobinGoalSource):
             return None, reason
         seeds = [self.last[j]] if self.last[j] is not None and self.settings.warm_start else []
         item = Prepared(j, -1, v, frame, X_WT.matrix())
-        return self._first_valid(item, deadline, lambda k: self.solve(frame, X_WT, seeds[k] if k < len(seeds) else self.random_full(rng),
+        return self._first_valid(item, stop, lambda k: self.solve(frame, X_WT, seeds[k] if k < len(seeds) else self.random_full(rng),
                                                                         counters=self.region_counters[j]),
                                  lambda k, q_full, scale: self.approach_from(region, v, q_full, scale))
 
-    def _stop(self, deadline: float) -> float:
+    def _stop(self, stop: StopCondition) -> StopCondition:
+        """One attempt's stop condition: ``attempt_budget`` seconds of ``stop``'s time."""
         budget = self.settings.attempt_budget
-        return deadline if budget is None else min(deadline, time.perf_counter() + budget)
+        return stop if budget is None else stop.share(seconds=budget)
 
-    def _first_valid(self, item: Prepared, deadline: float, answer: Callable, approach: Callable) -> tuple[GoalSample | None, str]:
+    def _first_valid(self, item: Prepared, stop: StopCondition, answer: Callable, approach: Callable) -> tuple[GoalSample | None, str]:
         """The attempt's sample from its first restart whose answer is within the limits and free, or why none.
 
         ``answer(k)`` is restart k's IK answer (full positions) or None; ``approach(k, q_full, scale)``
         the pre-pose at ``scale`` of the approach for it, or None when blocked.
         """
-        k, q_full, reason = self.grasp(item, answer, self._stop(deadline))
+        k, q_full, reason = self.grasp(item, answer, self._stop(stop))
         return (None, reason) if k is None else (self._sample(item, k, q_full, approach), "")
 
-    def grasp(self, item: Prepared, answer: Callable, stop: float) -> tuple[int | None, np.ndarray | None, str]:
+    def grasp(self, item: Prepared, answer: Callable, stop: StopCondition | None) -> tuple[int | None, np.ndarray | None, str]:
         """(restart, full positions, "") of the attempt's first answer within the limits and free, or (None, None, why not).
 
         ``answer(k)`` is restart k's IK answer (full positions) or None; no restart starts after ``stop``.
         """
         reason = "time"
         for k in range(self.settings.restarts):
-            if time.perf_counter() >= stop:
+            if stop is not None and stop.should_stop():
                 break
             q_full = answer(k)
             if q_full is None:
@@ -253,8 +262,16 @@ class IKGoalSource(RoundRobinGoalSource):
         for scale in APPROACH_SCALES if any(region.approach) else ():
             pre = approach(k, q_full, scale)
             if pre is not None:
-                return GoalSample(q=pre, region=j, final=q, extra=extra | {"approach_scale": scale})
-        return GoalSample(q=q, region=j, extra=extra)
+                shift = self._nearest_turns(q, pre)
+                return GoalSample(q=pre + shift, region=j, final=q + shift, extra=extra | {"approach_scale": scale})
+        return GoalSample(q=q + self._nearest_turns(q), region=j, extra=extra)
+
+    def _nearest_turns(self, q: np.ndarray, *together: np.ndarray) -> np.ndarray:
+        """Full turns taking goal ``q`` (and its pre-pose) nearest the start: the same grasp, a shorter motion (#28)."""
+        if self._turns is None or not self._turns.any() or self.near is None:
+            return np.zeros_like(q)
+        space = self.world.space
+        return nearest_turns(q, self.near, space.lower, space.upper, self._turns, together)
 
     # --- many attempts at once (solver "batch") ----------------------------------------------
     def batch_size(self, wanted: int) -> int:
@@ -262,16 +279,16 @@ class IKGoalSource(RoundRobinGoalSource):
         self.wanted = wanted
         return 1 if self.batch is None else wanted * self.attempts_per_sample
 
-    def attempts(self, plan, rng, deadline):
+    def attempts(self, plan, rng, stop):
         if self.batch is None:
-            yield from super().attempts(plan, rng, deadline)
+            yield from super().attempts(plan, rng, stop)
             return
         for i, (j, after) in enumerate(plan):
             item = self.batch.take(j, after, plan[i - 1][1] if i else self.next_region, rng, lambda i=i: self._look_ahead(len(plan) - i))
-            a0 = time.perf_counter()
-            sample, reason = self._finish(item, deadline)
+            a0 = stop.now()
+            sample, reason = self._finish(item)
             self.wanted -= sample is not None
-            yield sample, reason, item.seconds + time.perf_counter() - a0
+            yield sample, reason, item.seconds + stop.now() - a0
 
     def _look_ahead(self, left: int) -> int:
         """How many attempts to solve at once: enough for the samples the draw still wants at the
@@ -291,7 +308,7 @@ class IKGoalSource(RoundRobinGoalSource):
         need = math.ceil(1.5 * max(self.wanted, 1) / rate)
         return int(min(max(need, LOOK_AHEAD_MIN), max(self.settings.batch_attempts, 1), max(left, LOOK_AHEAD_MIN)))
 
-    def _finish(self, item: Prepared, deadline: float) -> tuple[GoalSample | None, str]:
+    def _finish(self, item: Prepared) -> tuple[GoalSample | None, str]:
         """An attempt's sample from its prepared answer, grasp check and pre-poses: only the approach is checked here."""
         if item.reason:
             return None, item.reason
