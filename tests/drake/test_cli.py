@@ -105,7 +105,7 @@ def test_no_valid_goal(tmp_path, capsys):
     assert main(["plan", lot(tmp_path, extra=blocker), "park", "--json"]) == 1
     doc = json.loads(capsys.readouterr().out)
     assert doc["status"] == "no_valid_goal"
-    assert "spot_1/forwards: 0/50 valid (in collision x50)" in doc["message"]
+    assert "spot_1/forwards: 50 configurations tried, 0 valid (in collision x50)" in doc["message"]
 
 
 def test_timeout_when_unreachable(tmp_path, capsys):
