@@ -148,7 +148,7 @@ def weld_base(plant, robot, base_link: str | None, X_WB=None, where: str = "robo
     """
     if X_WB is not None:
         if not plant.HasBodyNamed(base_link, robot):
-            raise SceneError(f"{where}: no link {base_link!r} in the model (robot.base_link)")
+            raise SceneError(f"{where}_link: no link {base_link!r} in the model")  # the key that named it
         try:
             plant.WeldFrames(plant.world_frame(), plant.GetFrameByName(base_link, robot), X_WB)
         except RuntimeError:  # e.g. the link already hangs on a joint to the world (a planar car)

@@ -48,6 +48,7 @@ def test_blocked_spots_have_valid_parked_poses():
         assert samples, f"{kind} spot {spot} has no collision-free parked pose"
 
 
+@pytest.mark.real_clock  # wiring only: a 1 s bench run on the wall clock, either outcome accepted
 @pytest.mark.parametrize("planner", ["nearest-first-bidirectional", "multiplexer", "eager-bidirectional", "independent-bidirectional"])
 def test_bench_runs_each_baseline_on_a_family_key(planner):
     from lazyground.bench.runner import RunSpec, run

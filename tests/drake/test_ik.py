@@ -108,7 +108,7 @@ def test_failed_attempts_are_bounded_by_counts(cans1):
         assert slow.attempt(0, rng, NO_DEADLINE) == (None, "ik failed")
         assert slow.counters.solves == k * settings.restarts and slow.counters.successes == 0
     # the time budget and the deadline cut an attempt short; an expired one before any solve
-    for budget, deadline in ((0.0, NO_DEADLINE), (None, StopCondition.after(-1.0, clock=FakeClock()))):
+    for budget, deadline in ((0.0, StopCondition(clock=FakeClock())), (None, StopCondition.after(-1.0, clock=FakeClock()))):
         cut = IKGoalSource((_far_region(),), world, IKSettings(reach_check=False, attempt_budget=budget))
         assert cut.attempt(0, rng, deadline) == (None, "time") and cut.counters.solves == 0
 
