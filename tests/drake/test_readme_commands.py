@@ -15,7 +15,7 @@ import pytest
 from lazyground import api
 from lazyground.bundled import bundled_scene
 from lazyground.cli import build_parser
-from lazyground.settings import cli_values
+from lazyground.cli_options import cli_values
 
 ROOT = Path(__file__).resolve().parents[2]
 BUDGET = 20_000  # iterations; the README's lines need at most a few thousand
