@@ -30,6 +30,9 @@ def report_to_json(report: PlanReport) -> dict:
         "algorithm": report.settings.planner.algorithm,
         "goal_bias": report.settings.planner.goal_bias,
         "kinematics": report.settings.planner.kinematics,
+        "objective": report.settings.planner.objective,
+        # objective shortest/fastest: each better solution found, with the seconds since the step began (#30)
+        "improvements": [i.to_json() for i in report.outcome.improvements] if report.outcome is not None else [],
         "action": report.grounding.action,
         "ambiguous": report.grounding.ambiguous,
         "interpretations": [i.to_json() for i in report.grounding.interpretations],

@@ -83,6 +83,7 @@ class Outcome:
     lift: Lift | None = None
     placement: Placement | None = None
     fallbacks: int = 0  # objects given up on before the one that was placed
+    improvements: tuple = ()  # objective shortest/fastest: (time, cost, region) of each better solution (tasks.anytime)
 
     @property
     def grasp(self) -> Grasp | None:

@@ -6,6 +6,7 @@ from lazyground.goals import goal_source_for
 from lazyground.motion.post import post_process
 from lazyground.planning.rrt import solve
 from lazyground.planning.stop import StopCondition
+from lazyground.tasks.anytime import best_of, improvement_notes
 from lazyground.tasks.car_space import planning_space
 from lazyground.tasks.outcome import Outcome, Step
 
@@ -17,7 +18,8 @@ def make_goal_source(world, regions, sampling=None):
 
 def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, keep_tree: bool = False,
         clock=None) -> Outcome:
-    """Plan to whichever of ``grounding``'s goal regions is reachable first.
+    """Plan to whichever of ``grounding``'s goal regions is reachable first, or the best one found within the
+    budget (``objective``; :mod:`lazyground.tasks.anytime`).
 
     Args:
         scene: the Scene.
@@ -35,10 +37,17 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     world = worlds.get()
     setup_s = worlds.setup_s
     planner = settings.planner
-    source = make_goal_source(world, grounding.goal_regions, settings.goal_sampling)
     space = planning_space(scene, world.space, planner.kinematics)  # a car's curves, or world.space
     stop = StopCondition.after(planner.time_limit, max_iterations=planner.max_iterations, clock=clock)
-    result = solve(space, world, source, world.start, planner, rng, seed=seed, keep_tree=keep_tree, stop=stop)
-    result, motion = post_process(space, world, result, settings, rng)  # shortened and timed, as the space chose
+
+    def attempt(regions, within):
+        source = make_goal_source(world, regions, settings.goal_sampling)
+        result = solve(space, world, source, world.start, planner, rng, seed=seed, keep_tree=keep_tree, stop=within)
+        return post_process(space, world, result, settings, rng)  # shortened and timed, as the space chose
+
+    best = best_of(attempt, tuple(grounding.goal_regions), space, world.start, planner, stop)
+    result, motion = best.result, best.motion
     notes = (motion.note,) if motion is not None and motion.note else ()
-    return Outcome(result, (Step(grounding.action, result, setup_s, motion=motion),), world.space.names, notes)
+    notes += improvement_notes(best)
+    return Outcome(result, (Step(grounding.action, result, setup_s, motion=motion),), world.space.names, notes,
+                   improvements=best.improvements)
