@@ -48,6 +48,10 @@ def ground(request: str, scene: Scene, lexicon: Lexicon | None = None) -> Ground
     lex = (lexicon or load_lexicon()).for_scene(scene)
     clause = one_clause(parse(lex.tokens(text), lex, inventory(scene)))
     res = Resolver(scene, lex)
+    if several(clause):
+        from grounding.several import ground_several  # (it builds on this module's helpers)
+
+        return ground_several(request, clause, res, scene)
     action, obj, target = _frame(clause, res)
     ee = end_effector_of(scene.robot) if action != "park" else None
     notes: list[str] = []
@@ -97,6 +101,14 @@ def one_clause(request: Request) -> Clause:
             raise GroundingError(AND_REFUSED.format(request.conjunction or "and"))
         clauses[:2] = [joined]
     return clauses[0]
+
+
+def several(c: Clause) -> bool:
+    """Whether a clause asks for several objects: "clear", "a cup and a box", "two cans", "all the cups"."""
+    phrases = [a for alts in c.objects for a in alts]
+    if any(a.head in ("robot", "") for a in phrases):  # "park 2 cars": _frame says why not
+        return False
+    return c.verb.value == "clear" or len(c.objects) > 1 or any(not a.quantity.single for a in phrases)
 
 
 def _refers_back(c: Clause) -> bool:
