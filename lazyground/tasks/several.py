@@ -127,3 +127,25 @@ def _outcome(outcomes: list[Outcome], records: list[ObjectStep], notes: list[str
     last = outcomes[-1] if outcomes else None
     return Outcome(combined, steps, names, tuple(notes) + (summary,), last.lift if last else None,
                    last.placement if last else None, sum(o.fallbacks for o in outcomes), objects=tuple(records))
+
+
+def validate_several(outcome: Outcome, scene: Scene, resolution: float) -> list[str]:
+    """Re-check every pick and place of a several-object outcome at ``resolution``, replaying the scene:
+    each pick in the scene as the earlier steps left it (placed objects are obstacles), each place with
+    the object attached; returns the problems found."""
+    from lazyground.planning.rrt import path_is_valid
+
+    problems, current = [], scene
+    for pick, put in zip(outcome.steps[0::2], outcome.steps[1::2]):
+        worlds = Worlds(current, visual=False)
+        world, carrying = worlds.get(), worlds.get(put.grasp)
+        if not np.allclose(pick.result.path[0], world.start, atol=1e-9):
+            problems.append(f"{pick.label} does not start where the last step ended")
+        if path_is_valid(world.space, world, pick.result.path, resolution) >= 0:
+            problems.append(f"{pick.label} collides")
+        if path_is_valid(carrying.space, carrying, put.result.path, resolution) >= 0:
+            problems.append(f"{put.label} collides (with the carried object)")
+        q_end = put.result.path[-1]
+        X_WO = carrying.frame_pose(put.grasp.frame, q_end).compose(put.grasp.X_GO)
+        current = moved(current, put.grasp.object_id, X_WO, q_end, world.space.names)
+    return problems
