@@ -77,11 +77,12 @@ def plan(
         SceneError: the scene file is invalid.
         GroundingError: the request does not ground in the scene.
     """
+    read = clock or default_clock
+    t_call = read()
     if not isinstance(scene, Scene):
         scene = load_scene(scene)
     seed = scene.planner.seed if seed is None else coerce_setting("seed", seed)
     settings = run_settings(scene, **overrides)
-    read = clock or default_clock
     t0 = read()
     g = grounding.ground(request, scene)
     grounding_s = read() - t0
@@ -89,4 +90,4 @@ def plan(
     outcome = tasks.run(scene, g, settings, np.random.default_rng(seed), worlds, seed=seed, keep_tree=keep_tree,
                         clock=clock)
     return PlanReport(request, scene.name, seed, settings, g, outcome.result, outcome.joint_names, grounding_s,
-                      worlds.setup_s, outcome)
+                      worlds.setup_s, outcome, total_s=read() - t_call - worlds.setup_s)

@@ -37,11 +37,14 @@ def _add_robot_source_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--package", action="append", metavar="NAME=DIR",
                    help="folder of the ROS package NAME for package://NAME/... URIs in the robot model (repeatable)")
     p.add_argument("--srdf", metavar="FILE", help="MoveIt SRDF: disabled collision pairs and named poses")
+    p.add_argument("--xacro-arg", action="append", metavar="NAME=VALUE",
+                   help="an argument of a .xacro robot model, e.g. ur_type=ur5e (repeatable; wins over robot.xacro_args)")
 
 
 def _robot_overrides(args) -> dict:
-    """The scene robot keys that --package/--srdf replace (paths made absolute: they are relative to the cwd)."""
+    """The scene robot keys that --package/--srdf/--xacro-arg replace (paths made absolute: they are relative to the cwd)."""
     from lazyground.robots.description import parse_package_args
+    from lazyground.robots.xacro_file import parse_xacro_args
 
     out: dict = {}
     packages = parse_package_args(getattr(args, "package", None))
@@ -49,6 +52,9 @@ def _robot_overrides(args) -> dict:
         out["packages"] = {name: str(folder.resolve()) for name, folder in packages.items()}
     if getattr(args, "srdf", None):
         out["srdf"] = str(Path(args.srdf).resolve())
+    xacro_args = parse_xacro_args(getattr(args, "xacro_arg", None))
+    if xacro_args:
+        out["xacro_args"] = xacro_args
     return out
 
 
@@ -79,8 +85,12 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--debug", action="store_true", help="show tracebacks")
 
     c = sub.add_parser("check-robot", help="load a robot model (URDF/SDF) and report what lazyground makes of it")
-    c.add_argument("model", help="a URDF or SDF file, or a bundled robot name (fetch, panda, ur5e)")
+    c.add_argument("model", help="a URDF, SDF or xacro file, or a bundled robot name (fetch, panda, ur5e)")
     _add_robot_source_options(c)
+    c.add_argument("--write-allowed", metavar="FILE", help="sample configurations and write the link pairs to stop "
+                   "checking (adjacent, always and never touching) as robot.allowed_collisions YAML, or an SRDF (.srdf)")
+    c.add_argument("--samples", type=int, metavar="N", help="configurations to sample (default 200; 1000 with --write-allowed)")
+    c.add_argument("--seed", type=int, default=0, help="seed of the sampled configurations (default 0)")
     c.add_argument("--debug", action="store_true", help="show tracebacks")
 
     d = sub.add_parser("demo", help="plan the bundled demo requests and write the visualisations")
@@ -92,6 +102,16 @@ def build_parser() -> argparse.ArgumentParser:
 
     cli_options.add_start_options(p)
     add_import_options(sub.add_parser("import-moveit", help="convert a MoveIt planning-scene YAML into a lazyground scene"))
+
+    gen = sub.add_parser("generate", help="write a generated scene: a parking lot or a rack of cubbies (issue #33)")
+    gen.add_argument("family", choices=("lot", "rack"))
+    gen.add_argument("--robot", default="panda", help="rack: panda or fetch (default: panda)")
+    gen.add_argument("--free", type=int, help="lot: free spots (default 64)")
+    gen.add_argument("--objects", type=int, help="rack: cans (default 16)")
+    gen.add_argument("--reachable", type=int, help="how many are reachable (default: lot 2, rack 1)")
+    gen.add_argument("--seed", type=int, default=0)
+    gen.add_argument("-o", "--output", metavar="FILE", help="write the scene YAML here (default: stdout)")
+    gen.add_argument("--debug", action="store_true", help="show tracebacks")
 
     b = sub.add_parser("bench", help="benchmark strategies and peers (see benchmarks/RESULTS.md)", add_help=False)
     b.add_argument("bench_args", nargs=argparse.REMAINDER)
@@ -230,16 +250,20 @@ def cmd_demo(args) -> int:
 def cmd_check_robot(args) -> int:
     """Exit 0 when the robot is fine, 2 with the problems (the last line says which)."""
     from lazyground.robots.description import parse_package_args
+    from lazyground.robots.xacro_file import parse_xacro_args
     from lazyground.scene.loader import resolve_model
     from lazyground.typed_yaml import SceneError
 
     model = resolve_model(args.model, Path.cwd())
     if model is None:
-        raise SceneError(f"check-robot: no model file {args.model!r} (give a .urdf/.sdf path or a bundled robot name)")
+        raise SceneError(f"check-robot: no model file {args.model!r} (give a .urdf/.sdf/.xacro path or a bundled robot name)")
     _import_drake()
     from lazyground.drake.check_robot import check_robot
 
-    report = check_robot(model, args.srdf, parse_package_args(args.package))
+    if args.samples is not None and args.samples < 1:
+        raise UsageError(f"--samples {args.samples}: must be at least 1")
+    report = check_robot(model, args.srdf, parse_package_args(args.package), parse_xacro_args(args.xacro_arg),
+                         args.write_allowed, args.samples, args.seed)
     for line in report.lines():
         print(line)
     return EXIT_OK if report.ok else EXIT_BAD_INPUT
@@ -251,6 +275,28 @@ def cmd_import_moveit(args) -> int:
     return run(args)
 
 
+def cmd_generate(args) -> int:
+    from lazyground.bench.families import generate, parse_key, scene_yaml
+
+    if args.family == "lot":
+        key = f"lot:{64 if args.free is None else args.free}:{2 if args.reachable is None else args.reachable}:{args.seed}"
+    else:
+        key = f"rack:{args.robot}:{16 if args.objects is None else args.objects}:{1 if args.reachable is None else args.reachable}:{args.seed}"
+    try:
+        text = scene_yaml(generate(parse_key(key)))
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
+    if args.output is None:
+        sys.stdout.write(text)
+        return EXIT_OK
+    try:
+        Path(args.output).write_text(text)
+    except OSError as exc:
+        raise UsageError(f"cannot write {args.output}: {exc.strerror or exc}") from None
+    print(f"wrote {args.output}", file=sys.stderr)
+    return EXIT_OK
+
+
 def cmd_bench(args) -> int:
     from lazyground.bench.cli import main as bench_main
 
@@ -259,7 +305,7 @@ def cmd_bench(args) -> int:
 
 
 COMMANDS = {"plan": cmd_plan, "ground": cmd_ground, "demo": cmd_demo, "import-moveit": cmd_import_moveit, "bench": cmd_bench,
-            "check-robot": cmd_check_robot}
+            "generate": cmd_generate, "check-robot": cmd_check_robot}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -28,6 +28,20 @@ class PlanReport:
     grounding_s: float
     setup_s: float  # building the Drake world(s)
     outcome: Outcome | None = None  # None: a bare result (e.g. a viewer test)
+    total_s: float | None = None  # api.plan's wall time less setup_s: the request as the user waits for it
+
+    @property
+    def total_split_s(self) -> dict[str, float] | None:
+        """``total_s`` split: grounding, search (goal sampling, checks and the rest of the planner), motion
+        (shortening and timing every step), and the rest (loading the scene, goal sources, the report); the
+        parts add up to ``total_s``."""
+        if self.total_s is None:
+            return None
+        motion = sum(s.motion.shortcut_s + s.motion.timing_s for s in (self.outcome.steps if self.outcome else ())
+                     if s.motion is not None)
+        split = {"grounding": self.grounding_s, "search": self.result.time_s, "motion": motion}
+        split["rest"] = self.total_s - sum(split.values())
+        return split
 
     @property
     def steps(self) -> tuple[Step, ...]:

@@ -56,6 +56,9 @@ def report_to_json(report: PlanReport) -> dict:
             "other": _r(res.other_s),
         },
         "setup_s": _r(report.setup_s),
+        # the whole request as the user waits for it (api.plan's wall time less setup_s), split into parts adding up to it
+        "total_s": _r(report.total_s) if report.total_s is not None else None,
+        "total_split_s": {k: _r(v) for k, v in report.total_split_s.items()} if report.total_s is not None else None,
         "iterations": res.iterations,
         "tree_size": res.tree_size,
         "goal_samples": len(res.goal_samples),
@@ -121,6 +124,9 @@ def report_lines(report: PlanReport) -> list[str]:
     else:
         lines.append(f"status: {res.status.value}: {res.message}")
         lines.append(f"time {report.time_s:.3f} s; {res.iterations} iterations, tree {res.tree_size}, {len(res.goal_samples)} goal samples")
+    if report.total_s is not None:
+        split = ", ".join(f"{k} {v:.3f}" for k, v in report.total_split_s.items())
+        lines.append(f"request: {report.total_s:.3f} s ({split}); world build {report.setup_s:.3f} s")
     return lines
 
 

@@ -37,6 +37,7 @@ class Strategy(enum.StrEnum):
     REWARD_PENALTY = "reward-penalty"
     CONSECUTIVE = "consecutive"
     RANDOM = "random"
+    COVER = "cover"  # reward-penalty covering the regions as samples get stuck (planning/cover.py, issue #33)
 
 
 class Algorithm(enum.StrEnum):

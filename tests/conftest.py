@@ -59,3 +59,37 @@ def cpu_clock(monkeypatch):
 
     monkeypatch.setattr(stop, "CLOCK", time.process_time)
     return time.process_time
+
+
+REAL_CLOCKS = (time.monotonic, time.perf_counter, time.time)
+
+
+@pytest.fixture(autouse=True)
+def no_outcome_on_the_real_clock(request, monkeypatch):
+    """Fail a test in which a stop condition's deadline fired on the real clock (docs/reliability.md).
+
+    A deadline that fires on the wall clock lets the machine's load decide what the test sees; tests bound
+    plans by ``max_iterations`` (tests/counts.py), drive a ``FakeClock``, or measure CPU time (``cpu_clock``).
+    A test that must see a real deadline fire (the CLI's time-limit message, a subprocess) says so with
+    ``@pytest.mark.real_clock``. Active once ``lazyground.planning.stop`` exists; plans in child processes
+    are not seen.
+    """
+    if importlib.util.find_spec("lazyground.planning.stop") is None or request.node.get_closest_marker("real_clock"):
+        yield
+        return
+    from lazyground.planning import stop
+
+    fired = []
+    original = stop.StopCondition.timed_out
+
+    def timed_out(self):
+        out = original(self)
+        if out and self.clock is stop.default_clock and stop.CLOCK in REAL_CLOCKS:
+            fired.append(self.budget)
+        return out
+
+    monkeypatch.setattr(stop.StopCondition, "timed_out", timed_out)
+    yield
+    if fired:
+        pytest.fail(f"a {fired[0]:g} s deadline fired on the real clock ({len(fired)} readings past it): bound the "
+                    "run by max_iterations (tests/counts.py), drive a FakeClock, or mark the test real_clock", False)

@@ -4,6 +4,7 @@ Usage (from the repository root; dev extra: ``pip install -e .[dev]``)::
 
     nice python3 tools/mutation.py                      # every module below (about an hour on 2 cores)
     nice python3 tools/mutation.py regions strategies   # some of them
+    nice python3 tools/mutation.py --survivors regions  # again, only the survivors, with the tests added since
     python3 tools/mutation.py --list                    # the modules and their tests
 
 Each module runs in a scratch copy of the working tree (``--work``, default /tmp/lazyground-mutation/<module>),
@@ -30,7 +31,7 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
     "strategies": (["lazyground/planning/strategies.py"],
                    ["tests/unit/test_strategies.py", "tests/contract/test_strategy_contract.py"]),
     "tree-nn": (["lazyground/planning/tree.py", "lazyground/planning/nn.py"],
-                ["tests/unit/test_nn.py", "tests/unit/test_planner_toy.py"]),
+                ["tests/unit/test_tree.py", "tests/unit/test_nn.py"]),
     "search": (["lazyground/planning/search.py", "lazyground/planning/rrt.py", "lazyground/planning/birrt.py"],
                ["tests/unit/test_planner_toy.py", "tests/unit/test_birrt_toy.py", "tests/unit/test_fine_recheck.py",
                 "tests/contract/test_planner_contract.py"]),
@@ -58,17 +59,31 @@ def _mutmut_section(files: list[str], tests: list[str]) -> str:
     ]) + "\n"
 
 
-def run_module(name: str, work: Path, children: int) -> dict:
-    """Copy the tree, configure mutmut for ``name``, run it; returns the counts by status and the survivors."""
+def _results(scratch: Path) -> str:
+    return subprocess.run(["mutmut", "results", "--all", "true"], cwd=scratch, capture_output=True, text=True).stdout
+
+
+def run_module(name: str, work: Path, children: int, survivors_only: bool = False) -> dict:
+    """Copy the tree, configure mutmut for ``name``, run it; returns the counts by status and the survivors.
+
+    With ``survivors_only``, keep the scratch copy of an earlier run, copy the current tests into it and run
+    only the mutants that survived there (after tests were added to kill them)."""
     files, tests = MODULES[name]
     scratch = work / name
-    if scratch.exists():
-        shutil.rmtree(scratch)
-    shutil.copytree(REPO, scratch, ignore=IGNORE, symlinks=True)
-    pyproject = scratch / "pyproject.toml"
-    pyproject.write_text(pyproject.read_text() + _mutmut_section(files, tests))
-    subprocess.run(["mutmut", "run", "--max-children", str(children)], cwd=scratch, check=False)
-    out = subprocess.run(["mutmut", "results", "--all", "true"], cwd=scratch, capture_output=True, text=True).stdout
+    names = []
+    if survivors_only:
+        names = [line.strip().rpartition(": ")[0] for line in _results(scratch).splitlines() if line.endswith(": survived")]
+        for dest in (scratch / "tests", scratch / "mutants" / "tests"):
+            shutil.copytree(REPO / "tests", dest, ignore=IGNORE, dirs_exist_ok=True)
+    else:
+        if scratch.exists():
+            shutil.rmtree(scratch)
+        shutil.copytree(REPO, scratch, ignore=IGNORE, symlinks=True)
+        pyproject = scratch / "pyproject.toml"
+        pyproject.write_text(pyproject.read_text() + _mutmut_section(files, tests))
+    if names or not survivors_only:
+        subprocess.run(["mutmut", "run", "--max-children", str(children), *names], cwd=scratch, check=False)
+    out = _results(scratch)
     counts: dict[str, int] = {}
     survivors = []
     for line in out.splitlines():
@@ -90,6 +105,8 @@ def main(argv=None) -> int:
     p.add_argument("--work", type=Path, default=Path("/tmp/lazyground-mutation"), help="scratch copies go here")
     p.add_argument("--children", type=int, default=1, help="mutmut worker processes (default 1: a shared machine)")
     p.add_argument("--list", action="store_true", help="print the modules and their tests, run nothing")
+    p.add_argument("--survivors", action="store_true",
+                   help="re-run only an earlier run's surviving mutants, with the current tests")
     args = p.parse_args(argv)
     unknown = [m for m in args.modules if m not in MODULES]
     if unknown:
@@ -100,7 +117,7 @@ def main(argv=None) -> int:
             print(f"{name}: {' '.join(files)}  <-  {' '.join(tests)}")
         return 0
     args.work.mkdir(parents=True, exist_ok=True)
-    results = [run_module(m, args.work, args.children) for m in args.modules or MODULES]
+    results = [run_module(m, args.work, args.children, args.survivors) for m in args.modules or MODULES]
     print("\n| module | killed | survived | other | score |\n| --- | --- | --- | --- | --- |")
     for r in results:
         c = r["counts"]

@@ -22,7 +22,8 @@ import sys
 import time
 from pathlib import Path
 
-from lazyground.bench import arms
+from lazyground.bench import arms, families
+from lazyground.bench.baselines import BASELINES, planner_name
 from lazyground.bundled import bundled_scene, scene_names as bundled_names
 from lazyground.bench.runner import ALGORITHMS, FIELDS, RunSpec, execute, row_key, Progress
 from lazyground.settings import BY_NAME, Algorithm, Kinematics, Strategy, from_scene
@@ -52,8 +53,12 @@ def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog="lazyground bench", description="Benchmark goal-selection strategies (and OMPL / sscbirrt peers).")
     p.add_argument("--table", type=int, choices=sorted(TABLES), help="the paper's Table I (parking) or II (Fetch)")
     p.add_argument("--dof-sweep", action="store_true", help=f"generated planar arms of {', '.join(map(str, arms.DOFS))} DOF")
+    p.add_argument("--family-sweep", metavar="NAMES", help="comma list of generated sweeps (issue #33): lot, rack-panda, rack-fetch, "
+                   "lot-fraction; time to the first solution against N (family_sweep.png)")
+    p.add_argument("--sizes", help="--family-sweep: the sizes (N, or k for lot-fraction) instead of the sweep's own")
     p.add_argument("--nn-scaling", action="store_true", help="time per iteration from 1,000 to 100,000 tree nodes")
-    p.add_argument("--scenes", help="comma list: scene files, names in yaml_scenes/, or arm:<dof>")
+    p.add_argument("--scenes", help="comma list: scene files, names in yaml_scenes/, arm:<dof>, or generated families "
+                   "lot:<free>:<reachable>[:<seed>] and rack:<panda|fetch>:<objects>:<reachable>[:<seed>]")
     p.add_argument("--strategies", help=f"comma list of {BY_NAME['strategy'].allowed()}")
     p.add_argument("--biases", help=f"comma list of goal biases in {BY_NAME['goal_bias'].allowed()}")
     p.add_argument("--algorithms", help=f"comma list of {BY_NAME['algorithm'].allowed()} (default: rrt, the paper's Algorithm 1)")
@@ -65,6 +70,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--request", help="the request (default: each scene's first expectation)")
     p.add_argument("--kinematics", choices=BY_NAME["kinematics"].choices, help="car scenes: holonomic (the paper's), reeds-shepp or dubins "
                    "(default: each scene's)")
+    p.add_argument("--baselines", help="comma list of what users do instead (issue #33), each on every --algorithms planner: "
+                   "nearest-first, multiplexer, eager, independent (see lazyground/bench/baselines.py)")
     p.add_argument("--peers", action="store_true", help="also run OMPL RRT and RRTConnect and sscbirrt's CBiRRT (pip install .[bench])")
     p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="worker processes (default: cores)")
     p.add_argument("--cluster", metavar="ADDRESS", help="run on this Dask scheduler instead (pip install .[cluster])")
@@ -93,6 +100,11 @@ def resolve_scene(name: str) -> str | None:
     """A scene key: ``arm:<dof>``, a file path, or a name in yaml_scenes/; None when missing."""
     if arms.parse_arm_key(name) is not None:
         return name
+    try:
+        if families.parse_key(name) is not None:
+            return name
+    except ValueError as exc:
+        raise BenchUsageError(f"--scenes: {exc}") from None
     if Path(name).is_file():
         return name
     bundled = bundled_scene(name)  # a bare name, from any directory (installed or source tree)
@@ -106,6 +118,15 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
     if args.dof_sweep:
         preset = dict(scenes=tuple(arms.arm_key(d) for d in arms.DOFS), strategies=ALL_STRATEGIES, biases=(0.05,), runs=10,
                       title="Generated planar arms: time (s) against DOF")
+    if getattr(args, "family_sweep", None):
+        from lazyground.bench.sweep import sweep_keys
+
+        try:
+            sizes = [int(n) for n in _csv_list(args.sizes, ())]
+            keys = [k for name in _csv_list(args.family_sweep, ()) for k in sweep_keys(name, sizes)]
+        except ValueError as exc:
+            raise BenchUsageError(f"--family-sweep / --sizes: {exc}") from None
+        preset = dict(preset, scenes=tuple(keys), title="Time to the first solution against the number of interpretations")
     scene_names = _csv_list(args.scenes, preset.get("scenes", ("parking_1",)))
     strategies = _checked("strategies", "strategy", _csv_list(args.strategies, preset.get("strategies", ALL_STRATEGIES)))
     try:
@@ -135,6 +156,11 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
     if budget is not None:
         _checked("budget", "budget", [budget])
     configs = [(ALGORITHMS[a], s, b, o) for a in algorithms for b in biases for s in strategies for o in objectives]
+    for name in _csv_list(getattr(args, "baselines", None), ()):
+        if name not in BASELINES:
+            raise BenchUsageError(f"--baselines: unknown {name!r} (known: {', '.join(BASELINES)})")
+        configs += [(planner_name(name, a is Algorithm.BIDIRECTIONAL), Strategy.CONSECUTIVE.value, b, "first")
+                    for a in algorithms for b in biases]
     kinematics = getattr(args, "kinematics", None)  # absent from Namespaces built by hand (tests)
     if args.peers and kinematics not in (None, Kinematics.HOLONOMIC):
         raise BenchUsageError("--peers plan holonomic paths only; leave out --kinematics or --peers")
@@ -172,7 +198,7 @@ def _check_request(key: str, request: str | None) -> None:
     from grounding.model import GroundingError
     from lazyground.scene import load_scene
 
-    scene = load_scene(key)
+    scene = families.load_family_scene(key) if families.parse_key(key) is not None else load_scene(key)
     try:
         from_scene(scene.planner)
     except ValueError as exc:
@@ -189,6 +215,8 @@ def _check_request(key: str, request: str | None) -> None:
 def _scene_time_limit(key: str) -> float:
     if arms.parse_arm_key(key) is not None:
         return 10.0
+    if families.parse_key(key) is not None:
+        return families.load_family_scene(key).planner.time_limit
     from lazyground.scene import load_scene
 
     return load_scene(key).planner.time_limit
@@ -313,6 +341,11 @@ def write_outputs(rows: list[dict], out: Path, title: str, notes: list[str], tot
         from lazyground.bench.compare import strategy_table
 
         md += ["## Strategies against consecutive (Mann-Whitney U, two-sided)\n", strategy_table(rows)]
+    from lazyground.bench.sweep import size_of, sweep_plot, sweep_table
+
+    family = [r for r in rows if size_of(r["scene"]) is not None]
+    if family:
+        md += ["## Against the number of interpretations (generated families)\n", sweep_table(family)]
     motion = tables.motion_table(rows)
     if motion:
         md += ["## Shortening and timing after the solve (solved runs, medians)\n", motion]
@@ -324,6 +357,8 @@ def write_outputs(rows: list[dict], out: Path, title: str, notes: list[str], tot
     tables.box_plots(rows, out / "boxplots.png")
     if dof_sweep:
         tables.dof_plot(rows, out / "dof_sweep.png")
+    if family:
+        sweep_plot(family, out / "family_sweep.png")
     for scene in tables.scenes_of(rows):
         srows = [r for r in rows if r["scene"] == scene]
         limit = max(float(r["time_limit"]) for r in srows)

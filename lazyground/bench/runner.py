@@ -19,8 +19,10 @@ from typing import Callable, Iterable, Iterator
 
 import numpy as np
 
-from lazyground.bench import arms
+from lazyground.bench import arms, families
+from lazyground.bench.baselines import parse_planner
 from lazyground.bench.sscbirrt_peer import PLANNER
+from lazyground.planning.problem import PlanStatus
 from lazyground.settings import Algorithm
 
 LAZYGROUND = "lazyground"
@@ -64,6 +66,8 @@ class RunSpec:
         dof = arms.parse_arm_key(self.scene)
         if dof is not None:
             return f"arm_{dof}"
+        if self.scene.split(":")[0] in families.FAMILIES:
+            return self.scene.replace(":", "_")
         from pathlib import Path
 
         return Path(self.scene).stem
@@ -115,7 +119,7 @@ def load_problem(key: str) -> Problem:
     else:
         from lazyground.scene import load_scene
 
-        scene = load_scene(key)
+        scene = families.load_family_scene(key) if families.parse_key(key) is not None else load_scene(key)
         request = scene.expect[0].request if scene.expect else None
         problem = Problem(scene.name, scene, DrakeWorld(scene, visual=False), request)
     return problem
@@ -145,6 +149,8 @@ def run(spec: RunSpec) -> dict:
             raise ValueError(f"scene {problem.name} has no expect: request; give --request")
         if spec.planner in ALGORITHMS.values():
             row.update(_run_lazyground(problem, spec))
+        elif parse_planner(spec.planner) is not None:
+            row.update(_run_baseline(problem, spec))
         elif spec.planner == SSCBIRRT:
             from lazyground.bench.sscbirrt_peer import run_peer
 
@@ -181,6 +187,30 @@ def _run_lazyground(problem: Problem, spec: RunSpec) -> dict:
     region = report.result.goal_region
     fields = result_fields(report.result, report.grounding_s, report.chosen.id if report.chosen else "", region.id if region else "")
     return fields | motion_fields(report.motion)
+
+
+def _run_baseline(problem: Problem, spec: RunSpec) -> dict:
+    """A baseline of :mod:`lazyground.bench.baselines` on the same world, goal sampler and clock as ours."""
+    from lazyground.api import planner_settings
+    from lazyground.bench.baselines import run_baseline
+    from lazyground.tasks.car_space import planning_space
+
+    name, bidirectional = parse_planner(spec.planner)
+    algorithm = Algorithm.BIDIRECTIONAL if bidirectional else Algorithm.RRT
+    settings = planner_settings(problem.scene, strategy=spec.strategy, algorithm=algorithm, goal_bias=spec.bias,
+                                time_limit=spec.time_limit, kinematics=spec.kinematics)
+    regions, grounding_s = problem.ground()
+    world = problem.world
+    space = planning_space(problem.scene, world.space, settings.kinematics)
+    result, seconds, iterations, attempts = run_baseline(name, problem.scene, world, regions, space, settings, spec.seed)
+    if result is None:
+        return dict(status=PlanStatus.TIMEOUT.value, time_s=grounding_s + seconds, grounding_s=grounding_s,
+                    message="no planner call within the time limit")
+    region = result.goal_region
+    fields = result_fields(result, grounding_s, region.interpretation if region else "", region.id if region else "")
+    # the whole method's time and work, not only the call that ended it
+    return fields | dict(time_s=grounding_s + seconds, iterations=iterations, goal_attempts=attempts,
+                         other_s=max(0.0, seconds - result.goal_sampling_s - result.collision_s))
 
 
 def motion_fields(motion) -> dict:

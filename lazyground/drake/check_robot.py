@@ -11,7 +11,6 @@ failures (a missing mesh, an unknown package) raise ``SceneError`` with one line
 
 from __future__ import annotations
 
-import xml.etree.ElementTree as ET
 from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,14 +20,16 @@ from pydrake.geometry import Role
 from pydrake.planning import RobotDiagramBuilder, SceneGraphCollisionChecker
 
 from lazyground.drake.coordinates import unbounded_positions
-from lazyground.drake.robot_model import add_robot, allow_collisions
+from lazyground.drake.robot_model import add_robot, allow_collisions, floating_link, weld_base
+from lazyground.drake.self_collision import ALWAYS, DEFAULT_SAMPLES, sample_pairs
+from lazyground.drake.self_collision import write_allowed as write_allowed_file
 from lazyground.robots.defaults import defaults_for_model
 from lazyground.robots.srdf import read_srdf
+from lazyground.robots.tools import mimic_joints
 from lazyground.typed_yaml import SceneError
 
 PADDING = 0.0  # m: self-collision at named poses is reported at contact, as MoveIt does
-UNSUPPORTED_URDF = {"transmission": "transmissions (actuation) are ignored", "gazebo": "gazebo extensions are ignored",
-                    "ros2_control": "ros2_control blocks are ignored"}
+CHECK_SAMPLES = 200  # configurations sampled for always-touching link pairs (a few hundred ms)
 
 
 @dataclass(frozen=True)
@@ -69,7 +70,7 @@ class RobotCheck:
 
     def lines(self) -> list[str]:
         """The human report, verdict last."""
-        out = [f"model: {self.model} (base {self.base_link} welded to the world)", f"DOF: {self.dof}", "joints:"]
+        out = [f"model: {self.model} (base {self.base_link})", f"DOF: {self.dof}", "joints:"]
         for j in self.joints:
             limits = ", ".join(f"[{lo:.4g}, {hi:.4g}]" for lo, hi in zip(j.lower, j.upper))
             speed = ", ".join(f"{v:.4g}" for v in j.velocity)
@@ -90,11 +91,19 @@ class RobotCheck:
         return out
 
 
-def check_robot(model: str | Path, srdf: str | Path | None = None, packages: dict[str, Path] | None = None) -> RobotCheck:
+def check_robot(model: str | Path, srdf: str | Path | None = None, packages: dict[str, Path] | None = None,
+                xacro_args: dict | None = None, write_allowed: str | Path | None = None, samples: int | None = None,
+                seed: int = 0) -> RobotCheck:
     """Load ``model`` and check it (see module docstring).
 
     Args:
-        model: a URDF or SDF file.
+        model: a URDF, SDF or xacro file.
+        xacro_args: ``arg`` values of a xacro file.
+        write_allowed: write the pairs to stop checking (adjacent, always and never touching) to this
+            file (.srdf, else YAML for robot.allowed_collisions); their always-touching pairs are then
+            not problems.
+        samples: configurations sampled for always-touching pairs (default CHECK_SAMPLES, or
+            self_collision.DEFAULT_SAMPLES when writing); ``seed`` seeds them.
         srdf: a MoveIt SRDF (default: the robot.yaml's, if any).
         packages: package folders by name, for ``package://`` URIs.
     Returns:
@@ -106,19 +115,24 @@ def check_robot(model: str | Path, srdf: str | Path | None = None, packages: dic
     defaults = defaults_for_model(model)
     if srdf is None and defaults is not None and defaults.srdf:
         srdf = defaults.path(defaults.srdf)
+    xacro_args = {**(defaults.xacro_args if defaults is not None else {}), **(xacro_args or {})}
     builder = RobotDiagramBuilder(time_step=0.0)
     plant = builder.plant()
-    instance, prepared = add_robot(builder.parser(), model, packages, "check-robot")
-    base = defaults.base_link if defaults is not None else plant.get_body(plant.GetBodyIndices(instance)[0]).name()
-    if not plant.HasBodyNamed(base, instance):
+    instance, prepared = add_robot(builder.parser(), model, packages, "check-robot", xacro_args)
+    base = defaults.base_link if defaults is not None else "base_link"  # as a scene without robot.base_link
+    if defaults is not None and not plant.HasBodyNamed(base, instance):
         raise SceneError(f"check-robot: {model}: no base link {base!r}")
-    try:
-        plant.WeldFrames(plant.world_frame(), plant.GetFrameByName(base, instance))
-    except RuntimeError:  # already jointed to the world (a planar car): check it as it is
-        pass
+    floating = floating_link(plant, instance, base)
+    weld_note = weld_base(plant, instance, base, None, "check-robot")  # what plan does without robot.base
+    base = f"{floating} welded at the origin" if floating else "none: the model joints itself to the world"
     problems: list[str] = []
-    notes: list[str] = []
-    unsupported = _unsupported_urdf(prepared.text) if prepared.file_type == "urdf" else []
+    notes: list[str] = list(prepared.notes) + ([weld_note] if weld_note else [])
+    unsupported = []
+    mimic = mimic_joints(prepared.text, prepared.file_type)
+    if mimic:
+        notes.append(f"mimic joints follow their leader at the start and are not planned unless named: "
+                     + ", ".join(f"{m.joint} = {m.multiplier:g} x {m.leader} + {m.offset:g}" for m in mimic))
+    unsupported += [f"<{tag}> x{n} removed before loading (planning does not use it)" for tag, n in sorted(prepared.stripped.items())]
     poses = dict(defaults.named_poses) if defaults is not None else {}
     if srdf is not None:
         parsed = read_srdf(srdf)
@@ -138,6 +152,18 @@ def check_robot(model: str | Path, srdf: str | Path | None = None, packages: dic
     if unbounded:  # planning refuses them without limits, which a scene may give: a note, not a problem
         notes.append(f"unbounded positions {', '.join(unbounded)} (no limits in the model): a scene that plans them "
                      f"must give robot.limits, e.g. limits: {{{unbounded[0]}: [lower, upper]}}")
+    rng = np.random.default_rng(seed)
+    n = samples or (DEFAULT_SAMPLES if write_allowed else CHECK_SAMPLES)
+    counts = sample_pairs(checker, diagram, instance, n, rng, seed, mimic)
+    always = counts.always()
+    if write_allowed:
+        written = write_allowed_file(write_allowed, plant.GetModelInstanceName(instance), counts)
+        notes.append(f"wrote {written} allowed pairs ({len(counts.adjacent)} adjacent, {len(counts.default)} at the default pose, {len(always)} always, "
+                     f"{len(counts.never())} never touching over {n} samples, seed {seed}) to {write_allowed}")
+    elif always:
+        problems.append(f"{len(always)} link pair(s) touch in at least {ALWAYS:.0%} of {n} sampled configurations "
+                        f"(e.g. {always[0][0]}-{always[0][1]}), so nothing can plan: write the pairs to allow with "
+                        "check-robot MODEL --write-allowed allowed.yaml (or .srdf)")
     collisions = {}
     for name, pose in poses.items():
         q, problem = _pose_vector(plant, instance, pose, name)
@@ -202,11 +228,3 @@ def _colliding_pairs(checker, q: np.ndarray) -> list[tuple[str, str]]:
             pairs.add(tuple(sorted((plant.get_body(a).name(), plant.get_body(b).name()))))
     return sorted(pairs)
 
-
-def _unsupported_urdf(text: str) -> list[str]:
-    root = ET.fromstring(text)
-    found = Counter(child.tag for child in root)
-    out = [f"{what} (x{found[tag]})" for tag, what in UNSUPPORTED_URDF.items() if found[tag]]
-    if any(j.find("mimic") is not None for j in root.iter("joint")):
-        out.append("mimic joints are planned as independent joints")
-    return out

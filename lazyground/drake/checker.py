@@ -14,6 +14,7 @@ import time
 import numpy as np
 from pydrake.planning import LinearDistanceAndInterpolationProvider, SceneGraphCollisionChecker
 
+from lazyground.drake.compiled import COLLIDES, CompiledCertifier
 from lazyground.drake.coordinates import Coordinates
 from lazyground.drake.parallel import parallel_batch
 from lazyground.drake.spheres import sphere_certifier
@@ -21,13 +22,6 @@ from lazyground.drake.spheres import sphere_certifier
 # Drake needs a positive step at construction; a checker built without a resolution
 # replaces this once, before its first edge check, and never again.
 _UNSET_STEP = 0.05
-# Batches from which the certifier is tried first. Its numpy calls cost ~0.5-1 ms per batch whatever
-# its size, so it pays from about a hundred configurations: replaying the batches of 4 plans on
-# fetch_cans_1 / fetch_boxes_3, batches of 8-64 took 1.5-4.7x Drake's time, 128-255 0.96 / 0.35x,
-# 256 and more 0.69 / 0.26x (CPU time, interleaved; /tmp/notes/spheres4.md).
-CERTIFY_MIN_BATCH = 128
-
-
 class DrakeChecker:
     """Config and edge checks over planned coordinates, in C++.
 
@@ -63,9 +57,12 @@ class DrakeChecker:
         # context's current poses), fetched once here: ~1 us a check (#19)
         self._query = self._context.GetQueryObject()
         self._penetration_first = _candidates_all_checked(self.drake)
-        # proves batches free in numpy before Drake is asked (None: this world cannot be bounded; lazyground.drake.spheres)
+        # proves configurations free before Drake is asked (None: this world cannot be bounded; lazyground.drake.spheres),
+        # in compiled code (lazyground.drake.compiled)
         self.certifier = sphere_certifier(self.drake) if certify else None
-        self.certified = 0  # configurations of batches the certifier proved free
+        self.compiled = CompiledCertifier(self.certifier) if self.certifier is not None else None
+        self._orders = {}  # bisection order of an edge's steps, by step count (_bisection)
+        self.certified = 0  # configurations the certifier proved free
         self._pairs = {}  # the certifier's pairs as SceneGraph's (id, id, padding), as they come up (_pair)
 
     @property
@@ -74,12 +71,17 @@ class DrakeChecker:
         return self._resolution
 
     def accepts(self, resolution: float) -> bool:
-        """Whether edges at ``resolution`` can be checked here (the fixed one, or none fixed yet)."""
-        return self._resolution is None or self._resolution == resolution
+        """Whether edges at ``resolution`` can be checked here (the fixed one, or none fixed yet; any with a
+        certifier, which steps edges itself)."""
+        return self._resolution is None or self._resolution == resolution or self.compiled is not None
 
     def config_free(self, q: np.ndarray) -> bool:
         t0 = time.perf_counter()
-        free = self._free(self.coordinates.full(q))
+        q_full = self.coordinates.full(q)
+        if self.compiled is None:
+            free = self._free(q_full)
+        else:
+            free = self._decide(q_full, *self.compiled.certify_one(q_full))
         self.check_time += time.perf_counter() - t0
         self.checks += 1
         return free
@@ -95,7 +97,13 @@ class DrakeChecker:
         if not self._penetration_first:
             return self.config_free(q)
         t0 = time.perf_counter()
-        free = not self._penetrates(self.coordinates.full(q))
+        q_full = self.coordinates.full(q)
+        if self.compiled is None:
+            free = not self._penetrates(q_full)
+        else:  # what the certifier leaves open: the open pairs' penetration (no other pair comes within the padding)
+            code, pairs = self.compiled.certify_one(q_full)
+            free = code == 0 or code != COLLIDES and (
+                self._open_free(q_full, pairs, unpadded=True) if code > 0 else not self._penetrates(q_full))
         self.check_time += time.perf_counter() - t0
         self.checks += 1
         return free
@@ -133,44 +141,52 @@ class DrakeChecker:
         return free
 
     def _batch(self, configs: np.ndarray) -> np.ndarray:
-        """The batch's answers: from a large batch, the certifier proves what it can and SceneGraph measures the
-        pairs it leaves open (:meth:`_open_pairs_free`); a small one, or a world without certifier, goes to
-        Drake's batch check, on several threads when that is many (lazyground.drake.parallel)."""
-        if self.certifier is not None and len(configs) >= CERTIFY_MIN_BATCH:
-            free, row, pair = self.certifier.certify(configs)
-            self.certified += int(free.sum())
-            rest = np.flatnonzero(~free)
-            free[rest] = self._open_pairs_free(configs, rest, row, pair)
-            return free
-        return np.asarray(self.drake.CheckConfigsCollisionFree(list(configs), parallelize=parallel_batch(len(configs))), bool)
+        """The batch's answers: the certifier proves what it can and SceneGraph measures the pairs it leaves open
+        (:meth:`_open_free`); a world without certifier goes to Drake's batch check, on several threads when
+        that is many (lazyground.drake.parallel)."""
+        if self.compiled is None:
+            return np.asarray(self.drake.CheckConfigsCollisionFree(list(configs), parallelize=parallel_batch(len(configs))), bool)
+        count, pairs = self.compiled.certify(configs)
+        free = count == 0
+        self.certified += int(free.sum())
+        for i in np.flatnonzero(count > 0):
+            free[i] = self._open_free(configs[i], pairs[i, :count[i]])
+        for i in np.flatnonzero(count == -1):
+            free[i] = self._free(configs[i])
+        return free
 
-    def _open_pairs_free(self, configs: np.ndarray, rest: np.ndarray, row: np.ndarray, pair: np.ndarray) -> np.ndarray:
-        """Drake's answers at ``configs[rest]``, which the certifier left open, from SceneGraph's signed distance
-        of their open pairs (row, pair) only (:meth:`SphereCertifier.certify`).
+    def _decide(self, q_full: np.ndarray, code: int, pairs: np.ndarray | None) -> bool:
+        """Drake's answer at ``q_full`` from the certifier's ``code`` for it (and its open ``pairs``)."""
+        if code == 0:
+            self.certified += 1
+            return True
+        if code == COLLIDES:
+            return False
+        return self._open_free(q_full, pairs)
+
+    def _open_free(self, q_full: np.ndarray, pairs: np.ndarray | None, unpadded: bool = False) -> bool:
+        """Drake's answer at ``q_full``, which the certifier left open, from SceneGraph's signed distance of its
+        open pairs only (None: too many to list, Drake's own check).
 
         Drake's checker calls a configuration colliding when some pair it checks has signed distance <= the
         pair's padding, and the certifier proved every pair but the open ones farther than their padding; so
         the open pairs decide. SceneGraph's distance of one pair is the computation its all-pairs query makes
         for that pair (the same narrow-phase callback and request; the same numbers bit for bit on ~97k pairs
-        of near-contact Fetch and Panda configurations, #16): ~20 µs a configuration with its pose update
-        against ~32-65 µs for the checker's query of every pair. A pair SceneGraph cannot measure alone (it
-        throws) sends its configuration to the checker's own check.
+        of near-contact Fetch and Panda configurations, #16). A pair SceneGraph cannot measure alone (it
+        throws) sends the configuration to the checker's own check. ``unpadded``: whether they penetrate
+        (distance <= 0), for :meth:`config_unpadded_free`.
         """
-        order = np.argsort(row, kind="stable")
-        row, pair = row[order], pair[order]
-        lo, hi = np.searchsorted(row, rest), np.searchsorted(row, rest, side="right")
-        free = np.ones(len(rest), bool)
-        for i, q in enumerate(configs[rest]):
-            self.drake.UpdatePositions(q)
-            try:
-                for k in pair[lo[i]: hi[i]]:
-                    a, b, padding = self._pair(k)
-                    if self._query.ComputeSignedDistancePairClosestPoints(a, b).distance <= padding:
-                        free[i] = False
-                        break
-            except RuntimeError:
-                free[i] = self.drake.CheckConfigCollisionFree(q)
-        return free
+        if pairs is None:
+            return self._free(q_full)
+        self.drake.UpdatePositions(q_full)
+        try:
+            for k in pairs:
+                a, b, padding = self._pair(k)
+                if self._query.ComputeSignedDistancePairClosestPoints(a, b).distance <= (0.0 if unpadded else padding):
+                    return False
+        except RuntimeError:
+            return bool(self.drake.CheckConfigCollisionFree(q_full))
+        return True
 
     def _pair(self, k: int):
         """(GeometryId, GeometryId, padding) of the certifier's pair k (remembered)."""
@@ -193,6 +209,8 @@ class DrakeChecker:
         Raises:
             ValueError: ``resolution`` is not this checker's fixed resolution.
         """
+        if self.compiled is not None:
+            return bool(self._certified_edge(a, b, resolution, fraction=False))
         return bool(self._edge(self._edge_free, a, b, resolution))
 
     def _edge_free(self, qa: np.ndarray, qb: np.ndarray) -> bool:
@@ -219,8 +237,62 @@ class DrakeChecker:
         Raises:
             ValueError: ``resolution`` is not this checker's fixed resolution.
         """
+        if self.compiled is not None:
+            return self._certified_edge(a, b, resolution, fraction=True)
         measure = self._edge(self.drake.MeasureEdgeCollisionFree, a, b, resolution)
         return max(0.0, measure.alpha_or(0.0))
+
+    def _certified_edge(self, a: np.ndarray, b: np.ndarray, resolution: float, fraction: bool):
+        """Drake's ``CheckEdgeCollisionFree`` (``fraction``: ``MeasureEdgeCollisionFree``'s free fraction) at
+        ``resolution``, with the certifier: the same steps (q_k = qa + k / n (qb - qa), k = 0..n, n =
+        max(1, ceil(Drake's distance / resolution)); the certifier's margin covers the last bit by which Drake's
+        interpolation may differ, and a step it leaves open is Drake's interpolation), certified in one compiled
+        call in bisection order (sequentially for the fraction) up to the first one it cannot prove, which
+        SceneGraph decides (:meth:`_open_free`) unless it proves a collision there; then on from there. So the answer is Drake's: a step is
+        called colliding by Drake or by a proof of it, and every other step is proven free."""
+        if self._resolution is None:
+            self._resolution = resolution
+        t0 = time.perf_counter()
+        a = np.asarray(a, float)
+        qa = self.coordinates.full(a)
+        qb = self.coordinates.full(a + self.coordinates.space.difference(a, b))
+        # Drake's own distance: a sum in another order can differ in the last bit, and so the step count
+        n = max(1, int(np.ceil(self.drake.ComputeConfigurationDistance(qa, qb) / resolution)))
+        order = np.arange(n + 1) if fraction else self._bisection(n)
+        begin, out = 0, (1.0 if fraction else True)
+        while True:
+            p, code, pairs = self.compiled.first_open(qa, qb, n, order, begin)
+            if p < 0:
+                break
+            k = int(order[p])
+            # Drake's own interpolation: ours differs in the last bit, which decides a step on the boundary
+            q = qa if k == 0 else qb if k == n else self.drake.InterpolateBetweenConfigurations(qa, qb, k / n)
+            if code == COLLIDES or not self._open_free(q, pairs):
+                out = max(0.0, (k - 1) / n) if fraction else False
+                break
+            begin = p + 1
+        self.check_time += time.perf_counter() - t0
+        self.checks += 1
+        return out
+
+    def _bisection(self, n: int) -> np.ndarray:
+        """Steps 0..n of an edge in the order to check them: the end n first (a planner's extension usually
+        fails there, as Drake checks it first), the start, then the middles of ever finer halvings."""
+        order = self._orders.get(n)
+        if order is None:
+            out, seen, level = [n, 0], {0, n}, [(0, n)]
+            while level:
+                nxt = []
+                for lo, hi in level:
+                    if hi - lo > 1:
+                        mid = (lo + hi) // 2
+                        if mid not in seen:
+                            seen.add(mid)
+                            out.append(mid)
+                        nxt += [(lo, mid), (mid, hi)]
+                level = nxt
+            order = self._orders[n] = np.array(out, np.int64)
+        return order
 
     def _edge(self, check, a, b, resolution: float):
         if self._resolution is None:

@@ -25,11 +25,14 @@ class Coordinates:
         space: limits, wrapping and metric weights of the planned coordinates.
         planned: indices of the planned coordinates in the plant's position vector.
         q_full: the plant's position vector at the start (unplanned positions stay here).
+        turns: per planned coordinate, whether it is a revolute joint's angle, where q + 2 pi k is the
+            same configuration (goals prefer the nearest within the limits, planning/turns.py).
     """
 
     space: ConfigSpace
     planned: tuple[int, ...]
     q_full: np.ndarray
+    turns: np.ndarray | None = None
 
     @property
     def start(self) -> np.ndarray:
@@ -56,13 +59,15 @@ class Coordinates:
         return weights
 
 
-def coordinates_from_plant(plant, robot, scene: Scene) -> Coordinates:
+def coordinates_from_plant(plant, robot, scene: Scene, mimic=()) -> Coordinates:
     """The planned coordinates of ``robot`` in ``plant`` as the scene's robot section selects them.
 
     Args:
         plant: a finalized MultibodyPlant.
         robot: the robot's ModelInstanceIndex.
         scene: the loaded scene (planned joints, limits, weights and start).
+        mimic: the model's mimic joints (``Mimic``): a follower is not planned unless named, and
+            starts at ``multiplier * leader + offset`` unless the start gives it.
 
     Returns:
         The coordinates; angles of planar and unbounded revolute joints wrap.
@@ -76,12 +81,18 @@ def coordinates_from_plant(plant, robot, scene: Scene) -> Coordinates:
     lower = plant.GetPositionLowerLimits().copy()
     upper = plant.GetPositionUpperLimits().copy()
     wrap, joint_of = _joint_layout(plant, robot)
+    revolute = np.zeros(plant.num_positions(), bool)
+    for ji in plant.GetJointIndices(robot):
+        if isinstance(plant.get_joint(ji), RevoluteJoint):
+            revolute[plant.get_joint(ji).position_start()] = True
     planned = spec.planned_joints
     if planned is not None:
         unknown = [j for j in planned if j not in joint_of and j not in names]
         if unknown:
             raise SceneError(f"{source}: robot.planned_joints: no joint {unknown[0]!r} in the model (joints: {', '.join(dict.fromkeys(joint_of))})")
-    idx = [i for i, n in enumerate(names) if planned is None or n in planned or joint_of[i] in planned]
+    followers = {m.joint for m in mimic}
+    idx = [i for i, n in enumerate(names) if (planned is None and joint_of[i] not in followers) or
+           (planned is not None and (n in planned or joint_of[i] in planned))]
     if not idx:
         raise SceneError(f"{source}: robot: nothing to plan: no movable joint selected (robot.planned_joints)")
     for key in list(spec.start) + list(spec.limits) + list(spec.weights):
@@ -93,6 +104,9 @@ def coordinates_from_plant(plant, robot, scene: Scene) -> Coordinates:
     q_full = np.zeros(plant.num_positions())
     for key, v in spec.start.items():
         q_full[names.index(key)] = v
+    for m in mimic:  # followers keep to their leader at the start (Drake ignores <mimic> in a continuous plant)
+        if m.joint in names and m.leader in names and m.joint not in spec.start:
+            q_full[names.index(m.joint)] = m.multiplier * q_full[names.index(m.leader)] + m.offset
     for i, v in enumerate(q_full):
         if not wrap[i] and not lower[i] - 1e-9 <= v <= upper[i] + 1e-9:
             raise SceneError(f"{source}: robot.start.{names[i]}: {v:g} is outside the joint limits [{lower[i]:g}, {upper[i]:g}]")
@@ -101,7 +115,7 @@ def coordinates_from_plant(plant, robot, scene: Scene) -> Coordinates:
             raise SceneError(f"{source}: robot.limits: position {names[i]!r} is unbounded; give its limits")
     weights = np.array([spec.weights.get(names[i], 1.0) for i in idx])
     space = ConfigSpace(tuple(names[i] for i in idx), lower[idx], upper[idx], weights, wrap[idx])
-    return Coordinates(space, tuple(idx), q_full)
+    return Coordinates(space, tuple(idx), q_full, revolute[idx])
 
 
 def unbounded_positions(plant, robot) -> list[str]:

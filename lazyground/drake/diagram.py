@@ -11,11 +11,10 @@ from dataclasses import dataclass
 
 import numpy as np
 from pydrake.geometry import Box, Cylinder, Sphere
-from pydrake.math import RigidTransform, RollPitchYaw
 from pydrake.multibody.plant import CoulombFriction
 from pydrake.planning import RobotDiagramBuilder
 
-from lazyground.drake.robot_model import add_scene_robot
+from lazyground.drake.robot_model import add_scene_robot, rigid_transform
 from lazyground.geometry import Pose
 from lazyground.scene.colours import OBSTACLE_SCENE_RGBA, OCCUPANT_RGBA, object_rgba
 from lazyground.scene.schema import Geometry, Scene, SceneObject
@@ -45,12 +44,8 @@ def drake_shape(g: Geometry):
     return Sphere(g.sphere.radius)
 
 
-def rigid_transform(pose: Pose) -> RigidTransform:
-    """A scene pose as a Drake RigidTransform."""
-    return RigidTransform(RollPitchYaw(*pose.rpy), np.asarray(pose.xyz, float))
-
-
-def build_diagram(scene: Scene, attached: Attachment | None = None, visual: bool = True, extend_builder=None):
+def build_diagram(scene: Scene, attached: Attachment | None = None, visual: bool = True, extend_builder=None,
+                  notes: list | None = None, mimic: list | None = None):
     """The scene's RobotDiagram and the robot's model instance.
 
     Args:
@@ -58,6 +53,9 @@ def build_diagram(scene: Scene, attached: Attachment | None = None, visual: bool
         attached: an object carried by the robot (removed from the environment).
         visual: also register visual geometry (for Meshcat).
         extend_builder: called with the RobotDiagramBuilder just before Build().
+        notes: gains what was done to the model that the scene did not say (a floating base
+            welded, continuous limits dropped, visuals drawn from collision geometry).
+        mimic: gains the model's mimic joints (lazyground.robots.tools.Mimic).
 
     Returns:
         (diagram, robot): the built RobotDiagram and the robot's ModelInstanceIndex.
@@ -67,16 +65,11 @@ def build_diagram(scene: Scene, attached: Attachment | None = None, visual: bool
     """
     builder = RobotDiagramBuilder(time_step=0.0)
     plant = builder.plant()
-    robot = add_scene_robot(builder, scene)  # package:// URIs, STL/DAE meshes, SRDF pairs: drake/robot_model.py
-    if scene.robot.base is not None:
-        try:
-            base = plant.GetFrameByName(scene.robot.base_link, robot)
-        except Exception:
-            raise SceneError(f"{scene.source}: robot.base_link: no link {scene.robot.base_link!r} in the model") from None
-        try:
-            plant.WeldFrames(plant.world_frame(), base, rigid_transform(scene.robot.base.pose()))
-        except RuntimeError:  # e.g. the link already hangs on a joint to the world (a planar car)
-            raise SceneError(f"{scene.source}: robot.base: cannot weld {scene.robot.base_link!r} to the world: it is already jointed to it") from None
+    robot, model_notes, model_mimic = add_scene_robot(builder, scene, visual)  # xacro, package://, meshes, tools, base, SRDF
+    if notes is not None:
+        notes.extend(model_notes)
+    if mimic is not None:
+        mimic.extend(model_mimic)
     _add_environment(plant, scene, attached, visual)
     if attached is not None:
         _attach(plant, robot, attached, visual)

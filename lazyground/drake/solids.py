@@ -18,7 +18,7 @@ import numpy as np
 from pydrake.geometry import Box, Capsule, Convex, Cylinder, Ellipsoid, HalfSpace, Mesh, Sphere
 
 FAR = 1e6  # metres: a half-space as a box this deep
-MAX_SPHERES = 48  # per cover; a large box gets a coarser cover (more slack) rather than more spheres
+MAX_SPHERES = 96  # per cover; a large box gets a coarser cover (more slack) rather than more spheres
 
 
 def solid(shape) -> tuple[np.ndarray, np.ndarray, float, bool]:
@@ -114,3 +114,39 @@ def _box_cover(half: np.ndarray, slack: float) -> tuple[np.ndarray, np.ndarray]:
     h = half / n
     axes = [-half[i] + h[i] * (2 * np.arange(n[i]) + 1) for i in range(3)]
     return np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3), np.full(int(n.prod()), np.linalg.norm(h))
+
+
+MAX_INNER = 27  # inner spheres per shape
+
+
+def exact(shape) -> bool:
+    """Whether the solid of ``shape`` is the shape itself (within FAR for a half-space), not a box around it."""
+    return isinstance(shape, (Box, Sphere, Capsule, Cylinder, HalfSpace))
+
+
+def inner(shape) -> tuple[np.ndarray, np.ndarray]:
+    """Spheres (centres in the shape's frame, radii) inside ``shape``: a point of one within its radius of
+    its centre is a point of the shape (#31: a sphere reaching into an obstacle proves a collision).
+    None for shapes whose solid is not exact (a mesh, convex, ellipsoid) or that are not bounded."""
+    if isinstance(shape, Sphere):
+        return np.zeros((1, 3)), np.array([shape.radius()])
+    if isinstance(shape, Capsule):
+        return _line(shape.radius(), shape.length() / 2 + shape.radius())
+    if isinstance(shape, Cylinder):
+        return _line(min(shape.radius(), shape.length() / 2), shape.length() / 2)
+    if isinstance(shape, Box):
+        half = np.asarray(shape.size(), float) / 2
+        r = half.min()
+        axes = [np.linspace(-(h - r), h - r, min(1 + int(np.ceil((h - r) / r - 1e-9)), 3)) if r > 0 else np.zeros(1)
+                for h in half]
+        c = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+        return c, np.full(len(c), r)
+    return np.zeros((0, 3)), np.zeros(0)
+
+
+def _line(r: float, half_length: float) -> tuple[np.ndarray, np.ndarray]:
+    """Spheres of radius r inside a body of revolution about z reaching ``half_length`` along it (r <= its radius)."""
+    reach = max(half_length - r, 0.0)
+    n = min(1 + int(np.ceil(reach / r - 1e-9)) if r > 0 else 1, MAX_INNER)
+    z = np.linspace(-reach, reach, n)
+    return np.column_stack([np.zeros(n), np.zeros(n), z]), np.full(n, r)

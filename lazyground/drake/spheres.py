@@ -43,10 +43,10 @@ from functools import cached_property
 import numpy as np
 
 from lazyground.drake.chain import PRISMATIC, BodyTree, body_tree
-from lazyground.drake.solids import cover, solid, solid_distance, solid_radius
+from lazyground.drake.solids import cover, exact, inner, solid, solid_distance, solid_radius
 
 MARGIN = 1e-4  # metres beyond the padding a lower bound must clear
-SLACK = 0.015  # metres a cover's spheres may reach beyond their shape (finer: more spheres)
+SLACK = 0.008  # metres a cover's spheres may reach beyond their shape (finer: more spheres)
 ANCHOR_EVERY = 12  # rows of a batch per anchor (see SphereCertifier.certified_free)
 FAR_PAIR = 0.05  # metres: self pairs this far apart at every anchor of a batch split their gap between their geometries
 
@@ -93,12 +93,20 @@ class SphereCertifier:
         env_threshold: (moving geometries, obstacles) the distance to clear; -inf: a pair Drake does not check.
         self_pairs: moving geometry (its spheres) against another moving geometry's solid.
         geometry_ids: SceneGraph's ids of the moving geometries, then of the obstacles (:attr:`pair_geometries`).
+        inside: spheres inside each moving geometry (start, centres in its body frame, radii; as for the cover),
+            and per moving geometry and obstacle whether its solid is its shape: with ``collide_below`` (a pair
+            collides for Drake when its distance is at most this below its threshold, inf: never claimed), what
+            lets the compiled test prove a collision (lazyground.drake.compiled).
     """
 
     def __init__(self, tree: BodyTree, node: np.ndarray, solids: _Solids, centers: np.ndarray, radii: np.ndarray,
                  start: np.ndarray, obstacles: _Solids, env_threshold: np.ndarray, self_pairs: _Pairs,
-                 geometry_ids: list = ()):
+                 geometry_ids: list = (), inside=None, collide_below: float = np.inf):
         self.tree, self._node, self._solids, self._obstacles = tree, node, solids, obstacles
+        G, O = env_threshold.shape
+        self.inside = inside if inside is not None else (
+            np.zeros(G + 1, int), np.zeros((0, 3)), np.zeros(0), np.zeros(G, bool), np.zeros(O, bool))
+        self.collide_below = collide_below
         self.geometry_ids = list(geometry_ids)
         self._centers, self._radii, self._start = centers, radii, start
         self._count = np.diff(start)
@@ -128,6 +136,21 @@ class SphereCertifier:
         self._pair_of = np.tile(np.arange(len(self_pairs.mover)), 2)[np.argsort(sides, kind="stable")]
         self._pair_count = np.bincount(sides, minlength=len(node))
         self._pair_start = np.cumsum(self._pair_count) - self._pair_count
+
+    def kernel_blocks(self) -> dict:
+        """Every array the compiled test needs (lazyground.drake.sphere_kernels.pack's blocks)."""
+        tree, solids, obstacles, pairs = self.tree, self._solids, self._obstacles, self._self
+        G, O = self._env_threshold.shape
+        istart, ic, ir, gexact, oexact = self.inside
+        return dict(
+            counts=dict(m=len(tree.kinds), n=len(tree.slot), G=G, S=self.spheres, O=O, P=len(pairs.mover), I=len(ir)),
+            K=tree.K[:, :3, :], F=tree.F[:, :3, :], gR=solids.R, go=solids.o, ghalf=solids.half,
+            ground=solids.rounding, grad=solids.radius, sc=self._centers, sr=self._radii, oR=obstacles.R,
+            oo=obstacles.o, ohalf=obstacles.half, oround=obstacles.rounding, ac=self._aabb_centre.T,
+            ah=self._aabb_half.T, reach2=self._env_reach2, env=self._env_threshold, self_thr=pairs.threshold,
+            ic=ic, ir=ir, below=[self.collide_below], parent=tree.parent, kinds=tree.kinds, index=tree.index,
+            slot=tree.slot, node=self._node, start=self._start, gcyl=solids.cylinder, ocyl=obstacles.cylinder,
+            mover=pairs.mover, other=pairs.other, istart=istart, gexact=gexact, oexact=oexact)
 
     @property
     def spheres(self) -> int:
@@ -419,11 +442,22 @@ def sphere_certifier(checker, margin: float = MARGIN, slack: float = SLACK) -> S
     env, self_pairs, welded = _checked_pairs(checker, inspector, body, moving, still, [len(r) for _, r in covers], margin)
     if _welded_pair_collides(checker, welded):
         return None
-    start = np.concatenate([[0], np.cumsum([len(r) for _, r in covers])]).astype(int)
-    centers = np.vstack([c @ X_BG[g][:3, :3].T + X_BG[g][:3, 3] for g, (c, _) in zip(moving, covers)]).reshape(-1, 3)
-    radii = np.concatenate([r for _, r in covers] + [np.zeros(0)])
+    start, centers, radii = _in_bodies(covers, [X_BG[g] for g in moving])
     nodes = np.array([node[body[g].index()] for g in moving], int)
-    return SphereCertifier(tree, nodes, solids, centers, radii, start, obstacles, env, self_pairs, moving + still)
+    # a collision is claimed below the pair's padding - margin: threshold (max(padding, 0) + margin) - 2 margin,
+    # so only where no padding is negative
+    collide_below = 2 * margin if checker.GetPaddingMatrix().min() >= 0.0 else np.inf
+    inside = _in_bodies([inner(inspector.GetShape(g)) for g in moving], [X_BG[g] for g in moving]) + (
+        np.array([exact(inspector.GetShape(g)) for g in moving], bool), np.array([exact(inspector.GetShape(g)) for g in still], bool))
+    return SphereCertifier(tree, nodes, solids, centers, radii, start, obstacles, env, self_pairs, moving + still,
+                           inside, collide_below)
+
+
+def _in_bodies(spheres: list, X_BG: list) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(start, centres in the body frames, radii) of per-geometry spheres given in the geometries' frames."""
+    start = np.concatenate([[0], np.cumsum([len(r) for _, r in spheres])]).astype(int)
+    centers = np.vstack([c @ X[:3, :3].T + X[:3, 3] for X, (c, _) in zip(X_BG, spheres)] + [np.zeros((0, 3))])
+    return start, centers, np.concatenate([r for _, r in spheres] + [np.zeros(0)])
 
 
 def _joints_up(tree: BodyTree, nodes: np.ndarray) -> np.ndarray:

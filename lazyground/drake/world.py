@@ -50,8 +50,11 @@ class DrakeWorld:
         self.scene = scene
         self.attached = attached
         self.padding = scene.planner.collision_padding if padding is None else padding
-        diagram, self.robot = build_diagram(scene, attached, visual, extend_builder)
-        self.coordinates = coordinates_from_plant(diagram.plant(), self.robot, scene)
+        notes: list[str] = []
+        mimic: list = []
+        diagram, self.robot = build_diagram(scene, attached, visual, extend_builder, notes, mimic)
+        self.model_notes = tuple(notes)  # what was done to the robot model that the scene did not say
+        self.coordinates = coordinates_from_plant(diagram.plant(), self.robot, scene, tuple(mimic))
         self.checker = DrakeChecker(diagram, self.robot, self.coordinates, self.padding, edge_resolution)
         self.plant = self.checker.drake.plant()
         self.diagram = self.checker.drake.model()

@@ -27,6 +27,8 @@ def add_import_options(m) -> None:
                    help="resolve package://NAME/... mesh resources under DIR (repeatable)")
     m.add_argument("--srdf", metavar="FILE", help="the robot's SRDF (MoveIt's disabled collision pairs and named "
                    "states), written into the scene's robot block")
+    m.add_argument("--xacro-arg", action="append", default=[], metavar="NAME=VALUE",
+                   help="an argument of a .xacro robot model, written into the scene's robot.xacro_args (repeatable)")
     m.add_argument("--name", help="the scene name (default: the output file's stem)")
     add_start_options(m)
     m.add_argument("--debug", action="store_true", help="show tracebacks")
@@ -37,11 +39,13 @@ def cmd_import_moveit(args) -> int:
     from lazyground.moveit.convert import ImportOptions
     from lazyground.moveit.importer import import_moveit_file
     from lazyground.robots.description import parse_package_args
+    from lazyground.robots.xacro_file import parse_xacro_args
     from lazyground.moveit.types import load_rules_file, parse_rule
 
     rules = [parse_rule(t) for t in args.type] + (load_rules_file(args.rules) if args.rules else [])
     options = ImportOptions(robot=args.robot, user_rules=tuple(rules), packages=parse_package_args(args.package),
-                            start=start_options(args), name=args.name or ImportOptions().name, srdf=args.srdf)
+                            start=start_options(args), name=args.name or ImportOptions().name, srdf=args.srdf,
+                            xacro_args=parse_xacro_args(args.xacro_arg))
     result = import_moveit_file(args.file, args.output, options)
     for line in result.summary.warnings:
         print(f"warning: {line}", file=sys.stderr)

@@ -41,6 +41,7 @@ class ImportOptions:
     start: StartOptions = StartOptions()
     name: str = "imported"
     srdf: str | None = None  # the robot's SRDF, written into the scene's robot block
+    xacro_args: dict[str, str] = field(default_factory=dict)  # a .xacro robot's arguments, written likewise
 
 
 @dataclass(frozen=True)
@@ -119,7 +120,7 @@ def convert_moveit(data, source: str, options: ImportOptions = ImportOptions(), 
     scene = {
         "name": options.name,
         "description": f"Imported from the MoveIt planning scene {Path(source).name}.",
-        "robot": _robot_block(options.robot, start, options.srdf),
+        "robot": _robot_block(options.robot, start, options.srdf, options.xacro_args),
         "obstacles": obstacles,
         "objects": objects,
     }
@@ -129,12 +130,14 @@ def convert_moveit(data, source: str, options: ImportOptions = ImportOptions(), 
     return scene, summary
 
 
-def _robot_block(robot: str, start: dict[str, float], srdf: str | None) -> dict:
+def _robot_block(robot: str, start: dict[str, float], srdf: str | None, xacro_args: dict[str, str]) -> dict:
     """The scene's robot block: the model welded at the origin (MoveIt scenes are in its base frame) and
     the start; base link, planned joints and end effector (with its axes) come from the robot.yaml."""
     block = {"model": robot, "base": {"xyz": [0.0, 0.0, 0.0]}, "start": start}
     if srdf is not None:
         block["srdf"] = str(Path(srdf).resolve())
+    if xacro_args:
+        block["xacro_args"] = dict(xacro_args)
     return block
 
 

@@ -76,6 +76,7 @@ class Search:
         self.dead: set[int] = set()  # samples whose approach segment failed the fine re-check
         self._verified: set[bytes] = set()  # segments (endpoint bytes) that passed the fine re-check
         self.selector = make_strategy(settings.strategy, StrategySettings(resample_threshold=settings.resample_threshold))
+        self._covers = bool(getattr(self.selector, "covers_regions", False))
         self.trees: list[Tree] = []  # the planner's trees, start tree first (for the result)
         self.failed_from: list[tuple[int, int]] = []  # (tree, node) of failed goal-directed extensions
         self.iterations = self.resamplings = self.rejected = 0
@@ -95,9 +96,14 @@ class Search:
         self.selector.add(list(range(first, len(self.samples))))
 
     def have_samples(self) -> bool:
-        """Whether any goal sample exists yet; draws a batch when none does."""
+        """Whether any goal sample exists yet; draws a batch when none does.
+
+        A strategy that paces coverage (``covers_regions``) gets one more sample each iteration
+        until there are as many samples as goal regions (lazyground.planning.cover)."""
         if not self.samples:
             self.draw(self.settings.initial_goal_samples)
+        elif self._covers and len(self.samples) < len(self.goals.regions):
+            self.draw(1)
         return bool(self.samples)
 
     def select(self) -> int | None:
@@ -120,12 +126,12 @@ class Search:
         (with ``only_if_all_stuck``, only once every live sample's weight is below the threshold)."""
         self.samples[gi].penalties += 1
         wants_more = self.selector.penalize(gi)
-        if wants_more and only_if_all_stuck:
+        if wants_more and only_if_all_stuck and not getattr(self.selector, "resample_alone", False):
             threshold = self.settings.resample_threshold
             wants_more = all(self.selector.weight(i) < threshold for i in range(len(self.samples)) if i not in self.dead)
         if wants_more:
             self.resamplings += 1
-            self.draw(self.settings.resample_count)
+            self.draw(getattr(self.selector, "batch", self.settings.resample_count))
 
     def first_invalid_segment(self, path: np.ndarray) -> int:
         """The fine re-check every returned path passes (-1: valid); counts rejections.

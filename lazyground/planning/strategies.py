@@ -124,10 +124,17 @@ class Random(Consecutive):
         return self._order[int(rng.integers(len(self._order)))]
 
 
+def _cover(settings: StrategySettings) -> GoalSelector:
+    from lazyground.planning.cover import Cover  # (its module imports this one)
+
+    return Cover(settings)
+
+
 STRATEGIES: dict[Strategy, Callable[[StrategySettings], GoalSelector]] = {
     Strategy.REWARD_PENALTY: RewardPenalty,
     Strategy.CONSECUTIVE: Consecutive,
     Strategy.RANDOM: Random,
+    Strategy.COVER: _cover,
 }
 
 

@@ -58,13 +58,25 @@ def complete_robot(robot, scene_dir: Path | None, source: str):
         srdf=srdf,
         base_link=robot.base_link or (defaults.base_link if defaults else "base_link"),
         planned_joints=robot.planned_joints if robot.planned_joints is not None else (defaults.planned_joints if defaults else None),
-        end_effector=robot.end_effector if robot.end_effector is not None else (defaults.end_effector if defaults else None),
+        end_effector=_end_effector(robot, defaults),
+        xacro_args={**(defaults.xacro_args if defaults else {}), **robot.xacro_args},
     )
     try:
         poses = named_poses(robot, defaults)
     except SceneError as exc:
         raise SceneError(f"{source}: robot.srdf: {exc}") from None
     return replace(robot, start=_start(robot.start, poses, defaults, source))
+
+
+def _end_effector(robot, defaults: RobotDefaults | None):
+    """The scene's end effector, else the last mounted tool's robot.yaml's, else the robot's."""
+    if robot.end_effector is not None:
+        return robot.end_effector
+    for tool in reversed(robot.tools):
+        tool_defaults = defaults_for_model(tool.model)
+        if tool_defaults is not None and tool_defaults.end_effector is not None:
+            return tool_defaults.end_effector
+    return defaults.end_effector if defaults else None
 
 
 def _start(start, poses: dict[str, dict[str, float]], defaults: RobotDefaults | None, source: str) -> dict[str, float]:

@@ -76,6 +76,7 @@ class RobotDefaults:
     acceleration_limits: dict[str, float] = field(default_factory=dict)  # per joint, rad/s^2 or m/s^2
     default_acceleration: float | None = checked(positive, default=None)  # joints not listed above
     velocity_limits: dict[str, float] = field(default_factory=dict)  # per joint; overrides the URDF's
+    xacro_args: dict[str, str | bool | int | float] = field(default_factory=dict)  # a .xacro model's arguments (a scene's win)
     kinematics: CarKinematics | None = None
     source: str = ""  # the robot.yaml this came from (set by the loader)
 

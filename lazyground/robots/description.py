@@ -1,13 +1,18 @@
-"""Robot descriptions as they come: URDF/SDF files with ``package://`` meshes in STL, DAE or OBJ.
+"""Robot descriptions as they come: URDF/SDF/xacro files with ``package://`` meshes in STL, DAE or OBJ.
 
-``prepare_model(path, packages)`` reads a URDF or SDF file and returns its text with every
-mesh reference rewritten to an absolute path of a file Drake loads (OBJ):
+``prepare_model(path, packages)`` reads a URDF or SDF file (a xacro file expanded first,
+robots/xacro_file.py; undeclared prefixes, unused tags and continuous limits handled by
+robots/lenient_xml.py) and returns its text with every mesh reference rewritten to an
+absolute path of a file Drake loads (OBJ); visuals are dropped for planning, and
+unloadable visual meshes are drawn from the link's collision geometry:
 
 * ``package://NAME/rel`` resolves through, in order, the given ``packages`` ({NAME: DIR},
   from a scene's ``robot.packages`` or ``--package NAME=DIR``), the package the model file
   itself sits in (the nearest ``package.xml`` above it), its sibling packages, and
   ``ROS_PACKAGE_PATH`` (every folder below it holding a ``package.xml``), as ROS does;
-* ``file://`` and plain paths resolve against the model file's folder;
+* ``file://`` and plain paths resolve against the model file's folder; an absolute path into
+  another machine's install space (``/home/u/ws/install/NAME/share/NAME/meshes/a.dae``, as
+  URDFs generated there carry) that does not exist here is read in the known package NAME;
 * STL (binary or ASCII) is converted to OBJ here with numpy (the format is a list of
   triangles; no dependency needed), DAE through ``trimesh`` (+ ``pycollada``) when
   installed (an optional dependency: ``pip install 'lazyground[meshes]'``); other formats
@@ -19,7 +24,9 @@ Every problem is a ``SceneError`` with one line naming the file and what to do. 
 
 from __future__ import annotations
 
+import copy
 import hashlib
+import io
 import os
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
@@ -28,6 +35,8 @@ from pathlib import Path
 import numpy as np
 
 from lazyground.mesh_files import MeshFileError, mesh_from_triangles, obj_text, read_stl
+from lazyground.robots.lenient_xml import declare_prefixes, drop_world_weld, parse_lenient, strip_unused, unwrap_continuous_limits
+from lazyground.robots.xacro_file import expand_xacro
 from lazyground.typed_yaml import SceneError
 
 DRAKE_MESHES = (".obj", ".gltf", ".glb", ".vtk")
@@ -44,6 +53,8 @@ class PreparedModel:
     meshes: dict[str, str] = field(default_factory=dict)  # original reference -> file Drake loads
     converted: tuple[str, ...] = ()  # references converted to OBJ
     packages: dict[str, str] = field(default_factory=dict)  # every package name that was resolved -> dir
+    stripped: dict[str, int] = field(default_factory=dict)  # tag planning does not use -> elements removed
+    notes: tuple[str, ...] = ()  # what was changed so that Drake loads it (continuous limits, visuals)
 
 
 def package_xml_name(folder: Path) -> str | None:
@@ -120,8 +131,23 @@ def resolve_uri(uri: str, base: Path, packages: dict[str, Path], model: Path) ->
         path = Path(uri)
     path = path if path.is_absolute() else base / path
     if not path.is_file():
-        raise SceneError(f"{model}: mesh {uri!r}: file {path} not found; check the path or the package's folder")
+        path = _installed_share(path, packages) or path
+    if not path.is_file():
+        share = [b for a, b in zip(path.parts, path.parts[1:]) if a == "share"]
+        hint = (f"; if it is package {share[-1]!r} of another machine's install space, give its folder with "
+                f"--package {share[-1]}=DIR or robot.packages") if share and share[-1] not in packages else ""
+        raise SceneError(f"{model}: mesh {uri!r}: file {path} not found; check the path or the package's folder{hint}")
     return path.resolve()
+
+
+def _installed_share(path: Path, packages: dict[str, Path]) -> Path | None:
+    """A missing absolute path into some workspace's ``.../share/NAME/rest`` (a URDF generated on another machine)
+    read as ``rest`` in the known package NAME, or None."""
+    parts = path.parts
+    for i in range(len(parts) - 2, 0, -1):
+        if parts[i - 1] == "share" and parts[i] in packages:
+            return packages[parts[i]].joinpath(*parts[i + 1:])
+    return None
 
 
 def _cache_dir() -> Path:
@@ -175,50 +201,70 @@ def obj_for(mesh: Path) -> Path:
 
 
 def model_file_type(path: Path) -> str:
-    """``urdf`` or ``sdf`` from the extension (``.xacro`` is not expanded here)."""
+    """``urdf``, ``sdf`` or ``xacro`` from the extension (``.urdf.xacro`` is xacro)."""
     suffix = path.suffix.lower()
-    if suffix == ".urdf":
-        return "urdf"
-    if suffix == ".sdf":
-        return "sdf"
-    if suffix == ".xacro":
-        raise SceneError(f"{path}: xacro files must be expanded first: xacro {path.name} > {path.stem}")
-    raise SceneError(f"{path}: robot model must be a .urdf or .sdf file")
+    if suffix in (".urdf", ".sdf", ".xacro"):
+        return suffix[1:]
+    raise SceneError(f"{path}: robot model must be a .urdf, .sdf or .xacro file")
 
 
-def prepare_model(path: str | os.PathLike, packages: dict[str, Path] | None = None, env: dict | None = None) -> PreparedModel:
+def prepare_model(path: str | os.PathLike, packages: dict[str, Path] | None = None, env: dict | None = None,
+                  xacro_args: dict | None = None, visual: bool = True, base_link: str | None = None) -> PreparedModel:
     """The model's text with every mesh reference resolved to a file Drake loads (see module docstring).
 
     Args:
-        path: a URDF or SDF file.
+        path: a URDF, SDF or xacro file.
         packages: package folders by name; they win over discovered ones.
         env: environment for ``ROS_PACKAGE_PATH`` (default: the process's).
+        xacro_args: ``arg`` values for a xacro file.
+        visual: keep visual geometry (for a viewer); without, only collision geometry is loaded.
+        base_link: a link the scene welds itself (``robot.base``): a URDF's own fixed joint from
+            ``world`` to it is removed.
     Returns:
-        The rewritten text, its file type and what was resolved or converted.
+        The rewritten text, its file type and what was resolved, converted, stripped or noted.
     Raises:
-        SceneError: unreadable XML, an unknown package, a missing or unsupported mesh (one line).
+        SceneError: unreadable XML, a missing xacro argument, an unknown package, a missing or
+            unsupported collision mesh (one line). Visual meshes never raise (see ``visual_fallback``).
     """
     model = Path(path).resolve()
     file_type = model_file_type(model)
+    known = {**discover_packages(model, env), **{k: Path(v).expanduser().resolve() for k, v in (packages or {}).items()}}
     try:
-        tree = ET.parse(model)
+        if file_type == "xacro":
+            text = expand_xacro(model, xacro_args, known)
+        else:
+            text = model.read_text(encoding="utf-8", errors="replace")
+        root = parse_lenient(text)
     except (OSError, ET.ParseError) as exc:
         raise SceneError(f"{model}: cannot read the robot description: {str(exc).splitlines()[0]}") from None
-    known = {**discover_packages(model, env), **{k: Path(v).expanduser().resolve() for k, v in (packages or {}).items()}}
-    tag, attr = _MESH_TAGS[file_type]
+    if file_type == "xacro":
+        file_type = "sdf" if _local(root.tag) == "sdf" else "urdf"
+    notes: list[str] = []
+    stripped = strip_unused(root) if file_type == "urdf" else {}
+    notes += unwrap_continuous_limits(root) if file_type == "urdf" else []
+    dropped = drop_world_weld(root, base_link) if file_type == "urdf" and base_link else None
+    notes += [dropped] if dropped else []
+    parent = {child: element for element in root.iter() for child in element}
+    if not visual:
+        for element in [e for e in root.iter() if _local(e.tag) == "visual"]:
+            parent[element].remove(element)
     meshes: dict[str, str] = {}
     converted: list[str] = []
     used: dict[str, str] = {}
-    # SDF <uri> also names materials and included models; only a <mesh>'s is a mesh
-    parent = {child: element for element in tree.iter() for child in element} if file_type == "sdf" else {}
-    for element in tree.iter():
-        if _local(element.tag) != tag or (file_type == "sdf" and _local(getattr(parent.get(element), "tag", "")) != "mesh"):
-            continue
-        uri = (element.get(attr) if attr else element.text or "").strip()
+    failed_visuals: dict = {}  # link element -> the first problem with one of its visual meshes
+    for element in list(root.iter()):
+        uri = _mesh_uri(element, parent, file_type)
         if not uri:
             continue
+        role = _role(element, parent)
         if uri not in meshes:
-            target = obj_for(resolve_uri(uri, model.parent, known, model))
+            try:
+                target = obj_for(resolve_uri(uri, model.parent, known, model))
+            except SceneError as exc:
+                if role != "visual":
+                    raise
+                failed_visuals.setdefault(parent.get(_container(element, parent)), str(exc))
+                continue
             meshes[uri] = str(target)
             if target.suffix.lower() != Path(uri).suffix.lower():
                 converted.append(uri)
@@ -226,23 +272,64 @@ def prepare_model(path: str | os.PathLike, packages: dict[str, Path] | None = No
                 name = uri.split("://", 1)[1].split("/", 1)[0]
                 used[name] = str(known[name])
         # Drake takes only file:// URIs (not bare paths) in a model parsed from a string
-        if attr:
-            element.set(attr, f"file://{meshes[uri]}")
+        if file_type == "urdf":
+            element.set("filename", f"file://{meshes[uri]}")
         else:
             element.text = f"file://{meshes[uri]}"
-    _register_namespaces(model)
-    text = ET.tostring(tree.getroot(), encoding="unicode")
-    return PreparedModel(text, file_type, meshes, tuple(converted), used)
+    failed_visuals.pop(None, None)
+    if failed_visuals:
+        for link in failed_visuals:
+            draw_collision_as_visual(link)
+        first = next(iter(failed_visuals.values()))
+        notes.append(f"visual meshes of {len(failed_visuals)} link(s) not loadable, drawn from their collision geometry "
+                     f"(first: {first})")
+    _register_namespaces(text)
+    return PreparedModel(ET.tostring(root, encoding="unicode"), file_type, meshes, tuple(converted), used,
+                         stripped, tuple(notes))
+
+
+def _mesh_uri(element, parent: dict, file_type: str) -> str:
+    """The mesh file an element names, or "" (SDF ``<uri>`` also names materials and included models)."""
+    if file_type == "urdf":
+        return (element.get("filename") or "").strip() if _local(element.tag) == "mesh" else ""
+    if _local(element.tag) != "uri" or _local(getattr(parent.get(element), "tag", "")) != "mesh":
+        return ""
+    return (element.text or "").strip()
+
+
+def _container(element, parent: dict):
+    """The ``<visual>`` or ``<collision>`` holding ``element`` (None outside both)."""
+    while element is not None and _local(element.tag) not in ("visual", "collision"):
+        element = parent.get(element)
+    return element
+
+
+def _role(element, parent: dict) -> str:
+    container = _container(element, parent)
+    return _local(container.tag) if container is not None else ""
+
+
+def draw_collision_as_visual(link) -> None:
+    """Replace a link's visuals with copies of its collision geometry (pose and shape only)."""
+    for old in [c for c in link if _local(c.tag) == "visual"]:
+        link.remove(old)
+    for i, collision in enumerate([c for c in link if _local(c.tag) == "collision"]):
+        visual = ET.SubElement(link, collision.tag.replace("collision", "visual"))
+        if collision.get("name") is not None:  # SDF needs unique names
+            visual.set("name", f"{collision.get('name')}_drawn_{i}")
+        for child in collision:
+            if _local(child.tag) in ("origin", "pose", "geometry"):
+                visual.append(copy.deepcopy(child))
 
 
 def _local(tag: str) -> str:
     return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else ""
 
 
-def _register_namespaces(model: Path) -> None:
+def _register_namespaces(text: str) -> None:
     """Keep prefixes such as ``drake:`` when the tree is written back (ElementTree renames them otherwise)."""
     try:
-        for _, (prefix, uri) in ET.iterparse(model, events=("start-ns",)):
+        for _, (prefix, uri) in ET.iterparse(io.StringIO(declare_prefixes(text)), events=("start-ns",)):
             ET.register_namespace(prefix, uri)
-    except ET.ParseError:
+    except (ET.ParseError, ValueError):
         pass

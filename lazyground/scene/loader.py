@@ -74,7 +74,19 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
     problem = _overlap_problem(scene.objects) or _mesh_problem(scene, scene_dir)
     if problem:
         raise SceneError(f"{source}: {problem}")
-    robot = replace(scene.robot, model=str(model), **(robot_overrides or {}))
+    # imported here: lazyground.robots reads robot.yaml through this package's typed_yaml
+    from lazyground.robots.complete import complete_robot
+
+    overrides = dict(robot_overrides or {})
+    if "xacro_args" in overrides:  # --xacro-arg wins key by key over the scene's robot.xacro_args
+        overrides["xacro_args"] = {**scene.robot.xacro_args, **overrides["xacro_args"]}
+    tools = []
+    for i, tool in enumerate(scene.robot.tools):
+        tool_model = resolve_model(tool.model, scene_dir)
+        if tool_model is None:
+            raise SceneError(f"{source}: robot.tools[{i}].model: model file {tool.model!r} not found")
+        tools.append(replace(tool, model=str(tool_model)))
+    robot = replace(scene.robot, model=str(model), tools=tuple(tools), **overrides)
     robot = complete_robot(robot, scene_dir, source)
     return replace(scene, robot=robot, obstacles=_absolute_meshes(scene.obstacles, scene_dir), source=source)
 

@@ -129,6 +129,16 @@ class SceneObject:
 
 
 @dataclass(frozen=True)
+class ToolSpec:
+    """A tool (a gripper from its own package) mounted on a robot frame: ``{model: FILE, parent: tool0, pose: {...}}``."""
+
+    model: str  # a URDF or .urdf.xacro file (relative to the scene), or a bundled name
+    parent: str  # the robot link it is fixed to (e.g. the flange, tool0)
+    pose: PoseSpec = PoseSpec()  # of the tool's root link in the parent link
+    xacro_args: dict[str, str | bool | int | float] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
 class RobotSpec:
     """The robot: a model file, its planned joints and its start configuration."""
 
@@ -146,6 +156,8 @@ class RobotSpec:
     packages: dict[str, str] = field(default_factory=dict)  # package:// NAME -> folder (relative to the scene)
     srdf: str | None = None  # MoveIt SRDF: disable_collisions pairs and group_state named poses
     allowed_collisions: tuple[tuple[str, str], ...] = ()  # link pairs never checked against each other
+    xacro_args: dict[str, str | bool | int | float] = field(default_factory=dict)  # a .xacro model's arg values
+    tools: tuple[ToolSpec, ...] = ()  # grippers from their own packages, mounted on the arm (the end effector from theirs)
 
     def validate(self) -> str | None:
         for name, (lo, hi) in self.limits.items():

@@ -139,7 +139,7 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
     frame = frame_of(scene.robot)
     grasps, places = _regions_by_object(g)
     excluded: list[str] = []
-    notes: list[str] = []
+    notes: list[str] = list(world.model_notes)
     results: list[PlanResult] = []
 
     motion_s = 0.0  # shortening and timing the steps after the solve (lazyground.motion): not planning
@@ -180,6 +180,8 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
             continue
         source = goal_source_for(targets, carrying, settings.goal_sampling)
         lift = lift_off(world, carrying, source, frame, q_grasp, planner.resolution, settings.task)
+        if lift is not None:
+            source.near = lift.q_lift  # placements prefer the full-turn equivalent nearest where the place step starts
         if lift is None:
             notes.append(f"picked {obj.id} ({pick.goal_region.label}) but could not lift it clear; trying another object")
             excluded.append(obj.id)

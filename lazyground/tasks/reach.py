@@ -6,6 +6,7 @@ from lazyground.goals import goal_source_for
 from lazyground.motion.post import post_process
 from lazyground.planning.rrt import solve
 from lazyground.planning.stop import StopCondition
+from lazyground.planning.turns import sweep_note
 from lazyground.tasks.anytime import best_of, improvement_notes
 from lazyground.tasks.car_space import planning_space
 from lazyground.tasks.outcome import Outcome, Step
@@ -47,7 +48,9 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
 
     best = best_of(attempt, tuple(grounding.goal_regions), space, world.start, planner, stop)
     result, motion = best.result, best.motion
-    notes = (motion.note,) if motion is not None and motion.note else ()
-    notes += improvement_notes(best)
+    notes = world.model_notes + ((motion.note,) if motion is not None and motion.note else ())
+    swept = sweep_note(motion.shortcut.path, world.space.names, world.space.wrap, world.coordinates.turns) \
+        if motion is not None and result.solved else None
+    notes += ((swept,) if swept else ()) + improvement_notes(best)
     return Outcome(result, (Step(grounding.action, result, setup_s, motion=motion),), world.space.names, notes,
                    improvements=best.improvements)

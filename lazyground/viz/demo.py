@@ -12,6 +12,7 @@ from pathlib import Path
 
 from lazyground import api
 from lazyground.bundled import data_dir
+from lazyground.drake import compiled
 from lazyground.report import report_lines
 from lazyground.scene import load_scene
 
@@ -42,6 +43,8 @@ def run_demo(out_dir: Path, seed: int, say: Callable[[str], None]) -> int:
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     all_solved = True
+    if compiled.warm_up() and compiled.compile_report()[1]:  # before any request, so no request's time holds it
+        say(f"compiled the collision kernels in {compiled.compile_report()[0]:.0f} s (once per machine: numba caches them)\n")
     for demo in DEMOS:
         scene_path = SCENES / demo.scene
         if not scene_path.exists():

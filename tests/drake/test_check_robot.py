@@ -78,12 +78,19 @@ def test_unknown_package_names_it_and_the_fix(tmp_path, capsys):
     assert code == 2 and "\n" not in err
     assert f"unknown package 'arm_meshes' (known: {PACKAGE})" in err and "--package arm_meshes=DIR" in err
     code, lines, _ = _run(capsys, str(pkg / "urdf" / "my_arm.urdf"), "--package", f"arm_meshes={pkg}")
-    assert code == 0 and lines[-1].startswith("ok: my_arm.urdf loads with 6 DOF")
+    assert "DOF: 6" in lines  # it loads; without its SRDF the sensor link overlaps wrist 2 in every pose (#28)
+    assert code == 2 and lines[-1].startswith("1 problem(s): 1 link pair(s) touch in at least 95% of 200 sampled")
+    assert "fts_robotside-wrist_2_link" in lines[-1]
 
 
 def test_not_a_model_is_one_line(tmp_path, capsys):
-    (tmp_path / "robot.xacro").write_text("<robot/>")
+    (tmp_path / "robot.txt").write_text("<robot/>")
+    code, _, err = _run(capsys, str(tmp_path / "robot.txt"))
+    assert code == 2 and "must be a .urdf, .sdf or .xacro file" in err and "\n" not in err.strip()
+    (tmp_path / "robot.xacro").write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                                          '<link name="$(arg ur_type)"/></robot>')
     code, _, err = _run(capsys, str(tmp_path / "robot.xacro"))
-    assert code == 2 and "xacro files must be expanded first" in err
+    assert code == 2 and "xacro argument 'ur_type' is required" in err and "--xacro-arg ur_type=VALUE" in err
+    assert "\n" not in err.strip()
     code, _, err = _run(capsys, "no_such_robot")
     assert code == 2 and "no model file 'no_such_robot'" in err

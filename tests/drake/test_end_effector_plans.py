@@ -17,6 +17,7 @@ from lazyground import api  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.robots.end_effector import frame_of  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
+from tests.counts import BY_COUNTS  # noqa: E402
 
 SCENES = Path(__file__).resolve().parents[2] / "yaml_scenes"
 # IK meets a goal pose within 0.01 rad and 2 mm a side (lazyground/drake/ik/source.py); a wrong axis is off by 90 deg
@@ -34,7 +35,7 @@ def test_solved_grasps_point_the_tool_z_axis_along_the_approach(scene_name, requ
     p_WC = np.array(cup.pose.xyz)
     solved = 0
     for seed in range(3):
-        report = api.plan(scene, request_text, seed=seed, world=world, time_limit=30.0)
+        report = api.plan(scene, request_text, seed=seed, world=world, **BY_COUNTS)
         if not report.result.solved:
             continue
         solved += 1

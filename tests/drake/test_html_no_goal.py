@@ -20,7 +20,7 @@ def test_html_with_no_valid_goal_exits_1(tmp_path, capsys):
     scene = tmp_path / "far_can.yaml"
     scene.write_text(text.replace(line, line.replace(NEAR, FAR)))
     html = tmp_path / "x.html"
-    code = main(["plan", str(scene), "pick up Can1", "--algorithm", "bidirectional", "--time-limit", "5", "--html", str(html)])
+    code = main(["plan", str(scene), "pick up Can1", "--algorithm", "bidirectional", "--time-limit", "1000", "--html", str(html)])
     out, err = capsys.readouterr()
     assert code == 1, err
     assert "status: no_valid_goal" in out and "out of reach" in out

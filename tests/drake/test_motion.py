@@ -24,10 +24,11 @@ from lazyground.motion.validate import trajectory_problems  # noqa: E402
 from lazyground.planning import path_is_valid  # noqa: E402
 from lazyground.report import report_to_json  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
+from tests.counts import BY_COUNTS  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 # the iteration budget decides, never the clock (the time budget is out of reach)
-MOTION = {"shortcut_iterations": 60, "shortcut_time": 1e9}
+MOTION = BY_COUNTS | {"shortcut_iterations": 60}
 
 
 def planned(scene_file: str, request: str, seed: int):

@@ -17,6 +17,7 @@ from lazyground.planning import path_is_valid  # noqa: E402
 from lazyground.robots.description import prepare_model  # noqa: E402
 from lazyground.scene import SceneError, load_scene  # noqa: E402
 
+from tests.counts import BY_COUNTS  # noqa: E402
 from tests.drake.ros_package import PACKAGE, make_package, scene_text  # noqa: E402
 
 
@@ -56,7 +57,7 @@ def test_ros_package_plans_pick_up_a_cup_without_edits(workspace):
     world = DrakeWorld(scene)
     solved = 0
     for seed in range(3):
-        report = api.plan(scene, "pick up a cup", seed=seed, world=world)
+        report = api.plan(scene, "pick up a cup", seed=seed, world=world, **BY_COUNTS)
         if not report.result.solved:
             continue
         solved += 1

@@ -13,6 +13,7 @@ from lazyground import api  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.planning.rrt import path_is_valid  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
+from tests.counts import BY_COUNTS  # noqa: E402
 from tests.unit.test_grounding import REPO  # noqa: E402
 
 TEXT = (REPO / "docs" / "tutorial.md").read_text()
@@ -46,7 +47,7 @@ def test_tutorial_requests_ground_as_documented(scenes, name, request_text, expe
 @pytest.mark.parametrize("name,request_text", [("my_lot", "park"), ("my_table", "pick up the red can")])
 def test_tutorial_scenes_plan(scenes, name, request_text):
     world = DrakeWorld(scenes[name])
-    report = api.plan(scenes[name], request_text, seed=0, world=world)
+    report = api.plan(scenes[name], request_text, seed=0, world=world, **BY_COUNTS)
     res = report.result
     assert res.solved, res.message
     assert path_is_valid(world.space, world, res.path, report.settings.planner.resolution / 10) == -1

@@ -52,17 +52,18 @@ def _popen(argv):
     return subprocess.Popen(argv, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=with_ctrl_c)
 
 
-def _interrupt(proc, after: float, within: float = 5.0):
+def _interrupt(proc, after: float, backstop: float = 120.0):
+    """Ctrl-C ``after`` s into the plan; the answer (out, err). ``backstop`` only ends a hung child (the test then
+    errors with TimeoutExpired): no outcome is decided by how long the child took."""
     time.sleep(after)
     assert proc.poll() is None, proc.communicate()
     proc.send_signal(signal.SIGINT)
-    t0 = time.perf_counter()
     try:
-        out, err = proc.communicate(timeout=within)
+        out, err = proc.communicate(timeout=backstop)
     finally:
         if proc.poll() is None:
             proc.kill()
-    return out, err, time.perf_counter() - t0
+    return out, err
 
 
 READY = (
@@ -92,11 +93,11 @@ def _popen_planning(argv):
 def test_cli_ctrl_c_exits_130_with_one_line(tmp_path):
     scene = walled_lot(tmp_path)
     proc = _popen_planning(["plan", str(scene), "park", "--time-limit", "30"])
-    out, err, took = _interrupt(proc, after=0.5)
+    out, err = _interrupt(proc, after=0.5)
     assert proc.returncode == 130, (out, err)
     lines = err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("interrupted"), err
-    assert "Traceback" not in err and took < 5.0
+    assert "Traceback" not in err
 
 
 @needs_drake
@@ -104,11 +105,11 @@ def test_cli_ctrl_c_during_planning_prints_partial_statistics(tmp_path):
     """The signal lands inside the planner (a line on stderr says it started), which reports what it did."""
     scene = walled_lot(tmp_path)
     proc = _popen_planning(["plan", str(scene), "park", "--time-limit", "30", "--json"])
-    out, err, took = _interrupt(proc, after=1.0)
+    out, err = _interrupt(proc, after=1.0)
     assert proc.returncode == 130, (out, err)
     lines = err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("interrupted after "), err
     doc = json.loads(out)
     assert doc["status"] == "interrupted" and doc["path"] is None
     assert doc["iterations"] > 0 and doc["tree_size"] > 1 and doc["goal_samples"] > 0
-    assert 0.5 < doc["time_s"] < 30 and took < 5.0
+    assert doc["time_s"] > 0  # status 'interrupted', not 'timeout': stopped by the signal, before the 30 s limit

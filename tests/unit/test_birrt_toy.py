@@ -16,7 +16,7 @@ def run(regions, seed, settings=BI, walls=WALLS):
     return world, solve(SPACE, world, goal_source(world, regions), START, settings, np.random.default_rng(seed), seed=seed)
 
 
-@pytest.mark.parametrize("strategy", ["reward-penalty", "consecutive", "random"])
+@pytest.mark.parametrize("strategy", ["reward-penalty", "consecutive", "random", "cover"])
 def test_reaches_the_only_reachable_grounding(strategy):
     settings = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=SOLVE_BUDGET, algorithm="bidirectional", strategy=strategy)
     for seed in range(6):

@@ -7,9 +7,10 @@ from lazyground.motion.shortcut import ShortcutSettings, shortcut_path
 from lazyground.motion.validate import _dense, first_colliding_join
 from lazyground.planning import PlannerSettings, path_is_valid, solve
 from lazyground.planning.space import ConfigSpace
+from tests.counts import PLANNER_BY_COUNTS
 from tests.unit.toy import REACHABLE, SPACE, START, WALLS, BoxWorld, goal_source
 
-SETTINGS = PlannerSettings(step_size=0.5, time_limit=30.0, goal_bias=0.1)
+SETTINGS = PlannerSettings(step_size=0.5, goal_bias=0.1, **PLANNER_BY_COUNTS)
 FINE = SETTINGS.resolution / SETTINGS.validation_factor
 
 

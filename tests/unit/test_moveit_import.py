@@ -16,6 +16,16 @@ from lazyground.scene import load_scene
 from lazyground.typed_yaml import SceneError
 
 REFERENCE_FILES = sorted(REFERENCE.glob("*.yml")) if REFERENCE.is_dir() else []
+# a MoveIt planning scene of one wall in the robot's base frame (also tests/drake/test_robot_corpus.py)
+ONE_WALL = textwrap.dedent("""\
+    name: s
+    world:
+      collision_objects:
+        - id: wall
+          header: {frame_id: base_link}
+          primitives: [{type: box, dimensions: [0.1, 1.0, 1.0]}]
+          primitive_poses: [{position: {x: 1.5, y: 0.0, z: 0.5}, orientation: {x: 0, y: 0, z: 0, w: 1}}]
+    """)
 KITCHEN = ImportOptions(packages={"kitchen_description": CORPUS / "kitchen_description"})
 
 
@@ -267,15 +277,7 @@ def test_srdf_option_is_written_into_the_robot_block(tmp_path):
     srdf = tmp_path / "fetch.srdf"
     srdf.write_text('<robot name="fetch"><disable_collisions link1="base_link" link2="torso_lift_link" reason="Adjacent"/></robot>')
     source = tmp_path / "scene.yaml"
-    source.write_text(textwrap.dedent("""\
-        name: s
-        world:
-          collision_objects:
-            - id: wall
-              header: {frame_id: base_link}
-              primitives: [{type: box, dimensions: [0.1, 1.0, 1.0]}]
-              primitive_poses: [{position: {x: 1.5, y: 0.0, z: 0.5}, orientation: {x: 0, y: 0, z: 0, w: 1}}]
-        """))
+    source.write_text(ONE_WALL)
     out = tmp_path / "out.yaml"
     assert main(["import-moveit", str(source), "-o", str(out), "--srdf", str(srdf)]) == 0
     assert yaml.safe_load(out.read_text())["robot"]["srdf"] == str(srdf.resolve())

@@ -79,3 +79,12 @@ def test_tree_nearest_k_gives_the_k_nearest_live_nodes_nearest_first():
         got = tree.nearest_k(q, 3)
         assert list(got) == list(alive[np.argsort(d)[:3]])
         assert tree.nearest_k(q, 1) == [tree.nearest(q)] == got[:1]
+
+
+def test_empty_and_empty_removal():
+    nn = NearestNeighbors(2)
+    assert nn.nearest(np.zeros(2)) == -1
+    nn.add(np.array([1.0, 1.0]))
+    nn.remove([])
+    assert nn.nearest(np.zeros(2)) == 0 and list(nn.nearest_k(np.zeros(2), 3)) == [0]
+

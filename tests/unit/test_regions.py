@@ -228,3 +228,89 @@ def test_reached_asks_each_kind_its_own_question():
     assert p.reached(None, _StubWorld({"hand": X_WB}, _Attached("hand", X_BO)), tol=1e-6)
     with pytest.raises(ValueError, match="attached"):
         p.reached(None, _StubWorld({"hand": X_WB}))
+
+
+# --- written to kill surviving mutants (tools/mutation.py regions) -------------------------------------------------
+
+def test_a_kind_has_one_class_and_re_registering_it_is_harmless():
+    assert register_region(ConfigRegion) is ConfigRegion
+
+    @dataclass(frozen=True)
+    class Other(GoalRegion):
+        kind = "config"
+
+    with pytest.raises(ValueError, match="goal region kind 'config' is already ConfigRegion"):
+        register_region(Other)
+    assert REGION_KINDS["config"] is ConfigRegion
+    with pytest.raises(ValueError, match=r"\(known: config, workspace, placement\)"):
+        GoalRegion.make("cone", id="a", interpretation="i", object="a", lower=(0.0,), upper=(1.0,))
+    with pytest.raises(ValueError, match="^workspace bounds are"):
+        PlacementRegion(id="p", interpretation="i", object="o", lower=(0,), upper=(1,))
+
+
+def test_json_bounds_are_rounded_to_a_millionth():
+    r = ConfigRegion(id="c", interpretation="i", object="c", lower=(0.12345678, -1.0000004), upper=(0.98765432, 2.0))
+    assert r.to_json()["lower"] == [0.123457, -1.0] and r.to_json()["upper"] == [0.987654, 2.0]
+
+
+def test_integer_and_zero_width_wrapped_bounds():
+    """Bounds given as integers wrap as floats (a span of 2 pi - 6, not 0); a wrapped axis with lower == upper is
+    that one angle, not the whole circle."""
+    r = ConfigRegion(id="c", interpretation="i", object="c", lower=(3,), upper=(-3,), wrap=(0,))
+    assert r.unit_map()[1] == pytest.approx([2 * np.pi - 6])
+    rng = np.random.default_rng(0)
+    assert all(abs(r.sample(rng)[0]) >= 3.0 - 1e-12 for _ in range(50))
+    point = ConfigRegion(id="c", interpretation="i", object="c", lower=(0.0, 1.0), upper=(1.0, 1.0), wrap=(1,))
+    assert point.unit_map()[1][1] == 0.0 and point.sample(rng)[1] == pytest.approx(1.0)
+    assert not point.contains([0.5, 1.5]) and point.contains([0.5, 1.0])
+
+
+def test_exact_bounds_are_inside_with_zero_tolerance():
+    r = ConfigRegion(id="c", interpretation="i", object="c", lower=(-1.0, 0.25), upper=(0.5, 2.0))
+    assert r.contains([-1.0, 2.0], tol=0.0) and r.contains([0.5, 0.25], tol=0.0)
+    assert not r.contains([0.5 + 1e-12, 1.0], tol=0.0)
+
+
+def test_a_config_region_is_reached_within_the_tolerance_given():
+    r = ConfigRegion(id="c", interpretation="i", object="c", lower=(0.0,), upper=(1.0,))
+    assert r.reached(np.array([1.05]), None, tol=0.1) and not r.reached(np.array([1.05]), None)
+
+
+def test_a_tall_object_is_drawn_its_own_height():
+    scene = parse_scene(dedent("""
+        name: tall
+        robot: {model: car, start: {}}
+        objects:
+          - {id: tower, type: parking_spot, geometry: {box: [2.0, 2.0, 3.0]}, pose: {xyz: [1, 1, 1.5]}}
+    """))
+    d = ConfigRegion(id="t", interpretation="park:tower", object="tower", lower=(0, 0, 0), upper=(1, 1, 1)).drawing(scene)
+    assert np.allclose(d.size, (2.0, 2.0, 3.0)) and np.allclose(d.X_WB.xyz, (1, 1, 3.0))
+
+
+class _FrameWorld:
+    """A world whose frame ``name`` sits at q[:3] (no rotation) and may carry an object."""
+
+    def __init__(self, attached=None):
+        self.attached = attached
+
+    def frame_pose(self, name, q):
+        assert name in ("ee", "hand")
+        return Pose(tuple(np.asarray(q, float)[:3]))
+
+
+def test_pose_regions_are_reached_by_the_frame_they_bound():
+    from types import SimpleNamespace
+
+    f = dict(interpretation="i", object="c", lower=(-0.1, -0.1, -0.1, -np.pi, -np.pi / 2, -np.pi),
+             upper=(0.1, 0.1, 0.1, np.pi, np.pi / 2, np.pi), X_WR=Pose((1.0, 0.0, 0.0)))
+    w = WorkspaceRegion(id="w", frame="ee", **f)
+    assert w.reached(np.array([1.05, 0.0, 0.0]), _FrameWorld())
+    assert not w.reached(np.array([1.15, 0.0, 0.0]), _FrameWorld())
+    assert w.reached(np.array([1.15, 0.0, 0.0]), _FrameWorld(), tol=0.1)
+    p = PlacementRegion(id="p", **f)
+    hand = SimpleNamespace(body="hand", X_BO=Pose((0.2, 0.0, 0.0)))  # the object 0.2 m ahead of the hand
+    assert p.reached(np.array([0.8, 0.0, 0.0]), _FrameWorld(hand))
+    assert not p.reached(np.array([1.0, 0.0, 0.0]), _FrameWorld(hand))
+    for carries_nothing in (_FrameWorld(), SimpleNamespace(frame_pose=_FrameWorld().frame_pose)):  # no attribute
+        with pytest.raises(ValueError, match="needs a world with an attached object"):
+            p.reached(np.array([0.8, 0.0, 0.0]), carries_nothing)

@@ -8,9 +8,10 @@ import pytest
 from lazyground.motion.relax import relax_sweep, subdivide, toward_segment
 from lazyground.motion.shortcut import ShortcutSettings, ShortcutStatus, shortcut_path
 from lazyground.planning import PlannerSettings, path_is_valid
+from tests.counts import PLANNER_BY_COUNTS
 from tests.unit.toy import SPACE, WALLS, BoxWorld
 
-SETTINGS = PlannerSettings(step_size=0.5, time_limit=30.0, goal_bias=0.1)
+SETTINGS = PlannerSettings(step_size=0.5, goal_bias=0.1, **PLANNER_BY_COUNTS)
 FINE = SETTINGS.resolution / SETTINGS.validation_factor
 RELAX_ONLY = ShortcutSettings(greedy=False, max_iterations=0, time_budget=1e9, relax_pieces=16, relax_sweeps=10,
                               min_gain=1e-3)  # no clock, no shortcut; moves down to 0.1 % of the length

@@ -211,3 +211,14 @@ def test_sdf_mesh_uris_resolve_and_other_uris_stay(tmp_path):
     prepared = prepare_model(sdf)
     assert prepared.file_type == "sdf" and list(prepared.meshes) == ["package://arm_description/meshes/link.stl"]
     assert "file://media/materials/scripts" in prepared.text and "package://" not in prepared.text
+
+
+def test_an_absolute_path_into_another_machines_install_space_reads_the_known_package(tmp_path):
+    # kortex_description's gen3_2f85.urdf names file:///root/<ws>/install/kortex_description/share/kortex_description/...
+    pkg = tmp_path / "kortex_description"
+    (pkg / "meshes").mkdir(parents=True)
+    (pkg / "meshes" / "a.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    uri = "file:///root/ws/install/kortex_description/share/kortex_description/meshes/a.obj"
+    assert resolve_uri(uri, tmp_path, {"kortex_description": pkg}, tmp_path / "m.urdf") == (pkg / "meshes" / "a.obj").resolve()
+    with pytest.raises(SceneError, match="not found"):
+        resolve_uri(uri, tmp_path, {}, tmp_path / "m.urdf")

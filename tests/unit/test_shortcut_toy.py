@@ -11,9 +11,10 @@ from lazyground.motion.shortcut import (ShortcutSettings, ShortcutStatus, _FineC
 from lazyground.planning import PlannerSettings, path_is_valid, solve
 from lazyground.planning.space import ConfigSpace
 from lazyground.planning.stop import StopCondition
+from tests.counts import PLANNER_BY_COUNTS
 from tests.unit.toy import REACHABLE, SPACE, START, WALLS, BoxWorld, CountingWorld, goal_source
 
-SETTINGS = PlannerSettings(step_size=0.5, time_limit=30.0, goal_bias=0.1)
+SETTINGS = PlannerSettings(step_size=0.5, goal_bias=0.1, **PLANNER_BY_COUNTS)
 BUDGET = ShortcutSettings(max_iterations=200, time_budget=1e9)  # iterations decide, never the clock
 FINE = SETTINGS.resolution / SETTINGS.validation_factor
 

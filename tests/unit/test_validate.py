@@ -113,3 +113,48 @@ def test_a_wall_between_two_samples_is_found_on_the_join():
     wall = BoxWorld([(2.45, 0.0, 2.55, 10.0)])
     assert problems(tr, wall) == ["trajectory collides at resolution 0.01"]
     assert problems(tr, BoxWorld([(2.45, 6.0, 2.55, 10.0)])) == []
+
+
+# --- written to kill surviving mutants (tools/mutation.py validate) -----------------------------------------------
+
+def _still(q):
+    zero = np.zeros_like(q)
+    return Trajectory(("x", "y"), (False, False), np.linspace(0.0, 1.0, len(q)), q, zero, zero.copy(),
+                      Limits(V_MAX, A_MAX), "test")
+
+
+def test_a_limit_exactly_at_the_tolerance_passes():
+    tr = _still(np.column_stack([np.linspace(1.0, 2.0, 5), np.full(5, 5.0)]))
+    tr.qd[2] = [1.01 * V_MAX[0], 0.0]  # a ratio of exactly 1 + LIMIT_TOLERANCE
+    assert problems(tr) == []
+    tr.qd[2] = [1.0101 * V_MAX[0], 0.0]
+    assert problems(tr) == ["trajectory exceeds a velocity limit 1.010x"]
+
+
+def test_ends_and_rest_are_compared_within_a_micrometre():
+    tr = _still(np.column_stack([np.linspace(1.0, 2.0, 5), np.full(5, 5.0)]))
+    start, goal = tr.q[0].copy(), tr.q[-1].copy()
+    assert problems(tr, start=start + [5e-7, 0.0], goal=goal - [0.0, 5e-7]) == []
+    assert problems(tr, start=start + [2e-6, 0.0]) == ["trajectory does not start at the start configuration"]
+    assert problems(tr, goal=goal - [0.0, 2e-6]) == ["trajectory does not end at the goal configuration"]
+    tr.qd[-1] = [5e-7, 0.0]
+    assert problems(tr) == []
+    tr.qd[-1] = [2e-6, 0.0]
+    assert problems(tr) == ["trajectory does not start and end at rest"]
+
+
+def test_a_start_inside_an_obstacle_counts_unless_asked_to_skip_it():
+    tr = _still(np.column_stack([np.linspace(1.0, 3.0, 9), np.full(9, 5.0)]))
+    box = BoxWorld([(0.5, 4.5, 1.3, 5.5)])  # the first samples (a lift-off from a support) are inside
+    assert problems(tr, box) == ["trajectory collides at resolution 0.01"]
+    assert trajectory_problems(tr, SPACE, box, tr.q[0], tr.q[-1], RES, from_first_free=True) == []
+
+
+@pytest.mark.parametrize("bad", [[1.0, 0.0], [1.0, -2.0], [np.inf, 1.0], [1.0, np.nan]])
+def test_limits_are_positive_and_finite_floats(bad):
+    with pytest.raises(ValueError, match="velocity limits must be positive and finite"):
+        Limits(np.array(bad), A_MAX)
+    with pytest.raises(ValueError, match="acceleration limits must be positive and finite"):
+        Limits(V_MAX, np.array(bad))
+    ok = Limits([1, 2], [3, 4])
+    assert ok.velocity.dtype == float and ok.acceleration.dtype == float

@@ -37,6 +37,7 @@ from lazyground.geometry import Pose, rpy_to_matrices
 from lazyground.goals import RoundRobinGoalSource
 from lazyground.planning.problem import GoalSample
 from lazyground.planning.stop import StopCondition
+from lazyground.planning.turns import nearest_turns
 from lazyground.regions import PoseRegion
 from lazyground.regions.base import from_unit
 from lazyground.typed_yaml import SceneError
@@ -102,6 +103,8 @@ class IKGoalSource(RoundRobinGoalSource):
         self.planned = np.asarray(world.planned, int)
         self.last: list[np.ndarray | None] = [None] * len(self.regions)  # per region: its last valid answer
         self.target_screen = TargetScreen(world, frames, settings)
+        self.near = world.start  # goals prefer the full-turn equivalent nearest this (the step's start)
+        self._turns = getattr(getattr(world, "coordinates", None), "turns", None)
         problems = {f: problem_for_frame(world, f) for f in dict.fromkeys(frames)} if settings.solver == "batch" else {}
         # batches when the chain expresses every frame (else SNOPT on the plant, e.g. for a planar base)
         self.batch = None
@@ -257,8 +260,16 @@ class IKGoalSource(RoundRobinGoalSource):
         for scale in APPROACH_SCALES if any(region.approach) else ():
             pre = approach(k, q_full, scale)
             if pre is not None:
-                return GoalSample(q=pre, region=j, final=q, extra=extra | {"approach_scale": scale})
-        return GoalSample(q=q, region=j, extra=extra)
+                shift = self._nearest_turns(q, pre)
+                return GoalSample(q=pre + shift, region=j, final=q + shift, extra=extra | {"approach_scale": scale})
+        return GoalSample(q=q + self._nearest_turns(q), region=j, extra=extra)
+
+    def _nearest_turns(self, q: np.ndarray, *together: np.ndarray) -> np.ndarray:
+        """Full turns taking goal ``q`` (and its pre-pose) nearest the start: the same grasp, a shorter motion (#28)."""
+        if self._turns is None or not self._turns.any() or self.near is None:
+            return np.zeros_like(q)
+        space = self.world.space
+        return nearest_turns(q, self.near, space.lower, space.upper, self._turns, together)
 
     # --- many attempts at once (solver "batch") ----------------------------------------------
     def batch_size(self, wanted: int) -> int:

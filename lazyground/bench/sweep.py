@@ -1,0 +1,125 @@
+"""Time to the first solution against the number of interpretations (issue #33): presets, table, plot.
+
+``lazyground bench --family-sweep lot`` runs generated lots of 8-512 free spots with 2 reachable;
+``rack-panda`` / ``rack-fetch`` cubby racks of 4-256 cans with 1 reachable; ``lot-fraction``
+64-spot lots with 1-32 reachable. Each method (our strategies on the chosen planners, the
+``--baselines``) gets one curve: the median time (unsolved runs counted at the time limit) and
+the success rate at each size.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+SWEEPS = {
+    "lot": ("lot:{n}:2", (8, 32, 128, 512)),
+    "rack-panda": ("rack:panda:{n}:1", (4, 16, 64, 256)),
+    "rack-fetch": ("rack:fetch:{n}:1", (4, 16, 64, 256)),
+    "lot-fraction": ("lot:64:{n}", (1, 4, 16, 32)),
+}
+
+
+def sweep_keys(name: str, sizes: list[int] | None = None) -> list[str]:
+    """The family keys of a sweep (its own sizes unless given).
+
+    Raises:
+        ValueError: an unknown sweep name.
+    """
+    if name not in SWEEPS:
+        raise ValueError(f"unknown sweep {name!r} (known: {', '.join(SWEEPS)})")
+    pattern, default = SWEEPS[name]
+    return [pattern.format(n=n) for n in (sizes or default)]
+
+
+def size_of(scene: str) -> tuple[str, int, int] | None:
+    """(family, interpretations N, reachable k) of a bench scene name such as lot_256_2 or rack_panda_64_1."""
+    parts = scene.split("_")
+    try:
+        if parts[0] == "lot":
+            return "lot", int(parts[1]), int(parts[2])
+        if parts[0] == "rack":
+            return f"rack-{parts[1]}", int(parts[2]), int(parts[3])
+    except (IndexError, ValueError):
+        return None
+    return None
+
+
+def _method(row: dict) -> str:
+    from lazyground.bench.tables import config_label
+
+    return config_label(row)
+
+
+def curves(rows: list[dict]) -> dict:
+    """{(family, k or 'N'): {method: [(x, median s, success rate, runs)]}}: x is N at fixed k, or k at fixed N."""
+    from lazyground.bench.tables import counted_time
+
+    cells: dict = {}
+    for r in rows:
+        size = size_of(r["scene"])
+        if size is None or r["status"] in ("interrupted", "error"):
+            continue
+        cells.setdefault((size[0], size[1], size[2]), {}).setdefault(_method(r), []).append(r)
+    out: dict = {}
+    ns = {}
+    for fam, n, k in cells:
+        ns.setdefault((fam, k), set()).add(n)
+    for (fam, n, k), by in sorted(cells.items()):
+        fixed_k = len(ns[(fam, k)]) > 1  # several N at this k: a curve against N; else against k
+        key = (fam, f"k={k}") if fixed_k else (fam, f"N={n}")
+        for method, rs in by.items():
+            times = [counted_time(r) for r in rs]
+            solved = sum(r["status"] == "solved" for r in rs) / len(rs)
+            out.setdefault(key, {}).setdefault(method, []).append((n if fixed_k else k, float(np.median(times)), solved, len(rs)))
+    return out
+
+
+def sweep_table(rows: list[dict]) -> str:
+    """Markdown: per family and method, median seconds (success) at each size."""
+    lines = []
+    for (fam, fixed), by in sorted(curves(rows).items()):
+        xs = sorted({x for pts in by.values() for x, *_ in pts})
+        axis = "N" if fixed.startswith("k") else "k"
+        lines += [f"**{fam}, {fixed}** (median s to the first solution, unsolved at the limit; success rate)\n",
+                  "| method | " + " | ".join(f"{axis}={x}" for x in xs) + " |", "|---|" + "---|" * len(xs)]
+        for method, pts in sorted(by.items()):
+            at = {x: (m, s, n) for x, m, s, n in pts}
+            cells = [f"{at[x][0]:.2f} ({at[x][1]:.0%} of {at[x][2]})" if x in at else "" for x in xs]
+            lines.append(f"| {method} | " + " | ".join(cells) + " |")
+        lines.append("")
+    return "\n".join(lines)
+
+
+def sweep_plot(rows: list[dict], path: Path) -> None:
+    """One panel per family: median time against N (or k), a line per method, success rate marked."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    data = curves(rows)
+    if not data:
+        return
+    fig, axes = plt.subplots(1, len(data), figsize=(6 * len(data), 4.5), squeeze=False)
+    methods = sorted({m for by in data.values() for m in by})
+    colour = {m: plt.get_cmap("tab10")(i % 10) for i, m in enumerate(methods)}  # one colour per method in every panel
+    for ax, ((fam, fixed), by) in zip(axes[0], sorted(data.items())):
+        for method, pts in sorted(by.items()):
+            pts = sorted(pts)
+            xs, med, ok = [p[0] for p in pts], [p[1] for p in pts], [p[2] for p in pts]
+            line, = ax.plot(xs, med, marker="o", label=method, color=colour[method])
+            for x, m, s in zip(xs, med, ok):
+                if s < 1:
+                    ax.annotate(f"{s:.0%}", (x, m), textcoords="offset points", xytext=(3, 4), fontsize=7, color=line.get_color())
+        ax.set_xscale("log", base=2)
+        ax.set_yscale("log")
+        ax.set_xlabel("interpretations N" if fixed.startswith("k") else "reachable k")
+        ax.set_ylabel("median time to first solution (s)")
+        ax.set_title(f"{fam}, {fixed} (labels: success rate < 100 %)", fontsize=9)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

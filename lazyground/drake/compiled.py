@@ -1,0 +1,90 @@
+"""The sphere certifier's test in compiled code (#31): configurations and whole edges per call.
+
+:class:`CompiledCertifier` runs :class:`lazyground.drake.spheres.SphereCertifier`'s
+proof (same covers, solids, pairs and thresholds; its construction decides which
+worlds can be bounded) per configuration in :mod:`lazyground.drake.sphere_kernels`:
+~1 µs a Fetch configuration against ~25-110 µs for Drake's query. What it cannot
+prove comes back as open pairs, which SceneGraph measures (the checker's fallback).
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from lazyground.drake import sphere_kernels as kernels
+from lazyground.drake.chain import PRISMATIC
+from lazyground.drake.sphere_kernels import COLLIDES  # noqa: F401  (re-exported: a row's code)
+
+CAP = 16  # open pairs kept per configuration; a configuration with more goes to Drake's whole check
+
+_compile_s: float | None = None  # the first call's compile or cache-load time in this process
+_compiled_now = False  # whether that call compiled (no usable cache on this machine) rather than loaded
+
+
+def warm_up() -> float:
+    """Compile (or load from numba's on-disk cache) the kernels once per process; the seconds it took
+    (0.0 after the first call). The first call on a machine compiles (~20-60 s), later processes load (~1 s)."""
+    global _compile_s, _compiled_now
+    if _compile_s is not None:
+        return 0.0
+    t0 = time.perf_counter()
+    fd, idata = kernels.pack(_TOY)
+    work, pairs = np.zeros(kernels.work_size(idata)), np.zeros(CAP + 1, np.int64)
+    kernels.certify_rows(np.zeros((1, 1)), fd, idata, work, np.zeros((1, CAP), np.int64))
+    kernels.certify_one(np.zeros(1), fd, idata, work, pairs)
+    kernels.first_open(np.zeros(1), np.ones(1), 2, np.arange(3), 0, fd, idata, work, pairs)
+    _compile_s = time.perf_counter() - t0
+    _compiled_now = any(sum(k.stats.cache_misses.values()) for k in (kernels.certify_rows, kernels.certify_one,
+                                                                    kernels.first_open))
+    return _compile_s
+
+
+def compile_report() -> tuple[float, bool] | None:
+    """(seconds this process spent getting the kernels, whether it compiled them rather than loading numba's
+    cache); None before the first use. Part of the world build, never of a request's time."""
+    return None if _compile_s is None else (_compile_s, _compiled_now)
+
+
+class CompiledCertifier:
+    """A SphereCertifier's data in two flat arrays, and its test per configuration and per edge."""
+
+    def __init__(self, cert):
+        assert PRISMATIC == kernels.PRISMATIC_KIND
+        warm_up()
+        self.fd, self.idata = kernels.pack(cert.kernel_blocks())
+        self._open = np.zeros(CAP + 1, np.int64)
+        self._work = np.zeros(kernels.work_size(self.idata))
+
+    def certify_one(self, q_full: np.ndarray) -> tuple[int, np.ndarray | None]:
+        """(the code of one configuration (:meth:`certify`), its open pairs when it has some)."""
+        code = kernels.certify_one(q_full, self.fd, self.idata, self._work, self._open)
+        return code, (self._open[:code].copy() if code > 0 else None)
+
+    def certify(self, q_full: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(per row of plant positions: its open pairs' count, 0 certified free, -1 too many to list,
+        COLLIDES proven colliding; (rows, CAP) the open pairs, indices into SphereCertifier.pair_geometries)."""
+        q = np.ascontiguousarray(np.atleast_2d(q_full), float)
+        pairs = np.empty((len(q), CAP), np.int64)
+        return kernels.certify_rows(q, self.fd, self.idata, self._work, pairs), pairs
+
+    def first_open(self, qa: np.ndarray, qb: np.ndarray, steps: int, order: np.ndarray, begin: int = 0):
+        """The first position p >= begin of ``order`` whose configuration qa + order[p] / steps (qb - qa) is not
+        certified, and its code (:meth:`certify`) and open pairs (None: too many to list or colliding);
+        (-1, 0, None) when all are."""
+        p = kernels.first_open(qa, qb, steps, order, begin, self.fd, self.idata, self._work, self._open)
+        if p < 0:
+            return -1, 0, None
+        count = int(self._open[-1])
+        return p, count, (self._open[:count].copy() if count > 0 else None)
+
+
+# the smallest certifier the kernels accept: one revolute joint, a sphere, a box (for warm_up's compilation)
+_TOY = dict(
+    counts=dict(m=1, n=1, G=1, S=1, O=1, P=0, I=1),
+    ic=np.zeros(3), ir=[0.05], below=[2e-4], reach2=[[0.01]], istart=[0, 1], gexact=[1], oexact=[1],
+    K=np.eye(4)[:3], F=np.eye(4)[:3], gR=np.eye(3), go=np.zeros(3), ghalf=np.zeros(3), ground=[0.1], grad=[0.1],
+    sc=np.zeros(3), sr=[0.1], oR=np.eye(3), oo=[1.0, 0.0, 0.0], ohalf=[0.1, 0.1, 0.1], oround=[0.0],
+    ac=[1.0, 0.0, 0.0], ah=[0.1, 0.1, 0.1], env=[[0.01]], self_thr=np.zeros(0), parent=[0], kinds=[0], index=[0],
+    slot=[1], node=[0], start=[0, 1], gcyl=[0], ocyl=[0], mover=np.zeros(0), other=np.zeros(0))

@@ -1,0 +1,363 @@
+"""The sphere certifier's per-configuration test, compiled with numba (#31).
+
+One call runs the whole test for many configurations: forward kinematics of the
+body tree, then every checked pair coarse to fine (the moving geometry's bounding
+sphere against the other side's world box, then against its solid, then sphere by
+sphere), as :class:`lazyground.drake.spheres.SphereCertifier` describes. A row is
+certified when every pair clears; otherwise its open pairs are written out for
+SceneGraph to measure (at most ``cap`` of them; a row with more is marked -1 and
+goes to Drake's whole check).
+
+Edges are checked configuration by configuration in a given order (bisection
+order, or sequential for the free prefix), stopping at the first one not
+certified: VAMP's early exit, for a one-sided test.
+
+The data come in two flat arrays (a float and an int one, laid out by
+:func:`pack`): numba's call costs ~0.13 µs per array argument, and a certifier
+has some thirty arrays. ``cache=True``: compiled once per machine into
+``__pycache__`` (:func:`warm_up` reports whether that happened now).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+PRISMATIC_KIND = 1  # lazyground.drake.chain.PRISMATIC (checked in pack)
+
+# int header: counts, then offsets of each float and int block
+_M, _N, _G, _S, _O, _P, _I = range(7)
+_FLOAT_BLOCKS = ("K", "F", "gR", "go", "ghalf", "ground", "grad", "sc", "sr", "oR", "oo", "ohalf", "oround",
+                 "ac", "ah", "env", "self_thr", "ic", "ir", "below", "reach2")
+_INT_BLOCKS = ("parent", "kinds", "index", "slot", "node", "start", "gcyl", "ocyl", "mover", "other", "istart",
+               "gexact", "oexact")
+COLLIDES = -2  # a row's code when a pair is proven to collide (see _row)
+_NF, _NI = len(_FLOAT_BLOCKS), len(_INT_BLOCKS)
+_HEAD = 7 + _NF + _NI
+
+
+def pack(blocks: dict) -> tuple[np.ndarray, np.ndarray]:
+    """(float data, int data) of the named blocks (see the names above) in one flat array each."""
+    f_parts, i_parts, f_off, i_off = [], [], [], []
+    pos = 0
+    for name in _FLOAT_BLOCKS:
+        a = np.ascontiguousarray(blocks[name], float).reshape(-1)
+        f_off.append(pos)
+        f_parts.append(a)
+        pos += len(a)
+    pos = 0
+    for name in _INT_BLOCKS:
+        a = np.ascontiguousarray(blocks[name], np.int64).reshape(-1)
+        i_off.append(pos)
+        i_parts.append(a)
+        pos += len(a)
+    counts = [blocks["counts"][k] for k in ("m", "n", "G", "S", "O", "P", "I")]
+    head = np.array(counts + f_off + [_HEAD + o for o in i_off], np.int64)
+    return np.concatenate(f_parts + [np.zeros(1)]), np.concatenate([head] + i_parts + [np.zeros(1, np.int64)])
+
+
+@njit(cache=True, inline="always")
+def _solid_distance(x0, x1, x2, h0, h1, h2, rounding, cylinder):
+    """Signed distance from a point in a solid's centred frame to the solid (lazyground.drake.solids)."""
+    if cylinder:
+        d0 = np.sqrt(x0 * x0 + x1 * x1) - h0
+        d1 = -np.inf
+    else:
+        d0 = abs(x0) - h0
+        d1 = abs(x1) - h1
+    d2 = abs(x2) - h2
+    a, b, c = max(d0, 0.0), max(d1, 0.0), max(d2, 0.0)
+    return np.sqrt(a * a + b * b + c * c) + min(max(max(d0, d1), d2), 0.0) - rounding
+
+
+@njit(cache=True)
+def _forward(q, fd, idata, Rs, ps, Rb, pb):
+    """World rotation Rb (n, 3, 3) and position pb (n, 3) of every tree body at plant positions q."""
+    m, n = idata[_M], idata[_N]
+    K = fd[idata[7]:idata[7] + 12 * m].reshape((m, 3, 4))
+    F = fd[idata[8]:idata[8] + 12 * n].reshape((n, 3, 4))
+    o = 7 + _NF
+    parent = idata[idata[o]:idata[o] + m]
+    kinds = idata[idata[o + 1]:idata[o + 1] + m]
+    index = idata[idata[o + 2]:idata[o + 2] + m]
+    slot = idata[idata[o + 3]:idata[o + 3] + n]
+    for j in range(m):
+        a = parent[j]
+        for r in range(3):
+            for c in range(3):
+                Rs[j + 1, r, c] = Rs[a, r, 0] * K[j, 0, c] + Rs[a, r, 1] * K[j, 1, c] + Rs[a, r, 2] * K[j, 2, c]
+            ps[j + 1, r] = ps[a, r] + Rs[a, r, 0] * K[j, 0, 3] + Rs[a, r, 1] * K[j, 1, 3] + Rs[a, r, 2] * K[j, 2, 3]
+        qj = q[index[j]]
+        if kinds[j] == PRISMATIC_KIND:
+            for r in range(3):
+                ps[j + 1, r] += Rs[j + 1, r, 2] * qj
+        else:
+            cj, sj = np.cos(qj), np.sin(qj)
+            for r in range(3):
+                x, y = Rs[j + 1, r, 0], Rs[j + 1, r, 1]
+                Rs[j + 1, r, 0] = x * cj + y * sj
+                Rs[j + 1, r, 1] = y * cj - x * sj
+    for k in range(n):
+        a = slot[k]
+        for r in range(3):
+            for c in range(3):
+                Rb[k, r, c] = Rs[a, r, 0] * F[k, 0, c] + Rs[a, r, 1] * F[k, 1, c] + Rs[a, r, 2] * F[k, 2, c]
+            pb[k, r] = ps[a, r] + Rs[a, r, 0] * F[k, 0, 3] + Rs[a, r, 1] * F[k, 1, 3] + Rs[a, r, 2] * F[k, 2, 3]
+
+
+@njit(cache=True)
+def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap):
+    """Open pairs of one configuration into ``pairs``; returns their count (0: certified; -1: more than ``cap``;
+    COLLIDES: a pair proven closer than Drake's padding, by a sphere inside a moving geometry reaching into the
+    exact solid of the other side, ``below`` under the pair's threshold)."""
+    _forward(q, fd, idata, Rs, ps, Rb, pb)
+    G, S, O, P, I = idata[_G], idata[_S], idata[_O], idata[_P], idata[_I]
+    f = idata[7:7 + _NF]
+    i = idata[7 + _NF:_HEAD]
+    gR = fd[f[2]:f[2] + 9 * G].reshape((G, 3, 3))
+    go = fd[f[3]:f[3] + 3 * G].reshape((G, 3))
+    ghalf = fd[f[4]:f[4] + 3 * G].reshape((G, 3))
+    ground, grad = fd[f[5]:f[5] + G], fd[f[6]:f[6] + G]
+    sc = fd[f[7]:f[7] + 3 * S].reshape((S, 3))
+    sr = fd[f[8]:f[8] + S]
+    oR = fd[f[9]:f[9] + 9 * O].reshape((O, 3, 3))
+    oo = fd[f[10]:f[10] + 3 * O].reshape((O, 3))
+    ohalf = fd[f[11]:f[11] + 3 * O].reshape((O, 3))
+    oround = fd[f[12]:f[12] + O]
+    ac = fd[f[13]:f[13] + 3 * O].reshape((3, O))
+    ah = fd[f[14]:f[14] + 3 * O].reshape((3, O))
+    reach2 = fd[f[20]:f[20] + G * O].reshape((G, O))
+    env = fd[f[15]:f[15] + G * O].reshape((G, O))
+    sthr = fd[f[16]:f[16] + P]
+    ic = fd[f[17]:f[17] + 3 * I].reshape((I, 3))
+    ir = fd[f[18]:f[18] + I]
+    below = fd[f[19]]
+    node = idata[i[4]:i[4] + G]
+    start = idata[i[5]:i[5] + G + 1]
+    gcyl = idata[i[6]:i[6] + G]
+    ocyl = idata[i[7]:i[7] + O]
+    mover = idata[i[8]:i[8] + P]
+    other = idata[i[9]:i[9] + P]
+    istart = idata[i[10]:i[10] + G + 1]
+    gexact = idata[i[11]:i[11] + G]
+    oexact = idata[i[12]:i[12] + O]
+    for g in range(G):
+        b = node[g]
+        for r in range(3):
+            centre[g, r] = Rb[b, r, 0] * go[g, 0] + Rb[b, r, 1] * go[g, 1] + Rb[b, r, 2] * go[g, 2] + pb[b, r]
+        done[g] = 0.0
+    count = 0
+    for g in range(G):
+        cx, cy, cz, rg = centre[g, 0], centre[g, 1], centre[g, 2], grad[g]
+        # the bounding sphere against every obstacle's world box at once (no branches: vectorised); reach2 is
+        # (radius + threshold)^2, or -1 for a pair Drake does not check
+        for o in range(O):
+            dx = max(abs(cx - ac[0, o]) - ah[0, o], 0.0)
+            dy = max(abs(cy - ac[1, o]) - ah[1, o], 0.0)
+            dz = max(abs(cz - ac[2, o]) - ah[2, o], 0.0)
+            gap[o] = dx * dx + dy * dy + dz * dz - reach2[g, o]
+        for o in range(O):
+            if gap[o] > 0.0:
+                continue
+            thr = env[g, o]
+            vx, vy, vz = cx - oo[o, 0], cy - oo[o, 1], cz - oo[o, 2]
+            x0 = oR[o, 0, 0] * vx + oR[o, 1, 0] * vy + oR[o, 2, 0] * vz
+            x1 = oR[o, 0, 1] * vx + oR[o, 1, 1] * vy + oR[o, 2, 1] * vz
+            x2 = oR[o, 0, 2] * vx + oR[o, 1, 2] * vy + oR[o, 2, 2] * vz
+            if _solid_distance(x0, x1, x2, ohalf[o, 0], ohalf[o, 1], ohalf[o, 2], oround[o], ocyl[o]) - rg - thr > 0.0:
+                continue
+            if oexact[o]:
+                b = node[g]
+                for s in range(istart[g], istart[g + 1]):
+                    wx = Rb[b, 0, 0] * ic[s, 0] + Rb[b, 0, 1] * ic[s, 1] + Rb[b, 0, 2] * ic[s, 2] + pb[b, 0] - oo[o, 0]
+                    wy = Rb[b, 1, 0] * ic[s, 0] + Rb[b, 1, 1] * ic[s, 1] + Rb[b, 1, 2] * ic[s, 2] + pb[b, 1] - oo[o, 1]
+                    wz = Rb[b, 2, 0] * ic[s, 0] + Rb[b, 2, 1] * ic[s, 1] + Rb[b, 2, 2] * ic[s, 2] + pb[b, 2] - oo[o, 2]
+                    x0 = oR[o, 0, 0] * wx + oR[o, 1, 0] * wy + oR[o, 2, 0] * wz
+                    x1 = oR[o, 0, 1] * wx + oR[o, 1, 1] * wy + oR[o, 2, 1] * wz
+                    x2 = oR[o, 0, 2] * wx + oR[o, 1, 2] * wy + oR[o, 2, 2] * wz
+                    if _solid_distance(x0, x1, x2, ohalf[o, 0], ohalf[o, 1], ohalf[o, 2], oround[o], ocyl[o]) - ir[s] <= thr - below:
+                        return COLLIDES
+            if done[g] == 0.0:
+                _spheres(g, node[g], Rb, pb, sc, start, sph)
+                done[g] = 1.0
+            for s in range(start[g], start[g + 1]):
+                vx, vy, vz = sph[s, 0] - oo[o, 0], sph[s, 1] - oo[o, 1], sph[s, 2] - oo[o, 2]
+                x0 = oR[o, 0, 0] * vx + oR[o, 1, 0] * vy + oR[o, 2, 0] * vz
+                x1 = oR[o, 0, 1] * vx + oR[o, 1, 1] * vy + oR[o, 2, 1] * vz
+                x2 = oR[o, 0, 2] * vx + oR[o, 1, 2] * vy + oR[o, 2, 2] * vz
+                if _solid_distance(x0, x1, x2, ohalf[o, 0], ohalf[o, 1], ohalf[o, 2], oround[o], ocyl[o]) - sr[s] - thr <= 0.0:
+                    _solid_axes(Rb, node[g], gR, g, A)
+                    if _box_gap(A, centre[g], ghalf[g], oR[o], oo[o], ohalf[o]) - ground[g] - oround[o] - thr > 0.0:
+                        break  # the two boxes around the solids are apart: clear
+                    if count >= cap:
+                        return -1
+                    pairs[count] = g * O + o
+                    count += 1
+                    break
+    for k in range(P):
+        g, h, thr = mover[k], other[k], sthr[k]
+        vx, vy, vz = centre[g, 0] - centre[h, 0], centre[g, 1] - centre[h, 1], centre[g, 2] - centre[h, 2]
+        reach = grad[g] + grad[h] + thr
+        if vx * vx + vy * vy + vz * vz > reach * reach:
+            continue
+        # the other geometry's solid axes in the world: R_WH = Rb[node[h]] @ gR[h]
+        bh = node[h]
+        for r in range(3):
+            for c in range(3):
+                W[r, c] = Rb[bh, r, 0] * gR[h, 0, c] + Rb[bh, r, 1] * gR[h, 1, c] + Rb[bh, r, 2] * gR[h, 2, c]
+        x0 = W[0, 0] * vx + W[1, 0] * vy + W[2, 0] * vz
+        x1 = W[0, 1] * vx + W[1, 1] * vy + W[2, 1] * vz
+        x2 = W[0, 2] * vx + W[1, 2] * vy + W[2, 2] * vz
+        if _solid_distance(x0, x1, x2, ghalf[h, 0], ghalf[h, 1], ghalf[h, 2], ground[h], gcyl[h]) - grad[g] - thr > 0.0:
+            continue
+        if gexact[h]:
+            b = node[g]
+            for s in range(istart[g], istart[g + 1]):
+                wx = Rb[b, 0, 0] * ic[s, 0] + Rb[b, 0, 1] * ic[s, 1] + Rb[b, 0, 2] * ic[s, 2] + pb[b, 0] - centre[h, 0]
+                wy = Rb[b, 1, 0] * ic[s, 0] + Rb[b, 1, 1] * ic[s, 1] + Rb[b, 1, 2] * ic[s, 2] + pb[b, 1] - centre[h, 1]
+                wz = Rb[b, 2, 0] * ic[s, 0] + Rb[b, 2, 1] * ic[s, 1] + Rb[b, 2, 2] * ic[s, 2] + pb[b, 2] - centre[h, 2]
+                x0 = W[0, 0] * wx + W[1, 0] * wy + W[2, 0] * wz
+                x1 = W[0, 1] * wx + W[1, 1] * wy + W[2, 1] * wz
+                x2 = W[0, 2] * wx + W[1, 2] * wy + W[2, 2] * wz
+                if _solid_distance(x0, x1, x2, ghalf[h, 0], ghalf[h, 1], ghalf[h, 2], ground[h], gcyl[h]) - ir[s] <= thr - below:
+                    return COLLIDES
+        if done[g] == 0.0:
+            _spheres(g, node[g], Rb, pb, sc, start, sph)
+            done[g] = 1.0
+        for s in range(start[g], start[g + 1]):
+            vx, vy, vz = sph[s, 0] - centre[h, 0], sph[s, 1] - centre[h, 1], sph[s, 2] - centre[h, 2]
+            x0 = W[0, 0] * vx + W[1, 0] * vy + W[2, 0] * vz
+            x1 = W[0, 1] * vx + W[1, 1] * vy + W[2, 1] * vz
+            x2 = W[0, 2] * vx + W[1, 2] * vy + W[2, 2] * vz
+            if _solid_distance(x0, x1, x2, ghalf[h, 0], ghalf[h, 1], ghalf[h, 2], ground[h], gcyl[h]) - sr[s] - thr <= 0.0:
+                _solid_axes(Rb, node[g], gR, g, A)
+                if _box_gap(A, centre[g], ghalf[g], W, centre[h], ghalf[h]) - ground[g] - ground[h] - thr > 0.0:
+                    break
+                if count >= cap:
+                    return -1
+                pairs[count] = G * O + k
+                count += 1
+                break
+    return count
+
+
+@njit(cache=True, inline="always")
+def _solid_axes(Rb, b, gR, g, A):
+    """World axes (columns) of geometry g's solid on body b: Rb[b] @ gR[g], into A."""
+    for r in range(3):
+        for c in range(3):
+            A[r, c] = Rb[b, r, 0] * gR[g, 0, c] + Rb[b, r, 1] * gR[g, 1, c] + Rb[b, r, 2] * gR[g, 2, c]
+
+
+@njit(cache=True)
+def _box_gap(A, ca, ha, B, cb, hb):
+    """A lower bound of the distance between two boxes (world axes as the columns of A and B, centres, half
+    extents): the largest gap along the 15 axes of the separating-axis test. Along any unit axis L the boxes
+    span intervals of half widths sum_i h_i |L . axis_i| about L . centre, and two points of them are at least
+    the gap between the intervals apart. A cylinder's box (r, r, h) and a rounded box's core enclose them,
+    so the bound holds for the solids less their rounding."""
+    dx, dy, dz = cb[0] - ca[0], cb[1] - ca[1], cb[2] - ca[2]
+    best = -np.inf
+    for k in range(15):
+        if k < 3:
+            lx, ly, lz = A[0, k], A[1, k], A[2, k]
+        elif k < 6:
+            lx, ly, lz = B[0, k - 3], B[1, k - 3], B[2, k - 3]
+        else:
+            i, j = (k - 6) // 3, (k - 6) % 3
+            lx = A[1, i] * B[2, j] - A[2, i] * B[1, j]
+            ly = A[2, i] * B[0, j] - A[0, i] * B[2, j]
+            lz = A[0, i] * B[1, j] - A[1, i] * B[0, j]
+            norm = np.sqrt(lx * lx + ly * ly + lz * lz)
+            if norm < 1e-6:
+                continue
+            lx, ly, lz = lx / norm, ly / norm, lz / norm
+        g = abs(lx * dx + ly * dy + lz * dz)
+        for c in range(3):
+            g -= ha[c] * abs(lx * A[0, c] + ly * A[1, c] + lz * A[2, c])
+            g -= hb[c] * abs(lx * B[0, c] + ly * B[1, c] + lz * B[2, c])
+        if g > best:
+            best = g
+    return best
+
+
+@njit(cache=True, inline="always")
+def _spheres(g, b, Rb, pb, sc, start, sph):
+    """World centres of geometry g's cover spheres into ``sph``."""
+    for s in range(start[g], start[g + 1]):
+        for r in range(3):
+            sph[s, r] = Rb[b, r, 0] * sc[s, 0] + Rb[b, r, 1] * sc[s, 1] + Rb[b, r, 2] * sc[s, 2] + pb[b, r]
+
+
+def work_size(idata: np.ndarray) -> int:
+    """Floats of scratch space a call needs (see _views)."""
+    m, n, G, S = idata[_M], idata[_N], idata[_G], idata[_S]
+    return int(12 * (m + 1) + 12 * n + 4 * G + 3 * S + 18 + idata[_O])
+
+
+@njit(cache=True)
+def _views(idata, work):
+    """Scratch arrays over ``work``: slot frames (identity world frame), body poses, centres, spheres, a rotation,
+    and per geometry whether its spheres are posed yet."""
+    m, n, G, S = idata[_M], idata[_N], idata[_G], idata[_S]
+    a = 0
+    Rs = work[a:a + 9 * (m + 1)].reshape((m + 1, 3, 3))
+    a += 9 * (m + 1)
+    ps = work[a:a + 3 * (m + 1)].reshape((m + 1, 3))
+    a += 3 * (m + 1)
+    Rb = work[a:a + 9 * n].reshape((n, 3, 3))
+    a += 9 * n
+    pb = work[a:a + 3 * n].reshape((n, 3))
+    a += 3 * n
+    centre = work[a:a + 3 * G].reshape((G, 3))
+    a += 3 * G
+    sph = work[a:a + 3 * S].reshape((S, 3))
+    a += 3 * S
+    done = work[a:a + G]
+    a += G
+    W = work[a:a + 9].reshape((3, 3))
+    a += 9
+    A = work[a:a + 9].reshape((3, 3))
+    a += 9
+    gap = work[a:a + idata[_O]]
+    Rs[0] = 0.0
+    Rs[0, 0, 0] = Rs[0, 1, 1] = Rs[0, 2, 2] = 1.0
+    ps[0] = 0.0
+    return Rs, ps, Rb, pb, centre, sph, done, W, A, gap
+
+
+@njit(cache=True)
+def certify_rows(Q, fd, idata, work, pairs):
+    """Per row of plant positions Q: the count of its open pairs (0: certified, -1: more than pairs.shape[1],
+    COLLIDES: proven colliding), the pairs in ``pairs[row]``."""
+    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = _views(idata, work)
+    out = np.empty(Q.shape[0], np.int64)
+    cap = pairs.shape[1]
+    for r in range(Q.shape[0]):
+        out[r] = _row(Q[r], fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs[r], cap)
+    return out
+
+
+@njit(cache=True)
+def certify_one(q, fd, idata, work, pairs):
+    """:func:`certify_rows` of one configuration; its open pairs in ``pairs[:-1]``."""
+    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = _views(idata, work)
+    return _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, len(pairs) - 1)
+
+
+@njit(cache=True)
+def first_open(qa, qb, n, order, begin, fd, idata, work, pairs):
+    """The first position p >= ``begin`` of ``order`` whose configuration qa + (order[p] / n) (qb - qa) is not
+    certified (its code in ``pairs[-1]``, its open pairs before), or -1 when all are."""
+    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = _views(idata, work)
+    q = np.empty(len(qa))
+    cap = len(pairs) - 1
+    for p in range(begin, len(order)):
+        t = order[p] / n
+        for j in range(len(qa)):
+            q[j] = qa[j] + t * (qb[j] - qa[j])
+        c = _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap)
+        if c != 0:
+            pairs[-1] = c
+            return p
+    return -1

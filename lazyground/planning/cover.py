@@ -1,0 +1,72 @@
+"""Reward-penalty that covers the goal regions as the search rejects them (issue #33).
+
+With many interpretations and few reachable, the paper's rule draws more goal samples only
+when the *selected* sample is stuck, then resets every weight to 0.5 and rebuilds the heap
+(O(N) per resampling); the two-tree planner waits until *every* sample is stuck (a scan over
+all of them per penalty). Both leave most regions without a sample for a long time: the goal
+source hands samples out region by region, so the reachable region's turn comes after about
+N / resample_count resamplings.
+
+:class:`Cover` keeps the reward-penalty weights but (1) asks for more samples whenever a sample it
+penalises falls below the threshold, whatever the others' weights (a region whose goal tree
+stays blocked makes room for the next regions at once), half as many as it holds, so that the
+regions are covered after O(log N) stuck samples while the goal-sampling work stays within a
+constant factor of what the search has rejected so far, and (2) never resets the old
+weights: a new sample enters at weight 1 on a lazily updated max-heap, so select, reward and
+penalty cost O(log N), not O(N). (3) It asks the search for one goal sample per iteration until
+there are as many samples as goal regions (the goal source hands them out region by region):
+coverage paced by the search, one draw (at most ``attempts_per_sample`` attempts) per
+iteration, instead of all regions up front (eager) or one region per resampling round.
+"""
+
+from __future__ import annotations
+
+import heapq
+
+import numpy as np
+
+from lazyground.planning.strategies import StrategySettings, penalty_weight, reward_weight
+
+
+class Cover:
+    """Reward-penalty weights on a lazy max-heap; a stuck sample asks for one more sample at once."""
+
+    covers_regions = True  # the search draws one more sample per iteration until samples outnumber regions
+    resample_alone = True  # a stuck sample asks for samples even while other samples progress
+    growth = 0.5  # each request draws this fraction of the samples held: their number grows geometrically
+
+    def __init__(self, settings: StrategySettings = StrategySettings()):
+        self._threshold = settings.resample_threshold
+        self._w: dict[int, float] = {}
+        self._heap: list[tuple[float, int]] = []  # (-weight, index); stale entries skipped
+
+    @property
+    def batch(self) -> int:
+        """Samples drawn per request: half as many as held (at least one)."""
+        return max(1, int(self.growth * len(self._w)))
+
+    def add(self, indices: list[int]) -> None:
+        for i in indices:
+            self._w[i] = 1.0
+            heapq.heappush(self._heap, (-1.0, i))
+
+    def select(self, rng: np.random.Generator) -> int:
+        while -self._heap[0][0] != self._w[self._heap[0][1]]:
+            heapq.heappop(self._heap)
+        return self._heap[0][1]
+
+    def weight(self, index: int) -> float:
+        return self._w[index]
+
+    def _set(self, index: int, w: float) -> None:
+        if w != self._w[index]:
+            self._w[index] = w
+            heapq.heappush(self._heap, (-w, index))
+
+    def reward(self, index: int) -> None:
+        self._set(index, reward_weight(self._w[index]) if self._w[index] < 1.0 else 1.0)
+
+    def penalize(self, index: int) -> bool:
+        w = penalty_weight(self._w[index])
+        self._set(index, w)
+        return w < self._threshold

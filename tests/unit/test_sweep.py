@@ -1,0 +1,21 @@
+"""The family sweep's table (issue #33): medians with unsolved runs at the limit, success rates, N or k on the axis."""
+
+from lazyground.bench.sweep import size_of, sweep_keys, sweep_table
+
+
+def _row(scene, strategy, status, t):
+    return dict(scene=scene, planner="lazyground-bidirectional", strategy=strategy, status=status, time_s=str(t), time_limit="10")
+
+
+def test_sizes_and_keys():
+    assert size_of("lot_256_2") == ("lot", 256, 2) and size_of("rack_panda_64_1_s3") == ("rack-panda", 64, 1)
+    assert size_of("parking_1") is None
+    assert sweep_keys("lot", [8, 64]) == ["lot:8:2", "lot:64:2"]
+
+
+def test_table_counts_unsolved_at_the_limit():
+    rows = [_row("lot_8_2", "cover", "solved", 1.0), _row("lot_8_2", "cover", "timeout", 10.0), _row("lot_8_2", "cover", "solved", 2.0),
+            _row("lot_64_2", "cover", "timeout", 10.0)]
+    text = sweep_table(rows)
+    assert "**lot, k=2**" in text and "| N=8 | N=64 |" in text
+    assert "| Cover (bidirectional) | 2.00 (67% of 3) | 10.00 (0% of 1) |" in text
