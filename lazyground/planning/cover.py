@@ -25,7 +25,7 @@ import heapq
 
 import numpy as np
 
-from lazyground.planning.strategies import StrategySettings, penalty_weight, reward_weight
+from lazyground.planning.weights import StrategySettings, penalty_weight, reward_weight
 
 
 class Cover:

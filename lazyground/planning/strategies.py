@@ -8,38 +8,15 @@ goal-biased extension and asks whether more samples are wanted.
 from __future__ import annotations
 
 import heapq
-from dataclasses import dataclass
-from typing import Callable, Protocol
+from typing import Callable
 
 import numpy as np
 
+from lazyground.planning.cover import Cover
+from lazyground.planning.weights import GoalSelector, StrategySettings, penalty_weight, reward_weight
 from lazyground.settings import Strategy, coerce
 
-
-@dataclass(frozen=True)
-class StrategySettings:
-    resample_threshold: float = 0.2  # reward-penalty: a weight below this asks for more samples
-    resample_weight: float = 0.5  # reward-penalty: existing weights are reset to this on resampling
-
-
-class GoalSelector(Protocol):
-    def add(self, indices: list[int]) -> None: ...
-    def select(self, rng: np.random.Generator) -> int: ...
-    def reward(self, index: int) -> None: ...
-    def penalize(self, index: int) -> bool:
-        """Record a failed extension; True asks the planner for more goal samples."""
-        ...
-    def weight(self, index: int) -> float: ...
-
-
-def reward_weight(w: float) -> float:
-    """w / (1 - w) if w < 1, capped at 1 (paper Sec. III-B)."""
-    return 1.0 if w >= 0.5 else w / (1.0 - w)
-
-
-def penalty_weight(w: float) -> float:
-    """w / (w + 1) (paper Sec. III-B)."""
-    return w / (w + 1.0)
+__all__ = ["STRATEGIES", "GoalSelector", "StrategySettings", "make_strategy", "penalty_weight", "reward_weight"]
 
 
 class RewardPenalty:
@@ -124,17 +101,11 @@ class Random(Consecutive):
         return self._order[int(rng.integers(len(self._order)))]
 
 
-def _cover(settings: StrategySettings) -> GoalSelector:
-    from lazyground.planning.cover import Cover  # (its module imports this one)
-
-    return Cover(settings)
-
-
 STRATEGIES: dict[Strategy, Callable[[StrategySettings], GoalSelector]] = {
     Strategy.REWARD_PENALTY: RewardPenalty,
     Strategy.CONSECUTIVE: Consecutive,
     Strategy.RANDOM: Random,
-    Strategy.COVER: _cover,
+    Strategy.COVER: Cover,
 }
 
 

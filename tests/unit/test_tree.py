@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from lazyground.planning.car import make_space
+from lazyground.planning.kinematics import make_space
 from lazyground.planning.space import ConfigSpace
 from lazyground.planning.tree import Tree
 
