@@ -27,6 +27,7 @@ from lazyground.regions import GoalRegion
 from lazyground.settings import Objective, PlannerSettings
 
 Attempt = Callable[[tuple[GoalRegion, ...], StopCondition], tuple[PlanResult, object]]
+Connect = Callable[[PlanResult, object], tuple[PlanResult, object] | None]  # (solved template, goal sample)
 
 
 @dataclass(frozen=True)
@@ -69,7 +70,7 @@ def _add_bounds(bounds: dict[str, float], space, start: np.ndarray, result: Plan
 
 
 def best_of(attempt: Attempt, regions: tuple[GoalRegion, ...], space, start: np.ndarray,
-            planner: PlannerSettings, stop: StopCondition) -> Anytime:
+            planner: PlannerSettings, stop: StopCondition, connect: Connect | None = None) -> Anytime:
     """Plan with ``attempt`` once, then keep the best of further attempts as ``planner.objective`` asks.
 
     Args:
@@ -80,6 +81,8 @@ def best_of(attempt: Attempt, regions: tuple[GoalRegion, ...], space, start: np.
         start: the step's start configuration.
         planner: ``objective``, ``budget`` and ``improve_rounds`` are read.
         stop: the step's stop condition (the budget is a share of it).
+        connect: tries the straight line from the start to a goal sample the first search drew (nearest first,
+            while it could beat the best); returns the result and Motion, or None when the line is blocked.
 
     Returns:
         An :class:`Anytime`; its result's counts and ``time_s`` sum every search.
@@ -97,6 +100,15 @@ def best_of(attempt: Attempt, regions: tuple[GoalRegion, ...], space, start: np.
     results, bounds = [first], {}
     _add_bounds(bounds, space, start, first)
     reached, tried, pruned = {first.goal_region.id}, set(), set()
+    if connect is not None:  # the cheapest better answers: straight to a goal sample already drawn
+        drawn = sorted(first.goal_samples, key=lambda g: space.distance(start, g.q))
+        for sample in drawn[:planner.improve_rounds]:
+            if improve.should_stop() or space.distance(start, sample.q) >= history[-1].cost:
+                break
+            out = connect(first, sample)
+            if out is not None and cost(objective, *out) < history[-1].cost - 1e-9:
+                best = out
+                history.append(Improvement(stop.elapsed(), cost(objective, *out), out[0].goal_region.id))
     for _ in range(planner.improve_rounds):
         if improve.should_stop():
             break

@@ -2,9 +2,13 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
+import numpy as np
+
 from lazyground.goals import goal_source_for
 from lazyground.motion.post import post_process
-from lazyground.planning.rrt import solve
+from lazyground.planning.rrt import path_is_valid, solve
 from lazyground.planning.stop import StopCondition
 from lazyground.planning.turns import sweep_note
 from lazyground.tasks.anytime import best_of, improvement_notes
@@ -46,7 +50,18 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
         result = solve(space, world, source, world.start, planner, rng, seed=seed, keep_tree=keep_tree, stop=within)
         return post_process(space, world, result, settings, rng)  # shortened and timed, as the space chose
 
-    best = best_of(attempt, tuple(grounding.goal_regions), space, world.start, planner, stop)
+    def connect(template, sample):
+        """The straight line from the start to a drawn goal sample (and its checked approach), if free."""
+        path = np.array([world.start, sample.q])
+        if space.post_processing != "straight" or path_is_valid(
+                space, world, path, planner.resolution / planner.validation_factor) >= 0:
+            return None
+        path = path if sample.final is None else np.vstack([path, sample.final])
+        result = replace(template, path=path, goal=sample, goal_region=template.regions[sample.region],
+                         path_length=space.path_length(path))
+        return post_process(space, world, result, settings, rng)
+
+    best = best_of(attempt, tuple(grounding.goal_regions), space, world.start, planner, stop, connect)
     result, motion = best.result, best.motion
     notes = world.model_notes + ((motion.note,) if motion is not None and motion.note else ())
     swept = sweep_note(motion.shortcut.path, world.space.names, world.space.wrap, world.coordinates.turns) \

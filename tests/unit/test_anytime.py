@@ -87,3 +87,23 @@ def test_shortest_is_never_longer_than_first_on_the_toy_planner_and_stays_valid(
     assert first.result.solved and best.result.solved
     assert best.result.path_length <= first.result.path_length + 1e-9
     assert path_is_valid(SPACE, world, best.result.path, SETTINGS.resolution / 10) < 0
+
+
+def test_straight_lines_to_drawn_goal_samples_come_first_nearest_first_while_they_can_win():
+    tried = []
+
+    def connect(template, sample):
+        tried.append(tuple(sample.q))
+        region = template.regions[sample.region]
+        length = 2.5 if region.id == "near" else 100.0
+        return replace(template, goal=sample, goal_region=region, path_length=length), None
+
+    attempt = Scripted([("far", 12.0)])
+    settings = replace(SETTINGS, objective="shortest", budget=100.0, improve_rounds=0)
+    assert best_of(attempt, REGIONS, SPACE, START, settings, StopCondition(), connect).searches == 1  # 0 rounds: none
+    attempt = Scripted([("far", 12.0), (None, 0.0)])
+    settings = replace(settings, improve_rounds=1)
+    best = best_of(attempt, REGIONS, SPACE, START, settings, StopCondition(), connect)
+    assert tried[0] == tuple(NEAR.lower)  # the nearest sample first
+    assert best.result.path_length == 2.5 and best.result.goal_region.id == "near"
+    assert [i.cost for i in best.improvements] == [12.0, 2.5]
