@@ -85,7 +85,8 @@ def best_of(attempt: Attempt, regions: tuple[GoalRegion, ...], space, start: np.
             while it could beat the best); returns the result and Motion, or None when the line is blocked.
 
     Returns:
-        An :class:`Anytime`; its result's counts and ``time_s`` sum every search.
+        An :class:`Anytime`; its result's counts sum every search; beyond the first, its ``time_s`` is the
+        whole time since ``stop`` began (searches, straight lines and shortening them).
     """
     first, motion = attempt(regions, stop)
     best = (first, motion)
@@ -135,7 +136,7 @@ def best_of(attempt: Attempt, regions: tuple[GoalRegion, ...], space, start: np.
             history.append(Improvement(stop.elapsed(), c, result.goal_region.id))
     result, motion = best
     total = replace(result, iterations=sum(r.iterations for r in results), tree_size=result.tree_size,
-                    time_s=sum(r.time_s for r in results),
+                    time_s=stop.elapsed(),  # every search, straight line and their shortening: the anytime run
                     goal_sampling_s=sum(r.goal_sampling_s for r in results),
                     collision_s=sum(r.collision_s for r in results))
     return Anytime(total, motion, tuple(history), len(results), tuple(sorted(pruned)))
