@@ -7,6 +7,11 @@ so the same templates serve the Fetch's x-forward gripper_link and a ROS-style
 z-forward tool frame. A grasp exists only where the object's width across the
 closing axis is within the gripper's ``opening`` less a clearance.
 
+Every template's ``depth: [d0, d1]`` is how far the fingers reach over the object along the approach
+axis, past the face they enter by (the top face, a box's side face, a cylinder's near side): the grasp
+point sits ``depth - ee.fingertip`` past that face (issue 34: a top grasp's depth was measured above the
+top face, and the Panda's fingertips, 9 mm past its TCP, closed above a can's rim).
+
 Templates (their numbers live in lazyground/scene/types.yaml):
 
 - ``top``: from above, R on the top face, R.x down; one region per closing
@@ -70,18 +75,24 @@ def _is_cylinder(obj) -> bool:
     return obj.geometry.box is None
 
 
-def top(obj, spec, interpretation, ee):
-    """From above, depth above the top face. A cylinder: any yaw. A box: the fingers close along
-    its x or its y, one region for each that fits (roll fixed, the gripper being symmetric)."""
+def _reach(spec, ee: EndEffectorSpec) -> tuple[float, float]:
+    """The grasp point's range past the face the fingers enter by: ``depth`` less the fingertip's reach."""
     d0, d1 = spec["depth"]
+    return float(d0) - ee.fingertip, float(d1) - ee.fingertip
+
+
+def top(obj, spec, interpretation, ee):
+    """From above, the fingers ``depth`` below the top face. A cylinder: any yaw. A box: the fingers close
+    along its x or its y, one region for each that fits (roll fixed, the gripper being symmetric)."""
+    d0, d1 = _reach(spec, ee)
     hx, hy, _ = obj.geometry.half_extents()
     X_WR = _top_face(obj)
-    # R.x points down, so "above the face" is negative x in R; at roll 0 N.y (closing) is the object's y.
+    # R.x points down, so "below the face" is positive x in R; at roll 0 N.y (closing) is the object's y.
     if _is_cylinder(obj):
         options = [("top", 2 * hx, (-math.pi, math.pi))]
     else:
         options = [("top y", 2 * hy, (0.0, 0.0)), ("top x", 2 * hx, (math.pi / 2, math.pi / 2))]
-    return [make_region(WorkspaceRegion, obj, interpretation, label, (-d1, 0, 0, roll[0], 0, 0), (-d0, 0, 0, roll[1], 0, 0), ee,
+    return [make_region(WorkspaceRegion, obj, interpretation, label, (d0, 0, 0, roll[0], 0, 0), (d1, 0, 0, roll[1], 0, 0), ee,
                         X_WR=X_WR, approach=_approach_back(spec))
             for label, width, roll in options if fits(width, ee, spec)]
 
@@ -94,7 +105,7 @@ def side_faces(obj, spec, interpretation, ee):
     horizontally across it (so the face's width must fit)."""
     half = obj.geometry.half_extents()
     hz = half[2]
-    d0, d1 = spec["depth"]
+    d0, d1 = _reach(spec, ee)
     l0, l1 = spec["lateral"]
     h = max(0.0, hz - spec.get("height_margin", 0.0))
     out = []
@@ -116,7 +127,7 @@ def side_around(obj, spec, interpretation, ee):
     r, _, hz = obj.geometry.half_extents()
     if not fits(2 * r, ee, spec):
         return []
-    d0, d1 = spec["depth"]
+    d0, d1 = _reach(spec, ee)
     # sample yaw about the axis and a height; then back off along the approach axis by the radius
     X_SE = Pose((-(r - (d0 + d1) / 2), 0.0, 0.0), (0.0, 0.0, 0.0))
     half_depth = (d1 - d0) / 2

@@ -138,7 +138,8 @@ class Resolver:
                 raise GroundingError(f"nothing to {verb} in this scene; it has: {inventory(self.scene)}")
         bad = sorted({o.type for o in objs if not self.has_role(o.type, role)})
         if bad:
-            raise GroundingError(f"cannot {verb} a {np.word or bad[0]}: type {bad[0]!r} has no {role!r} definition in lazyground/scene/types.yaml")
+            word = np.word or bad[0]
+            raise GroundingError(f"cannot {verb} {'an' if word[:1] in 'aeiou' else 'a'} {word}: type {bad[0]!r} has no {role!r} definition in lazyground/scene/types.yaml")
         if role != "park":
             return self._ignore_states(objs, np)
         return objs if defer_free else self._free(objs, np)

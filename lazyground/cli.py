@@ -28,7 +28,31 @@ class UsageError(Exception):
     """Bad command-line input (exit 2)."""
 
 
+class _StoreOnce(argparse.Action):
+    """A value option given twice is refused (argparse's own "store" keeps the last one silently)."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        given = namespace.__dict__.setdefault(_GIVEN, set())
+        if self.dest in given:
+            raise argparse.ArgumentError(self, "given twice; give it once")
+        given.add(self.dest)
+        setattr(namespace, self.dest, values)
+
+
+_GIVEN = "_options_given"
+
+
 class _Parser(argparse.ArgumentParser):
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.register("action", None, _StoreOnce)
+        self.register("action", "store", _StoreOnce)
+
+    def parse_known_args(self, args=None, namespace=None):
+        namespace, rest = super().parse_known_args(args, namespace)
+        namespace.__dict__.pop(_GIVEN, None)
+        return namespace, rest
+
     def error(self, message):  # one line, exit 2, no usage dump
         raise UsageError(message)
 
@@ -61,6 +85,7 @@ def _robot_overrides(args) -> dict:
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="lazyground", description="Ground ambiguous requests lazily inside a motion planner.")
     parser.add_argument("--debug", action="store_true", help="show tracebacks")
+    parser.add_argument("--version", action="store_true", help="print the version and exit")
     sub = parser.add_subparsers(dest="command", parser_class=_Parser)
 
     p = sub.add_parser("plan", help="ground a request and plan to whichever interpretation is reachable")
@@ -351,6 +376,11 @@ def _main(argv: list[str]) -> int:
             return cmd_bench(argparse.Namespace(bench_args=argv[1:]))
         parser = build_parser()
         args = parser.parse_args(argv)
+        if args.version:
+            import lazyground
+
+            print(f"lazyground {lazyground.__version__}")
+            return EXIT_OK
         if args.command is None:
             parser.print_help()
             return EXIT_BAD_INPUT

@@ -26,12 +26,20 @@ from lazyground.regions import REGION_KINDS, ConfigRegion, GoalRegion
 from lazyground.settings import GoalSamplingSettings
 
 
+REACHED_FACTOR = 4  # a region whose goals are reached but collide gets this many times the attempts
+
+
 class RoundRobinGoalSource:
     """Draw goal samples region by region, so every grounding gets a chance.
 
     A region that has had ``give_up_after`` attempts without one valid sample
-    is exhausted and skipped from then on.
+    is exhausted and skipped from then on; one whose attempts failed for a reason in
+    ``reached_reasons`` (the goal was reached, the configuration collided: other goals
+    of the region may be free) keeps going for ``REACHED_FACTOR`` times as many
+    (issue 34: a can in an open box was given up on with grasps that exist).
     """
+
+    reached_reasons: tuple[str, ...] = ()
 
     def __init__(self, regions: tuple[GoalRegion, ...], give_up_after: int | None = None,
                  attempts_per_sample: int | None = None, sampling: GoalSamplingSettings | None = None):
@@ -52,9 +60,14 @@ class RoundRobinGoalSource:
     def sample_time(self) -> float:
         return self._time
 
+    def region_budget(self, j: int) -> int:
+        """Attempts region ``j`` may take without a valid sample before it is given up."""
+        reached = any(self.stats[j].failures.get(r, 0) for r in self.reached_reasons)
+        return self._give_up_after * (REACHED_FACTOR if reached else 1)
+
     def region_exhausted(self, j: int) -> bool:
         st = self.stats[j]
-        return st.valid == 0 and st.attempts >= self._give_up_after
+        return st.valid == 0 and st.attempts >= self.region_budget(j)
 
     def exhausted(self) -> bool:
         return all(self.region_exhausted(j) for j in range(len(self.regions)))
@@ -98,7 +111,7 @@ class RoundRobinGoalSource:
         planned attempt failed). Fewer than ``k`` when no region can take one.
         """
         m = len(self.regions)
-        left = [self._give_up_after - st.attempts if st.valid == 0 else k for st in self.stats]
+        left = [self.region_budget(j) - st.attempts if st.valid == 0 else k for j, st in enumerate(self.stats)]
         out: list[tuple[int, int]] = []
         idle = 0  # regions passed in a row without a planned attempt
         while len(out) < k and idle < m:

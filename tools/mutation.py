@@ -75,6 +75,7 @@ def run_module(name: str, work: Path, children: int, survivors_only: bool = Fals
         names = [line.strip().rpartition(": ")[0] for line in _results(scratch).splitlines() if line.endswith(": survived")]
         for dest in (scratch / "tests", scratch / "mutants" / "tests"):
             shutil.copytree(REPO / "tests", dest, ignore=IGNORE, dirs_exist_ok=True)
+        (scratch / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)  # re-map tests to functions: new tests count
     else:
         if scratch.exists():
             shutil.rmtree(scratch)

@@ -16,7 +16,7 @@ from pydrake.planning import RobotDiagramBuilder
 
 from lazyground.drake.robot_model import add_scene_robot, rigid_transform
 from lazyground.geometry import Pose
-from lazyground.scene.colours import OBSTACLE_SCENE_RGBA, OCCUPANT_RGBA, object_rgba
+from lazyground.scene.colours import OCCUPANT_RGBA, object_rgba, obstacle_rgba
 from lazyground.scene.schema import Geometry, Scene, SceneObject
 from lazyground.scene.types import occupant_geometry
 from lazyground.typed_yaml import SceneError
@@ -80,7 +80,7 @@ def build_diagram(scene: Scene, attached: Attachment | None = None, visual: bool
 
 def environment_items(scene: Scene, attached: Attachment | None = None) -> list[tuple[str, Geometry, Pose, tuple]]:
     """(name, geometry, pose, rgba) of every colliding environment body."""
-    items = [(o.id, o.geometry, o.pose.pose(), OBSTACLE_SCENE_RGBA) for o in scene.obstacles]
+    items = [(o.id, o.geometry, o.pose.pose(), obstacle_rgba(o)) for o in scene.obstacles]
     carried = attached.object.id if attached else None
     for obj in scene.objects:
         occupant = occupant_geometry(obj, scene) if obj.occupied else None

@@ -166,17 +166,9 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap)
             x2 = oR[o, 0, 2] * vx + oR[o, 1, 2] * vy + oR[o, 2, 2] * vz
             if _solid_distance(x0, x1, x2, ohalf[o, 0], ohalf[o, 1], ohalf[o, 2], oround[o], ocyl[o]) - rg - thr > 0.0:
                 continue
-            if oexact[o]:
-                b = node[g]
-                for s in range(istart[g], istart[g + 1]):
-                    wx = Rb[b, 0, 0] * ic[s, 0] + Rb[b, 0, 1] * ic[s, 1] + Rb[b, 0, 2] * ic[s, 2] + pb[b, 0] - oo[o, 0]
-                    wy = Rb[b, 1, 0] * ic[s, 0] + Rb[b, 1, 1] * ic[s, 1] + Rb[b, 1, 2] * ic[s, 2] + pb[b, 1] - oo[o, 1]
-                    wz = Rb[b, 2, 0] * ic[s, 0] + Rb[b, 2, 1] * ic[s, 1] + Rb[b, 2, 2] * ic[s, 2] + pb[b, 2] - oo[o, 2]
-                    x0 = oR[o, 0, 0] * wx + oR[o, 1, 0] * wy + oR[o, 2, 0] * wz
-                    x1 = oR[o, 0, 1] * wx + oR[o, 1, 1] * wy + oR[o, 2, 1] * wz
-                    x2 = oR[o, 0, 2] * wx + oR[o, 1, 2] * wy + oR[o, 2, 2] * wz
-                    if _solid_distance(x0, x1, x2, ohalf[o, 0], ohalf[o, 1], ohalf[o, 2], oround[o], ocyl[o]) - ir[s] <= thr - below:
-                        return COLLIDES
+            if oexact[o] and _inner_reach(node[g], Rb, pb, ic, ir, istart[g], istart[g + 1], oR[o], oo[o], ohalf[o],
+                                          oround[o], ocyl[o], thr - below):
+                return COLLIDES
             if done[g] == 0.0:
                 _spheres(g, node[g], Rb, pb, sc, start, sph)
                 done[g] = 1.0
@@ -210,17 +202,9 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap)
         x2 = W[0, 2] * vx + W[1, 2] * vy + W[2, 2] * vz
         if _solid_distance(x0, x1, x2, ghalf[h, 0], ghalf[h, 1], ghalf[h, 2], ground[h], gcyl[h]) - grad[g] - thr > 0.0:
             continue
-        if gexact[h]:
-            b = node[g]
-            for s in range(istart[g], istart[g + 1]):
-                wx = Rb[b, 0, 0] * ic[s, 0] + Rb[b, 0, 1] * ic[s, 1] + Rb[b, 0, 2] * ic[s, 2] + pb[b, 0] - centre[h, 0]
-                wy = Rb[b, 1, 0] * ic[s, 0] + Rb[b, 1, 1] * ic[s, 1] + Rb[b, 1, 2] * ic[s, 2] + pb[b, 1] - centre[h, 1]
-                wz = Rb[b, 2, 0] * ic[s, 0] + Rb[b, 2, 1] * ic[s, 1] + Rb[b, 2, 2] * ic[s, 2] + pb[b, 2] - centre[h, 2]
-                x0 = W[0, 0] * wx + W[1, 0] * wy + W[2, 0] * wz
-                x1 = W[0, 1] * wx + W[1, 1] * wy + W[2, 1] * wz
-                x2 = W[0, 2] * wx + W[1, 2] * wy + W[2, 2] * wz
-                if _solid_distance(x0, x1, x2, ghalf[h, 0], ghalf[h, 1], ghalf[h, 2], ground[h], gcyl[h]) - ir[s] <= thr - below:
-                    return COLLIDES
+        if gexact[h] and _inner_reach(node[g], Rb, pb, ic, ir, istart[g], istart[g + 1], W, centre[h], ghalf[h],
+                                      ground[h], gcyl[h], thr - below):
+            return COLLIDES
         if done[g] == 0.0:
             _spheres(g, node[g], Rb, pb, sc, start, sph)
             done[g] = 1.0
@@ -239,6 +223,22 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap)
                 count += 1
                 break
     return count
+
+
+@njit(cache=True)
+def _inner_reach(b, Rb, pb, ic, ir, lo, hi, R, c, half, rounding, cylinder, limit):
+    """Whether a sphere lo..hi inside a geometry on body b comes within ``limit`` of the solid with world axes
+    R (columns) about c (the pair's distance is at most that: a proof of collision where the solid is exact)."""
+    for s in range(lo, hi):
+        wx = Rb[b, 0, 0] * ic[s, 0] + Rb[b, 0, 1] * ic[s, 1] + Rb[b, 0, 2] * ic[s, 2] + pb[b, 0] - c[0]
+        wy = Rb[b, 1, 0] * ic[s, 0] + Rb[b, 1, 1] * ic[s, 1] + Rb[b, 1, 2] * ic[s, 2] + pb[b, 1] - c[1]
+        wz = Rb[b, 2, 0] * ic[s, 0] + Rb[b, 2, 1] * ic[s, 1] + Rb[b, 2, 2] * ic[s, 2] + pb[b, 2] - c[2]
+        x0 = R[0, 0] * wx + R[1, 0] * wy + R[2, 0] * wz
+        x1 = R[0, 1] * wx + R[1, 1] * wy + R[2, 1] * wz
+        x2 = R[0, 2] * wx + R[1, 2] * wy + R[2, 2] * wz
+        if _solid_distance(x0, x1, x2, half[0], half[1], half[2], rounding, cylinder) - ir[s] <= limit:
+            return True
+    return False
 
 
 @njit(cache=True, inline="always")

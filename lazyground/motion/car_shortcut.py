@@ -23,6 +23,7 @@ from lazyground.motion.shortcut import ShortcutStatus
 from lazyground.planning import curves
 from lazyground.planning.car import DENSE_SPACING, CarSpace, drive_profile
 from lazyground.planning.problem import PlanResult, ValidityChecker
+from lazyground.planning.motion_validator import samples_free
 from lazyground.planning.search import path_is_valid
 from lazyground.planning.stop import StopCondition
 from lazyground.settings import RunSettings
@@ -136,7 +137,7 @@ def _curve_free(space: CarSpace, checker: ValidityChecker, a: np.ndarray, b: np.
     qs = space.discretize(a, b, resolution, skip_first=True)
     sparse = np.zeros(len(qs), bool)
     sparse[::_SPARSE] = True
-    return bool(np.all(checker.configs_free(qs[sparse])) and np.all(checker.configs_free(qs[~sparse])))
+    return bool(np.all(samples_free(space, checker, qs[sparse])) and np.all(samples_free(space, checker, qs[~sparse])))
 
 
 def _fine_checked(space: CarSpace, checker: ValidityChecker, dense: np.ndarray, keep: list[int],

@@ -6,7 +6,8 @@ import sys
 
 from lazyground.cli_options import add_start_options, start_options
 
-DESCRIPTION = """Convert a MoveIt planning scene (moveit_msgs/PlanningScene YAML) into a lazyground scene.
+DESCRIPTION = """Convert a MoveIt planning scene (moveit_msgs/PlanningScene YAML, or MoveIt's text .scene export)
+into a lazyground scene.
 Object types come from id words (table_leg_1 is an obstacle, Can1 a can) checked against geometry;
 meshes found on disk (OBJ, STL) become collision geometry (their convex hull); the scene gets no
 planner block, so the robot's own settings (models/<robot>/robot.yaml) apply.
@@ -16,7 +17,7 @@ Exit codes: 0 written, 2 bad input (one line; nothing written), 3 internal error
 def add_import_options(m) -> None:
     """The options of ``import-moveit`` (documented in ``--help`` and docs/importing_moveit.md)."""
     m.description = DESCRIPTION
-    m.add_argument("file", help="the MoveIt planning scene (.yaml/.yml)")
+    m.add_argument("file", help="the MoveIt planning scene (.yaml/.yml, or a text .scene: RViz's Scene Objects export)")
     m.add_argument("-o", "--output", required=True, help="the lazyground scene to write (replaced only on success)")
     m.add_argument("--robot", default="fetch", help="robot model name or path with a robot.yaml beside it (default: fetch)")
     m.add_argument("--type", action="append", default=[], metavar="REGEX=TYPE",

@@ -2,7 +2,7 @@
 written here (lazyground.moveit.importer does that).
 
 Reads ``world.collision_objects`` (box ``[x, y, z]``, cylinder ``[height, radius]``, sphere
-``[radius]``, meshes by file; ``primitive_poses``/``mesh_poses`` with xyzw quaternions,
+``[radius]``, a cone ``[height, radius]`` as its bounding cylinder, meshes by file; ``primitive_poses``/``mesh_poses`` with xyzw quaternions,
 composed with the object's ``pose``) and the start (``robot_state.joint_state``, or the
 start options). The robot block spells out the robot.yaml's base link, planned joints and
 end-effector frame; no planner block is written, so the robot.yaml's planner settings apply
@@ -111,7 +111,7 @@ def convert_moveit(data, source: str, options: ImportOptions = ImportOptions(), 
                 raise SceneError(f"{where}: duplicate id {item['id']!r} (also collision object {seen[item['id']]!r})")
             seen[item["id"]] = oid
             if type_name == OBSTACLE:
-                obstacles.append(item)
+                obstacles.append({**item, **_colour(entry)})
             else:
                 objects.append({"id": item["id"], "type": type_name, **{k: v for k, v in item.items() if k != "id"}})
     _mesh_warning(meshes, len(entries), dropped, warnings)
@@ -215,7 +215,7 @@ def _primitive(prim, where: str, pid: str, lookup, warnings: list[str], meshes: 
     if not isinstance(dims, list):
         raise SceneError(f"{where}: dimensions: expected a list")
     dims = [_number(d, f"{where}: dimensions") for d in dims]
-    need = {"box": 3, "cylinder": 2, "sphere": 1}
+    need = {"box": 3, "cylinder": 2, "sphere": 1, "cone": 2}
     if kind not in need:
         warnings.append(f"{pid}: primitive type {prim.get('type')!r} is not supported: skipped")
         return None
@@ -223,6 +223,9 @@ def _primitive(prim, where: str, pid: str, lookup, warnings: list[str], meshes: 
         raise SceneError(f"{where}: a {kind} needs {need[kind]} positive dimension(s), got {dims}")
     if kind == "box":
         return {"box": [_round(d) for d in dims[:3]]}, tuple(dims[:3])
+    if kind == "cone":
+        warnings.append(f"{pid}: a cone: imported as its bounding cylinder (collides a little early near the tip)")
+        kind = "cylinder"
     if kind == "cylinder":  # MoveIt: [height, radius]
         return {"cylinder": {"radius": _round(dims[1]), "length": _round(dims[0])}}, (2 * dims[1], 2 * dims[1], dims[0])
     return {"sphere": {"radius": _round(dims[0])}}, (2 * dims[0],) * 3
@@ -243,6 +246,14 @@ def _mesh(mesh, where: str, pid: str, lookup: MeshLookup, warnings: list[str], m
         raise SceneError(f"{where}: dimensions (scale): expected 3 positive numbers, got {scale}")
     meshes.imported += 1
     return {"mesh": {"file": str(path), "scale": scale}}, (0.0, 0.0, 0.0)  # extents unused: meshes are obstacles
+
+
+def _colour(entry) -> dict:
+    """``{"color": "#rrggbb"}`` of an object's RGBA colour (a ``.scene`` file's), or nothing."""
+    rgba = entry.get("color") if isinstance(entry, dict) else None
+    if not isinstance(rgba, list) or len(rgba) != 4 or not all(isinstance(c, (int, float)) for c in rgba):
+        return {}
+    return {"color": "#" + "".join(f"{round(min(max(float(c), 0.0), 1.0) * 255):02x}" for c in rgba[:3])}
 
 
 def _pose(pose, where: str, pid: str, warnings: list[str]) -> Pose:

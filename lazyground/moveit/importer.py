@@ -7,6 +7,7 @@ it loads as a scene and its start is collision-free, so a failed import leaves n
 from __future__ import annotations
 
 import os
+import re
 import tempfile
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -14,6 +15,7 @@ from pathlib import Path
 import yaml
 
 from lazyground.moveit.convert import ImportOptions, ImportSummary, convert_moveit
+from lazyground.moveit.scene_text import parse_scene_text
 from lazyground.scene.file_kind import FileKind, kind_of_text, not_a_scene_message
 from lazyground.scene.loader import load_scene
 from lazyground.typed_yaml import SceneError, load_yaml
@@ -29,7 +31,8 @@ class ImportResult:
 
 
 def read_moveit_yaml(path: Path):
-    """The parsed YAML of ``path``; XML and other non-YAML files say what they are.
+    """The parsed YAML of ``path`` (MoveIt's text ``.scene`` format read as the same mapping); XML and other
+    non-YAML files say what they are.
 
     Raises:
         SceneError: unreadable, not YAML, or not a planning scene (one line).
@@ -41,6 +44,8 @@ def read_moveit_yaml(path: Path):
     except UnicodeDecodeError:
         raise SceneError(f"{path}: not a UTF-8 text file (a binary file? expected a MoveIt planning scene in YAML)") from None
     kind = kind_of_text(text)
+    if kind is FileKind.SCENE_TEXT or path.suffix.lower() == ".scene":
+        return parse_scene_text(text, str(path))
     if kind is not FileKind.OTHER:
         raise SceneError(f"{path}: {not_a_scene_message(kind)}")
     try:
@@ -71,6 +76,19 @@ def import_moveit_file(path, output, options: ImportOptions = ImportOptions(), c
     data = read_moveit_yaml(path)
     if options.name == ImportOptions().name:
         options = replace(options, name=output.stem)
+    mesh_dir = output.resolve().parent / f"{output.stem}_meshes"
+    written = write_inline_meshes(data, mesh_dir, output)
+    try:
+        return _write_scene(data, path, output, options, check_start)
+    except BaseException:  # nothing is left behind: the meshes written for it go too
+        for f in written:
+            f.unlink(missing_ok=True)
+        if written and mesh_dir.is_dir() and not any(mesh_dir.iterdir()):
+            mesh_dir.rmdir()
+        raise
+
+
+def _write_scene(data, path: Path, output: Path, options: ImportOptions, check_start: bool) -> ImportResult:
     scene, summary = convert_moveit(data, str(path), options, scene_dir=path.parent)
     _relative_meshes(scene, output.resolve().parent)
     header = f"# Imported from {path.name} by `lazyground import-moveit`; no planner block: the robot's robot.yaml settings apply.\n"
@@ -99,6 +117,42 @@ def import_moveit_file(path, output, options: ImportOptions = ImportOptions(), c
     planner = (f"{p.algorithm}, step {p.step_size:g}, edge checks every {p.edge_resolution or p.step_size / 10:g}, "
                f"padding {p.collision_padding:g} (the {options.robot} robot.yaml's planner settings)")
     return ImportResult(output, summary, planner)
+
+
+def write_inline_meshes(data, mesh_dir: Path, output: Path) -> list[Path]:
+    """Each collision object's inline mesh (``vertices`` and ``triangles``: a ``.scene`` file's, or a message's
+    without a ``resource``) written as an OBJ file in ``mesh_dir``, its entry given a ``file://`` resource.
+
+    Returns:
+        The files written (the caller removes them if the import fails).
+    """
+    world = data.get("world") if isinstance(data, dict) else None
+    entries = world.get("collision_objects") if isinstance(world, dict) else None
+    written = []
+    for entry in entries if isinstance(entries, list) else []:
+        meshes = entry.get("meshes") if isinstance(entry, dict) else None
+        for k, mesh in enumerate(meshes if isinstance(meshes, list) else []):
+            if not isinstance(mesh, dict) or mesh.get("resource") or not mesh.get("vertices") or not mesh.get("triangles"):
+                continue
+            vertices = [[v.get(a, 0.0) for a in "xyz"] if isinstance(v, dict) else v for v in mesh["vertices"]]
+            triangles = [t.get("vertex_indices") if isinstance(t, dict) else t for t in mesh["triangles"]]
+            oid = re.sub(r"[^A-Za-z0-9_.-]+", "_", str(entry.get("id", "object")))
+            target = mesh_dir / f"{oid}_{k}.obj"
+            lines = [f"# {entry.get('id')!s}: mesh {k} imported by `lazyground import-moveit` into {output.name}"]
+            try:
+                lines += [f"v {float(x):.9g} {float(y):.9g} {float(z):.9g}" for x, y, z in vertices]
+                lines += [f"f {int(a) + 1} {int(b) + 1} {int(c) + 1}" for a, b, c in triangles]
+            except (TypeError, ValueError):
+                raise SceneError(f"{output}: collision object {entry.get('id')!r}: meshes[{k}]: malformed vertices "
+                                 f"or triangles") from None
+            try:
+                mesh_dir.mkdir(exist_ok=True)
+                target.write_text("\n".join(lines) + "\n")
+            except OSError as exc:
+                raise SceneError(f"{target}: cannot write: {exc.strerror or exc}") from None
+            written.append(target)
+            mesh["resource"] = f"file://{target}"
+    return written
 
 
 def _relative_meshes(scene: dict, base: Path) -> None:

@@ -20,6 +20,9 @@ from lazyground.planning.stop import StopCondition, StopReason
 from lazyground.planning.tree import Tree
 from lazyground.settings import Algorithm, GoalExtension
 
+# What to try when an algorithm times out with goals in hand (issue 34: the README's one-tree line timed out with no hint).
+TRY_INSTEAD = {Algorithm.RRT: f"; the two-tree planner often finds one sooner: try --algorithm {Algorithm.BIDIRECTIONAL}"}
+
 __all__ = ["ALGORITHMS", "path_is_valid", "solve"]
 
 
@@ -66,9 +69,9 @@ def solve(
         if found is not None:
             return found
     except KeyboardInterrupt:
-        return search.result(PlanStatus.INTERRUPTED, "interrupted")
+        return search.result(PlanStatus.INTERRUPTED, "stopped by Ctrl-C")
     if stop.reason is StopReason.INTERRUPTED:
-        return search.result(PlanStatus.INTERRUPTED, "interrupted")
+        return search.result(PlanStatus.INTERRUPTED, "stopped by Ctrl-C")
     if not search.samples and search.goals.exhausted():
         return search.no_goal()
     cap = stop.max_iterations
@@ -76,7 +79,7 @@ def solve(
               else f"{stop.budget:g} s ({search.iterations} iterations)")
     if not search.samples:  # the limit came before goal sampling had tried every region: not proof there is no goal
         return search.result(PlanStatus.TIMEOUT, f"no valid goal configuration found within {within}: {search.region_summary()}")
-    return search.result(PlanStatus.TIMEOUT, f"no path within {within}")
+    return search.result(PlanStatus.TIMEOUT, f"no path within {within}{TRY_INSTEAD.get(settings.algorithm, '')}")
 
 
 def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:

@@ -17,6 +17,7 @@ from lazyground.planning.problem import (
     PlanStatus,
     ValidityChecker,
 )
+from lazyground.planning.motion_validator import samples_free
 from lazyground.planning.space import ConfigSpace
 from lazyground.planning.stop import StopCondition
 from lazyground.planning.strategies import StrategySettings, make_strategy
@@ -41,9 +42,13 @@ def path_is_valid(space: ConfigSpace, checker: ValidityChecker, path: np.ndarray
         prev = k
     if not chunks:
         return -1
-    free = np.asarray(checker.configs_free(np.vstack(chunks)), bool)
+    free = samples_free(space, checker, np.vstack(chunks))
     blocked = np.flatnonzero(~free)
     return int(np.concatenate(owner)[blocked[0]]) if len(blocked) else -1
+
+
+# what one goal-sampling attempt in a region of each kind tries (issue 34: the status said "0/50 valid", not of what)
+TRIED = {"workspace": "grasps", "placement": "placements"}
 
 
 def _checks(checker: ValidityChecker) -> int:
@@ -183,11 +188,12 @@ class Search:
         )
 
     def region_summary(self) -> str:
-        """Each goal region's valid samples and attempts, and why the attempts failed."""
+        """Each goal region's tries (grasps, placements or configurations), valid ones, and why the others failed."""
         parts = []
         for region, st in zip(self.goals.regions, self.goals.stats):
-            why = ", ".join(f"{k} x{v}" for k, v in sorted(st.failures.items())) or "not tried"
-            parts.append(f"{region.id}: {st.valid}/{st.attempts} valid ({why})")
+            why = ", ".join(f"{k} x{v}" for k, v in sorted(st.failures.items()))
+            tried = f"{st.attempts} {TRIED.get(region.kind, 'configurations')} tried, {st.valid} valid"
+            parts.append(f"{region.id}: {tried} ({why})" if why else f"{region.id}: {tried}" if st.attempts else f"{region.id}: not tried")
         return "; ".join(parts)
 
     def no_goal(self) -> PlanResult:

@@ -21,7 +21,7 @@ from typing import Any
 import yaml
 
 from lazyground.planner_spec import PlannerSpec
-from lazyground.typed_yaml import SceneError, checked, load_dataclass, load_yaml, positive
+from lazyground.typed_yaml import SceneError, checked, load_dataclass, load_yaml, non_negative, positive
 
 DEFAULTS_FILE = "robot.yaml"
 AXES = ("x", "y", "z", "-x", "-y", "-z")
@@ -39,6 +39,9 @@ class EndEffectorSpec:
     approach_axis: str = "x"
     closing_axis: str = "y"
     opening: float | None = checked(positive, default=None)
+    # how far the fingertips reach past the grasp point along the approach axis (m); a grasp's `depth` is how far the
+    # fingers reach over the object, so the grasp point sits `depth - fingertip` past the object's face (issue 34)
+    fingertip: float = checked(non_negative, default=0.0)
 
     def validate(self) -> str | None:
         for key in ("approach_axis", "closing_axis"):

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 # Scene bodies in the Drake world's visual geometry (Meshcat).
 OBSTACLE_SCENE_RGBA = (0.8, 0.25, 0.2, 1.0)  # walls, islands, shelves given as obstacles
 OCCUPANT_RGBA = (0.75, 0.2, 0.2, 1.0)  # what occupies an occupied object (a parked car)
@@ -17,6 +19,19 @@ TYPE_RGBA = {"table": (0.6, 0.45, 0.3, 1.0), "shelf": (0.55, 0.55, 0.6, 1.0), "p
 
 def object_rgba(obj) -> tuple:
     """The colour of a scene object: its ``color`` if known, else its type's, else a default blue."""
-    if obj.color and obj.color.lower() in COLOR_RGBA:
-        return COLOR_RGBA[obj.color.lower()]
-    return TYPE_RGBA.get(obj.type, DEFAULT_OBJECT_RGBA)
+    return color_rgba(obj.color) or TYPE_RGBA.get(obj.type, DEFAULT_OBJECT_RGBA)
+
+
+def obstacle_rgba(obstacle) -> tuple:
+    """The colour of an obstacle: its ``color`` if known (issue 34: a brown table leg rendered red), else red."""
+    return color_rgba(obstacle.color) or OBSTACLE_SCENE_RGBA
+
+
+def color_rgba(color: str | None) -> tuple | None:
+    """RGBA of a colour name (``COLOR_RGBA``) or ``#rrggbb``; None for none or one not known."""
+    if not color:
+        return None
+    color = color.strip().lower()
+    if re.fullmatch(r"#[0-9a-f]{6}", color):
+        return tuple(int(color[k:k + 2], 16) / 255 for k in (1, 3, 5)) + (1.0,)
+    return COLOR_RGBA.get(color)

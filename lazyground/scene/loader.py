@@ -71,7 +71,7 @@ def parse_scene(text: str, source: str = "<string>", scene_dir: Path | None = No
     model = resolve_model(scene.robot.model, scene_dir)
     if model is None:
         raise SceneError(f"{source}: robot.model: model file {scene.robot.model!r} not found (bundled: {_bundled()})")
-    problem = _overlap_problem(scene.objects) or _mesh_problem(scene, scene_dir)
+    problem = _overlap_problem(scene) or _mesh_problem(scene, scene_dir)
     if problem:
         raise SceneError(f"{source}: {problem}")
     # imported here: lazyground.robots reads robot.yaml through this package's typed_yaml
@@ -127,8 +127,7 @@ def _not_a_scene(text: str, data: dict | None = None) -> str | None:
         FileKind.SDF: model,
         FileKind.SRDF: "give it as --srdf FILE or under robot.srdf in a scene",
         FileKind.XML: "a scene is YAML (docs/scene_format.md)",
-        FileKind.SCENE_TEXT: "save the scene as a moveit_msgs/PlanningScene message in YAML and convert it with "
-                             "`lazyground import-moveit`",
+        FileKind.SCENE_TEXT: "convert it with `lazyground import-moveit FILE -o scene.yaml`",
     }.get(kind)
     return f"this is {kind.value}, not a lazyground scene: {hint}" if hint else None
 
@@ -138,20 +137,22 @@ def _bundled() -> str:
     return ", ".join(names) or "none"
 
 
-def _overlap_problem(objects: tuple[SceneObject, ...]) -> str | None:
-    """An object whose centre lies inside another solid object is a modelling error."""
-    solid = [o for o in objects if o.collides]
-    for i, a in enumerate(solid):
-        centre = np.asarray(a.pose.xyz)
-        for b in solid:
-            if b is a:
-                continue
+def _overlap_problem(scene: Scene) -> str | None:
+    """An object whose centre lies inside another solid (an object or an obstacle) is a modelling error; obstacles
+    may overlap one another (boards that meet, generated racks)."""
+    solids = [(f"objects[{i}]", "object", o) for i, o in enumerate(scene.objects) if o.collides]
+    solids += [(f"obstacles[{i}]", "obstacle", o) for i, o in enumerate(scene.obstacles) if o.geometry.mesh is None]
+    hits = []  # (the larger one holds the centre, later solid first, message)
+    for n, (key, kind, a) in enumerate(solids):
+        centre = np.asarray(a.pose.xyz, dtype=float)
+        for _, other_kind, b in solids:
             X = b.pose.pose()
-            p_B = (centre - np.asarray(X.xyz)) @ X.rotation()
-            if np.all(np.abs(p_B) < np.asarray(b.geometry.half_extents()) - 1e-9) and b.geometry.volume() > a.geometry.volume():
-                idx = objects.index(a)
-                return f"objects[{idx}].pose: {a.id!r} is inside {b.id!r}"
-    return None
+            if b is a or kind == "obstacle":
+                continue
+            if b.geometry.contains((centre - np.asarray(X.xyz)) @ X.rotation()):
+                message = f"{key}.pose: {kind} {a.id!r} has its centre inside {other_kind} {b.id!r}"
+                hits.append((a.geometry.volume() > b.geometry.volume(), -n, message))
+    return min(hits)[2] if hits else None
 
 
 def _mesh_path(file: str, scene_dir: Path | None) -> Path:

@@ -90,6 +90,17 @@ class Geometry:
         r = self.sphere.radius
         return (r, r, r)
 
+    def contains(self, p_G, margin: float = 1e-9) -> bool | None:
+        """Whether the point ``p_G`` (in the shape's own frame) lies strictly inside the shape; None for a mesh."""
+        if self.mesh:
+            return None
+        x, y, z = (float(v) for v in p_G)
+        if self.box:
+            return all(abs(v) < h - margin for v, h in zip((x, y, z), self.half_extents()))
+        if self.cylinder:
+            return math.hypot(x, y) < self.cylinder.radius - margin and abs(z) < self.cylinder.length / 2 - margin
+        return math.sqrt(x * x + y * y + z * z) < self.sphere.radius - margin
+
     def volume(self) -> float:
         if self.box:
             return self.box[0] * self.box[1] * self.box[2]

@@ -5,10 +5,13 @@ from __future__ import annotations
 from matplotlib.lines import Line2D
 from matplotlib.patches import FancyArrow, Patch
 
-from lazyground.viz.style import CAR_RGBA, FAILED_RGBA, GOAL_BIASED_RGBA, OBSTACLE_RGBA, PATH_RGBA, REGION_RGBA, TREE_RGBA, weight_rgba
+from lazyground.viz.style import (CAR_RGBA, FAILED_RGBA, GOAL_BIASED_RGBA, LIMITS_RGBA, OBSTACLE_RGBA, PATH_RGBA, REGION_RGBA,
+                                  TREE_RGBA, weight_rgba)
 
 LABEL_STYLE = dict(fontsize=6, color=(0, 0.35, 0.1), ha="center", va="center", zorder=11,
                    bbox=dict(boxstyle="round,pad=0.15", fc=(1, 1, 1, 0.75), ec="none"))  # above the car (zorder 8)
+OCCUPIED_LABEL_STYLE = LABEL_STYLE | dict(color=(0.3, 0.3, 0.3))
+LIMITS_STYLE = dict(fill=False, ec=LIMITS_RGBA, ls=(0, (6, 2, 1, 2)), lw=1.2)
 
 
 class _ArrowHandler:
@@ -26,9 +29,12 @@ class _ArrowHandle(Line2D):
     """A legend proxy drawn by :class:`_ArrowHandler`."""
 
 
-def parking_handles(has_tree: bool, has_failed: bool, has_path: bool, has_occupied: bool, outlines: bool = True) -> list:
-    """Legend proxies for what the parking figure shows, in reading order (``outlines``: car outlines along the path)."""
-    handles = [
+def parking_handles(has_tree: bool, has_failed: bool, has_path: bool, has_occupied: bool, outlines: bool = True,
+                    has_limits: bool = False) -> list:
+    """Legend proxies for what the parking figure shows, in reading order (``outlines``: car outlines along the path;
+    ``has_limits``: the lot's limits are drawn)."""
+    handles = [Patch(**LIMITS_STYLE, label="lot limits (robot.limits)")] if has_limits else []
+    handles += [
         Patch(fc="none", ec="black", ls="--", label="start (car outline)"),
         Patch(fc=OBSTACLE_RGBA, ec="none", label="obstacle"),
         Patch(fc=REGION_RGBA, ec=REGION_RGBA[:3], label="free spot (goal region)"),

@@ -49,8 +49,6 @@ RAW_PATH_ALPHA = 0.3  # the planner's raw path, drawn faintly beside the shorten
 PAUSE_SECONDS = 0.5  # hold at the end of a step
 ROOT = "/lazyground"
 CAMERA_DISTANCE = 1.75  # x the drawn extent's radius; the page's side panel leaves the view ~70 % of the width
-TREE_SHOWN_MAX = 1000  # nodes: a larger parking tree starts hidden in the HTML replay
-TREE_SHOWN_MAX_ARM = 60  # an arm's tree is drawn at the gripper, around the objects: hidden sooner
 EXTERNAL_SCRIPT = re.compile(r"<script[^>]*\bsrc\s*=\s*[\"']?(https?:)?//", re.IGNORECASE)
 
 
@@ -76,7 +74,8 @@ def show_live(report, scene, loop_once: bool, say: Callable[[str], None]) -> Non
     ``say`` gets the address and the stop line (the CLI prints them)."""
     meshcat = Meshcat()
     seconds = draw(report, scene, meshcat)
-    say(f"meshcat: {meshcat.web_url()} (replay {seconds:.1f} s; press Ctrl-C to stop)")
+    until = "drawn once (--loop-once): the server stops now" if loop_once else "press Ctrl-C to stop"
+    say(f"meshcat: {meshcat.web_url()} (replay {seconds:.1f} s; {until})")
     if loop_once:
         return
     try:
@@ -88,18 +87,20 @@ def show_live(report, scene, loop_once: bool, say: Callable[[str], None]) -> Non
 
 def draw(report, scene, meshcat: Meshcat) -> float:
     """Draw ``report`` into ``meshcat`` and record the robot's motion; returns the replay length in seconds."""
-    return draw_layout(report, scene, meshcat).seconds
+    return draw_layout(report, scene, meshcat, hide_tree=False).seconds  # live: no page, no button to show it
 
 
-def draw_layout(report, scene, meshcat: Meshcat) -> Layout:
-    """:func:`draw`, returning what the page's side panel needs (step windows, tree paths)."""
+def draw_layout(report, scene, meshcat: Meshcat, hide_tree: bool = True) -> Layout:
+    """:func:`draw`, returning what the page's side panel needs (step windows, tree paths).
+
+    ``hide_tree``: the search tree starts hidden (the page's button shows it); it covers the lot and the objects
+    (issue 34: a parking page opened on a thicket of tree edges)."""
     meshcat.Delete()
     meshcat.DeleteRecording()
     meshcat.StartRecording(frames_per_second=FPS, set_visualizations_while_recording=True)
     segments = _segments(report, scene)
     views = [_StepView(s, scene, meshcat, f"robot{k}") for k, s in enumerate(segments)]
     nodes = sum(len(v.report.result.tree[0]) for v in views if v.report.result.tree is not None)
-    hide_tree = nodes > (TREE_SHOWN_MAX_ARM if views[0].tracer.arm else TREE_SHOWN_MAX)
     for k, view in enumerate(views):
         view.draw_overlays(f"{ROOT}/step{k}", hide_tree)
     t, windows = 0.0, []
@@ -209,7 +210,7 @@ class _StepView:
             self._points(f"{path}/tree/goal_biased", p[:, np.asarray(goal_biased, bool)], GOAL_BIASED_RGBA, 1.0)
             if res.failed_from is not None:
                 self._points(f"{path}/tree/failed_goal_biased_from", p[:, np.unique(res.failed_from)], FAILED_RGBA, 1.5)
-            if hide_tree:  # a large tree covers the objects; the page's button shows it
+            if hide_tree:  # the page's button shows it
                 self.meshcat.SetProperty(f"{path}/tree", "visible", False)
         if self.motion is not None:
             motion = getattr(self.report, "motion", None)  # a report's or a step's Motion

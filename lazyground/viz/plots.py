@@ -18,10 +18,10 @@ import numpy as np  # noqa: E402
 from PIL import Image  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.colors import ListedColormap  # noqa: E402
-from matplotlib.patches import Circle, Polygon  # noqa: E402
+from matplotlib.patches import Circle, Polygon, Rectangle  # noqa: E402
 
 from lazyground.scene.types import occupant_geometry  # noqa: E402
-from lazyground.viz.legend import HANDLER_MAP, LABEL_STYLE, parking_handles  # noqa: E402
+from lazyground.viz.legend import HANDLER_MAP, LABEL_STYLE, LIMITS_STYLE, OCCUPIED_LABEL_STYLE, parking_handles  # noqa: E402
 from lazyground.viz.style import (  # noqa: E402
     CAR_FOOTPRINT,
     CAR_RGBA,
@@ -124,6 +124,8 @@ class _View:
         self.raw_path = motion.raw_path if motion is not None and not np.array_equal(motion.raw_path, self.path) else None
         q0 = self.path[0] if self.path is not None else self.res.tree[0][0] if self.res.tree is not None else None
         self.start = np.asarray(q0, float) if q0 is not None else _start_from_scene(scene, report.joint_names)
+        names = [report.joint_names[i] for i in self.ix[:2]]
+        self.limits = np.array([scene.robot.limits[n] for n in names]).T if all(n in scene.robot.limits for n in names) else None
 
     # --- pieces --------------------------------------------------------------------------
     def xyh(self, q) -> tuple[float, float, float]:
@@ -149,6 +151,9 @@ class _View:
     def figure(self, size=(9.0, 6.4), dpi=110):
         fig, ax = plt.subplots(figsize=size, dpi=dpi)
         ax.set_facecolor((0.93, 0.93, 0.93))
+        if self.limits is not None:  # where the car's reference point may go (issue 34: not drawn, so a car outside went unseen)
+            (x0, y0), (x1, y1) = self.limits
+            ax.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, zorder=1.5, **LIMITS_STYLE))
         for obs in self.scene.obstacles:
             ax.add_patch(_shape_patch(obs.geometry, obs.pose, fc=OBSTACLE_RGBA, ec="none", zorder=2))
         for obj in self.scene.objects:
@@ -165,6 +170,7 @@ class _View:
                 if occupant is not None:  # the footprint of what stands in the spot (a parked car)
                     hx, hy, _ = occupant.half_extents()
                     ax.add_patch(Polygon(rect_corners(x, y, yaw, 2 * hx, 2 * hy), closed=True, fc=OBSTACLE_RGBA, ec="black", lw=0.5, zorder=2))
+                ax.text(x, y, obj.id, **OCCUPIED_LABEL_STYLE)
             else:
                 ax.add_patch(Polygon(spot, closed=True, fc=REGION_RGBA, ec=REGION_RGBA[:3], lw=1.2, zorder=1))
                 ax.text(x, y, obj.id, **LABEL_STYLE)
@@ -234,6 +240,8 @@ class _View:
         lo, hi = _extent(self.scene)
         car = np.concatenate([self.footprint(self.start)] + ([self.path[:, list(self.ix[:2])]] if self.path is not None else []))
         lo, hi = np.minimum(lo, car.min(axis=0)), np.maximum(hi, car.max(axis=0))  # the start may lie outside the geometry
+        if self.limits is not None:
+            lo, hi = np.minimum(lo, self.limits[0]), np.maximum(hi, self.limits[1])
         ax.set_xlim(lo[0] - 1, hi[0] + 1)
         ax.set_ylim(lo[1] - 1, hi[1] + 1)
         ax.set_aspect("equal")
@@ -246,11 +254,14 @@ class _View:
         sm = plt.cm.ScalarMappable(cmap=WEIGHT_CMAP, norm=plt.Normalize(0, 1))
         fig.colorbar(sm, ax=ax, fraction=0.03, pad=0.02).set_label("goal-sample weight", fontsize=8)
         handles = parking_handles(res.tree is not None, res.failed_from is not None and len(res.failed_from) > 0,
-                                  self.path is not None, any(o.occupied for o in self.scene.objects), outlines)
-        # below the lot, never over it
-        ax.legend(handles=handles, handler_map=HANDLER_MAP, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=3,
-                  fontsize=6, frameon=False)
-        fig.tight_layout()
+                                  self.path is not None, any(o.occupied for o in self.scene.objects), outlines,
+                                  self.limits is not None)
+        # at the figure's foot, the axes laid out above it: never over the lot nor the axis label (issue 34: a fixed
+        # offset under the axes overlapped "x (m)" in the GIF's smaller figure)
+        legend = fig.legend(handles=handles, handler_map=HANDLER_MAP, loc="lower center", ncol=3, fontsize=6,
+                            frameon=False)
+        fig.canvas.draw()
+        fig.tight_layout(rect=(0, legend.get_window_extent().height / fig.bbox.height + 0.01, 1, 1))
 
 
 def _shape_patch(geometry, pose, **style):

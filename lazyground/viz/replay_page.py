@@ -99,7 +99,7 @@ def panel_html(report, layout: Layout) -> str:
     button = ""
     if layout.tree_paths:
         word = "Show" if layout.tree_hidden else "Hide"
-        button = f'<button id="{TOGGLE_ID}" type="button">{word} search tree ({layout.tree_nodes} nodes)</button>'
+        button = f'<button id="{TOGGLE_ID}" type="button">{word} search tree ({layout.tree_nodes} node{"" if layout.tree_nodes == 1 else "s"})</button>'
     return f"""
 <div id="{PANEL_ID}">
   <div class="req">&ldquo;{html.escape(report.request)}&rdquo; <span class="dim">on {html.escape(report.scene)}</span></div>

@@ -16,6 +16,7 @@ OBSTACLE_RGBA = (0.8, 0.15, 0.1, 1.0)  # red: obstacles
 CAR_RGBA = (1.0, 1.0, 1.0, 1.0)  # white: the planned car
 PATH_DARK_RGBA = (0.0, 0.45, 0.75, 1.0)  # darker blue: direction of travel, forwards
 REVERSE_RGBA = (1.0, 0.5, 0.0, 1.0)  # orange: direction of travel, reverse gear
+LIMITS_RGBA = (0.25, 0.25, 0.25, 1.0)  # dark grey: the lot's limits (robot.limits), where the car's reference point may go
 
 CAR_FOOTPRINT = (4.5, 1.8)  # m: the planned car's length and width (models/car/car.urdf)
 

@@ -37,6 +37,7 @@ def test_solve_returns_interrupted_with_partial_statistics():
     settings = PlannerSettings(step_size=0.5, time_limit=1e6, goal_bias=0.1)  # the interrupt, not the clock, ends it
     res = solve(SPACE, world, goal_source(world, [UNREACHABLE]), START, settings, np.random.default_rng(0), seed=0)
     assert res.status is PlanStatus.INTERRUPTED and res.path is None
+    assert res.message == "stopped by Ctrl-C"  # issue 34: the report said "status: interrupted: interrupted"
     assert res.iterations > 10 and res.tree_size > 10 and res.goal_samples
     assert res.time_s > 0 and res.seed == 0
     assert res.region_stats[0].valid > 0

@@ -46,3 +46,23 @@ def test_an_edge_resolution_too_fine_for_the_step_is_refused_before_planning(tmp
     scene = tmp_path / "lot.yaml"
     scene.write_text(REPO.joinpath("yaml_scenes/parking_1.yaml").read_text().replace("edge_resolution: 0.1", "edge_resolution: 1.0e-9"))
     refused(["plan", str(scene), "park"], f"error: {scene}: edge_resolution: 1e-09 is too fine for step_size 2", tmp_path, capsys)
+
+
+@pytest.mark.parametrize("argv,flag", [
+    (["plan", "parking_1", "park", "--trajectory", "{tmp}/a.csv", "--trajectory", "{tmp}/b.csv"], "--trajectory"),
+    (["plan", "parking_1", "park", "--seed", "1", "--seed=2"], "--seed"),
+    (["plan", "parking_1", "park", "--time-limit", "1", "--time-limit", "2"], "--time-limit"),
+])
+def test_a_value_option_given_twice_is_refused(argv, flag, tmp_path, capsys):
+    # issue 34: a repeated --trajectory silently took the last one
+    assert refused(argv, f"error: argument {flag}: given twice; give it once", tmp_path, capsys) == ""
+    assert not list(tmp_path.iterdir())
+
+
+def test_version(capsys):
+    # issue 34: there was no --version
+    from lazyground import __version__
+    from lazyground.cli import main
+
+    assert main(["--version"]) == 0
+    assert capsys.readouterr().out == f"lazyground {__version__}\n"

@@ -122,7 +122,7 @@ def test_mapping_sends_neutral_axes_to_the_named_tool_axes(approach, closing):
 
 def test_old_string_end_effector_keeps_the_x_forward_convention():
     robot = _scene(FETCH, OBJECTS).robot
-    assert end_effector_of(robot) == EndEffectorSpec(frame="gripper_link", approach_axis="x", closing_axis="y", opening=0.10)
+    assert end_effector_of(robot) == EndEffectorSpec(frame="gripper_link", approach_axis="x", closing_axis="y", opening=0.10, fingertip=0.03)
     other = _scene(FETCH.replace("end_effector: gripper_link", "end_effector: wrist_roll_link"), OBJECTS).robot
     assert end_effector_of(other) == EndEffectorSpec(frame="wrist_roll_link")
     assert Pose().compose(X_NT(end_effector_of(other))) == Pose()

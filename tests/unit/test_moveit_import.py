@@ -168,10 +168,6 @@ def test_user_rules_win_and_parse(tmp_path):
     ("[1, 2]\n", "not a MoveIt planning scene"),
     ("name: x\nrobot: {model: fetch}\n", "not a MoveIt planning scene (top-level keys: name, robot"),
     ("world: {collision_objects: []}\n", "no collision object could be imported"),
-    # audit8: RViz's text export was "not a MoveIt planning scene (a YAML str; ...)"
-    ("(noname)+\n* box_1\n0 0 0\n0 0 0 1\n1\nbox\n0.1 0.1 0.1\n0.5 0 0.5\n0 0 0 1\n0 0 0 0\n0\n.\n",
-     "this is MoveIt's text scene format (.scene: RViz's scene objects export), not a planning scene: give the scene as "
-     "a moveit_msgs/PlanningScene message in YAML"),
     ("world: {collision_objects: []}\n---\nworld: {collision_objects: []}\n---\n", "2 YAML documents separated by '---'; give one"),
 ])
 def test_what_is_not_a_planning_scene_is_said_in_one_line(text, words, tmp_path):

@@ -61,7 +61,16 @@ def test_reward_penalty_penalises_unreachable_samples_and_resamples():
 def test_an_iteration_limit_is_named_as_such():
     # audit8: max_iterations=5 said "no path within 10 s (5 iterations)" after a few milliseconds
     world, res = run([UNREACHABLE], 0, PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=5))
-    assert res.status is PlanStatus.TIMEOUT and res.message == "no path within 5 iterations (max_iterations)"
+    assert res.status is PlanStatus.TIMEOUT and res.message.startswith("no path within 5 iterations (max_iterations);")
+
+
+def test_a_one_tree_timeout_says_what_to_try():
+    # issue 34: the README's `--algorithm rrt` line timed out after 31 s with no hint that the default planner solves it
+    settings = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=5)
+    _, res = run([UNREACHABLE], 0, settings)
+    assert res.status is PlanStatus.TIMEOUT and res.message.endswith("try --algorithm bidirectional")
+    _, res = run([UNREACHABLE], 0, replace(settings, algorithm="bidirectional"))
+    assert res.status is PlanStatus.TIMEOUT and "try --algorithm" not in res.message
 
 
 def test_same_seed_same_path():
@@ -87,7 +96,7 @@ def test_start_outside_limits():
 def test_no_valid_goal_names_each_region():
     world, res = run([INVALID], 0)
     assert res.status is PlanStatus.NO_VALID_GOAL
-    assert "block: 0/50 valid (in collision x50)" in res.message
+    assert "block: 50 configurations tried, 0 valid (in collision x50)" in res.message
 
 
 def fake_stop(settings: PlannerSettings) -> StopCondition:
@@ -102,7 +111,7 @@ def test_a_limit_reached_before_every_region_was_tried_is_a_timeout(algorithm):
     settings = PlannerSettings(time_limit=0.01, algorithm=algorithm)
     world, res = run([INVALID], 0, settings, stop=fake_stop(settings))
     assert res.status is PlanStatus.TIMEOUT and res.path is None, res.message
-    assert res.message.startswith("no valid goal configuration found within 0.01 s") and "block: 0/" in res.message
+    assert res.message.startswith("no valid goal configuration found within 0.01 s") and "block: " in res.message and "configurations tried, 0 valid" in res.message
     settings = PlannerSettings(time_limit=1.0, algorithm=algorithm)  # time to give up on the region
     world, res = run([INVALID], 0, settings, stop=fake_stop(settings))
     assert res.status is PlanStatus.NO_VALID_GOAL, res.message

@@ -110,11 +110,30 @@ def test_undefined_object_type_is_an_error_with_a_suggestion():
     assert "grasp_types: {parking_sopt: {}}" in msg
 
 
+@pytest.mark.parametrize("typo", ["mug", "muggg"])
+def test_a_type_named_by_a_word_of_another_suggests_that_type(typo, tmp_path):
+    # issue 34: 'type: mug' said "unknown type 'mug'; (types: ...)", no file, no suggestion ('mug' is a word for a cup)
+    path = tmp_path / "my_table.yaml"
+    path.write_text(TYPO.replace("parking_sopt", typo))
+    with pytest.raises(GroundingError) as info:
+        ground("park", load_scene(path))
+    msg = str(info.value)
+    assert msg.startswith(f"object 'spot_b': unknown type {typo!r}; did you mean 'cup'?"), msg
+    assert msg.endswith(f"({path} line 5)"), msg
+
+
 def test_a_scene_declares_its_own_type():
     sc = parse_scene(TYPO + "grasp_types: {parking_sopt: {}}\n", "typo")
     assert {i.id for i in ground("park", sc).interpretations} == {"park:spot_a"}
     with pytest.raises(GroundingError, match="has no 'park' definition"):
         ground("park in spot_b", sc)
+
+
+def test_a_type_starting_with_a_vowel_takes_an():
+    # issue 34: "cannot park in a exit: type 'exit' has no 'park' definition"
+    sc = parse_scene(TYPO.replace("parking_sopt", "exit") + "grasp_types: {exit: {}}\n", "typo")
+    with pytest.raises(GroundingError, match="^cannot park in an exit: type 'exit'"):
+        ground("park at the exit", sc)
 
 
 def test_every_bundled_scene_declares_its_types():

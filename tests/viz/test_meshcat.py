@@ -53,6 +53,7 @@ def test_cli_meshcat_loop_once_and_html(tmp_path, capsys):
     out = capsys.readouterr().out
     assert rc == 0
     assert "meshcat: http://" in out
+    assert "Ctrl-C" not in out and "--loop-once" in out  # issue 34: it said "press Ctrl-C to stop" and exited
     assert html.stat().st_size > 500_000
 
 

@@ -17,9 +17,8 @@ from .test_browser import CHROMIUM, _browser_check
 pytestmark = pytest.mark.skipif(not CHROMIUM.exists(), reason="headless browser test: /usr/bin/chromium not installed")
 
 
-def test_tree_button_shows_and_hides_the_tree(parking, tmp_path, monkeypatch):
-    scene, report = parking
-    monkeypatch.setattr(meshcat_view, "TREE_SHOWN_MAX", 10)  # this tree starts hidden
+def test_tree_button_shows_and_hides_the_tree(parking, tmp_path):
+    scene, report = parking  # the tree starts hidden
     html = tmp_path / "p.html"
     meshcat_view.write_html(report, scene, html)
     bc = _browser_check()

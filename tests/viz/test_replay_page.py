@@ -37,17 +37,16 @@ def test_parking_page_has_title_request_interpretations_status_times_and_legend(
                  "goal-biased nodes", "failed goal-biased extensions"):
         assert word in text
     nodes = len(report.result.tree[0])
-    assert nodes <= meshcat_view.TREE_SHOWN_MAX  # a parking tree this size stays visible, the button hides it
-    assert f'id="{TOGGLE_ID}"' in page and f"Hide search tree ({nodes} nodes)" in text
+    # issue 34: the tree started shown and covered the lot; it starts hidden, the button shows it
+    assert f'id="{TOGGLE_ID}"' in page and f"Show search tree ({nodes} nodes)" in text
     assert '"/lazyground/step0/tree"' in page  # the button's target
     assert not meshcat_view.EXTERNAL_SCRIPT.search(page)
 
 
-def test_large_tree_starts_hidden_and_the_button_says_show(parking, tmp_path, monkeypatch):
+def test_the_tree_starts_hidden_and_the_button_says_show(parking, tmp_path):
     from pydrake.geometry import Meshcat
 
     scene, report = parking
-    monkeypatch.setattr(meshcat_view, "TREE_SHOWN_MAX", 10)
     meshcat = Meshcat()
     layout = meshcat_view.draw_layout(report, scene, meshcat)
     assert layout.tree_hidden and layout.tree_paths == ("/lazyground/step0/tree",)
@@ -70,3 +69,15 @@ def test_pick_and_place_steps_are_labelled(tmp_path):
     meshcat_view.write_html(report, scene, out)
     text = " ".join(_panel(out.read_text()).split())
     assert re.search(r"Steps 1\. pick can1 \(0\.0-4\.0 s\) 2\. place can1 on table \(4\.5-8\.5 s\)", text), text
+
+
+def test_a_one_node_tree_is_one_node(parking):
+    # issue 34: the button said "(1 nodes)"
+    from pydrake.geometry import Meshcat
+
+    from lazyground.viz.replay_page import panel_html
+
+    scene, report = parking
+    layout = meshcat_view.draw_layout(report, scene, Meshcat())
+    text = " ".join(_panel(f'{panel_html(report, replace(layout, tree_nodes=1))}<style>').split())
+    assert "search tree (1 node)" in text

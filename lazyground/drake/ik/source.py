@@ -67,6 +67,8 @@ class IKGoalSource(RoundRobinGoalSource):
     its own generator's stream).
     """
 
+    reached_reasons = ("in collision",)  # IK reached the grasp, the arm collided: another grasp of the region may not
+
     def __init__(self, regions: tuple[PoseRegion, ...], world, settings: IKSettings | None = None, **kwargs):
         super().__init__(regions, **kwargs)
         sampling = kwargs.get("sampling")
