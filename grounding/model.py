@@ -43,6 +43,23 @@ class Interpretation:
 
 
 @dataclass(frozen=True)
+class Group:
+    """One "and"-part of a request for several objects (issue #30): which objects may serve, how many.
+
+    ``count`` None means all of them ("all the cups", "the cups", "clear the table"); ``already``
+    names the candidates that already rest where the request asks (reported, not moved).
+    """
+
+    phrase: str  # as typed: "two cans", "all the cups", "a cup"
+    objects: tuple[str, ...]  # candidates (each has place interpretations in the grounding)
+    count: int | None
+    already: tuple[str, ...] = ()
+
+    def to_json(self) -> dict:
+        return {"phrase": self.phrase, "objects": list(self.objects), "count": self.count, "already": list(self.already)}
+
+
+@dataclass(frozen=True)
 class Grounding:
     """Every interpretation of ``request`` that fits the scene; choosing is the planner's job."""
 
@@ -50,6 +67,7 @@ class Grounding:
     action: str
     interpretations: tuple[Interpretation, ...]
     notes: tuple[str, ...] = ()  # e.g. "'the can' matches 3 cans: all kept"
+    groups: tuple[Group, ...] = ()  # several objects (#30): one step per object, groups in order; () = one object
 
     @property
     def ambiguous(self) -> bool:
@@ -66,4 +84,5 @@ class Grounding:
             "ambiguous": self.ambiguous,
             "notes": list(self.notes),
             "interpretations": [i.to_json() for i in self.interpretations],
+            "groups": [g.to_json() for g in self.groups],
         }

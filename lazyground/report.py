@@ -30,6 +30,9 @@ def report_to_json(report: PlanReport) -> dict:
         "algorithm": report.settings.planner.algorithm,
         "goal_bias": report.settings.planner.goal_bias,
         "kinematics": report.settings.planner.kinematics,
+        "objective": report.settings.planner.objective,
+        # objective shortest/fastest: each better solution found, with the seconds since the step began (#30)
+        "improvements": [i.to_json() for i in report.outcome.improvements] if report.outcome is not None else [],
         "action": report.grounding.action,
         "ambiguous": report.grounding.ambiguous,
         "interpretations": [i.to_json() for i in report.grounding.interpretations],
@@ -67,6 +70,9 @@ def report_to_json(report: PlanReport) -> dict:
         ],
         "regions": {r.id: st.to_json() for r, st in zip(res.regions, res.region_stats)},
         "notes": list(report.grounding.notes) + list(report.notes),
+        # several objects (#30): the groups asked for and, per object, done / already there / not done and why
+        "groups": [g.to_json() for g in report.grounding.groups],
+        "objects": [o.to_json() for o in report.outcome.objects] if report.outcome is not None else [],
     }
     if report.motion is not None:
         out.update(motion_to_json(report.motion))
@@ -102,6 +108,8 @@ def report_lines(report: PlanReport) -> list[str]:
     lines.append(f"interpretations ({kinds}{len(g.interpretations)}): " + ", ".join(i.id for i in g.interpretations))
     for note in g.notes + report.notes:
         lines.append(f"note: {note}")
+    for o in report.outcome.objects if report.outcome is not None else ():
+        lines.append(f"object {o.object or '-'}: {o.status}" + (f" ({o.target})" if o.target else "") + (f": {o.why}" if o.why else ""))
     if res.solved:
         lines.append(
             f"reached: {report.chosen.id} via goal region {res.goal_region.id}"

@@ -148,6 +148,14 @@ _MOTION = frozenset({Layer.API, Layer.CLI})
 _API = frozenset({Layer.API})
 
 
+class Objective(enum.StrEnum):
+    """Which solution a run returns (issue #30); ``lazyground/tasks/anytime.py``."""
+
+    FIRST = "first"  # the first one found (the paper's planner)
+    SHORTEST = "shortest"  # the shortest shortened path found within the budget
+    FASTEST = "fastest"  # the shortest trajectory duration found within the budget
+
+
 class IKSolver(enum.StrEnum):
     """How IK goal sampling solves (lazyground/drake/ik.py)."""
 
@@ -209,6 +217,15 @@ class PlannerSettings:
         "sampled along the curves at most 0.1 m apart (`lazyground/planning/car.py`, docs/spaces.md)",
         _EVERYWHERE | {Layer.BENCH})
     time_limit: float = setting(10.0, "seconds", _EVERYWHERE | {Layer.BENCH}, low=0.0, low_open=True)
+    objective: Objective = setting(
+        Objective.FIRST, "`first`: return the first solution; `shortest` / `fastest`: keep planning to other goal "
+        "regions and samples for `budget` seconds and return the shortest shortened path / the quickest trajectory "
+        "(`lazyground/tasks/anytime.py`)", _EVERYWHERE | {Layer.BENCH})
+    budget: float | None = setting(
+        None, "seconds `shortest` / `fastest` keep planning after the first solution (within `time_limit`)",
+        _EVERYWHERE | {Layer.BENCH}, low=0.0, optional=True, default_doc="the first solution's planning time")
+    improve_rounds: int = setting(8, "`shortest` / `fastest`: searches after the first solution, at most",
+                                  _API, low=0.0)
     max_iterations: int = setting(10_000_000, "iterations before giving up", _PLANNER, low=0.0, low_open=True)
     initial_goal_samples: int = setting(10, "goal samples drawn before the search starts",
                                         _PLANNER | {Layer.PER_ALGORITHM}, low=0.0, low_open=True)

@@ -62,6 +62,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--strategies", help=f"comma list of {BY_NAME['strategy'].allowed()}")
     p.add_argument("--biases", help=f"comma list of goal biases in {BY_NAME['goal_bias'].allowed()}")
     p.add_argument("--algorithms", help=f"comma list of {BY_NAME['algorithm'].allowed()} (default: rrt, the paper's Algorithm 1)")
+    p.add_argument("--objectives", help=f"comma list of {BY_NAME['objective'].allowed()} (default: first; #30)")
+    p.add_argument("--budget", type=float, help="seconds shortest / fastest keep planning after the first solution "
+                   "(default: the first solution's time)")
     p.add_argument("--runs", type=int, help="seeds per configuration (tables: 1000 / 100; otherwise 10)")
     p.add_argument("--time-limit", type=float, help="seconds per run (default: each scene's; arms 10)")
     p.add_argument("--request", help="the request (default: each scene's first expectation)")
@@ -148,11 +151,15 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
     for key in keys:  # bad input is one line now, not an error row in every run
         _check_request(key, args.request or preset.get("requests", {}).get(Path(key).stem))
     algorithms = _checked("algorithms", "algorithm", _csv_list(args.algorithms, preset.get("algorithms", (Algorithm.RRT,))))
-    configs = [(ALGORITHMS[a], s, b) for a in algorithms for b in biases for s in strategies]
+    objectives = _checked("objectives", "objective", _csv_list(getattr(args, "objectives", None), ("first",)))
+    budget = getattr(args, "budget", None)
+    if budget is not None:
+        _checked("budget", "budget", [budget])
+    configs = [(ALGORITHMS[a], s, b, o) for a in algorithms for b in biases for s in strategies for o in objectives]
     for name in _csv_list(getattr(args, "baselines", None), ()):
         if name not in BASELINES:
             raise BenchUsageError(f"--baselines: unknown {name!r} (known: {', '.join(BASELINES)})")
-        configs += [(planner_name(name, a is Algorithm.BIDIRECTIONAL), Strategy.CONSECUTIVE.value, b)
+        configs += [(planner_name(name, a is Algorithm.BIDIRECTIONAL), Strategy.CONSECUTIVE.value, b, "first")
                     for a in algorithms for b in biases]
     kinematics = getattr(args, "kinematics", None)  # absent from Namespaces built by hand (tests)
     if args.peers and kinematics not in (None, Kinematics.HOLONOMIC):
@@ -161,11 +168,11 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
         from lazyground.bench import ompl_peer, sscbirrt_peer
 
         if ompl_peer.ompl_available():
-            configs += [("ompl-RRT", "goal-states", b) for b in biases] + [("ompl-RRTConnect", "goal-states", None)]
+            configs += [("ompl-RRT", "goal-states", b, "first") for b in biases] + [("ompl-RRTConnect", "goal-states", None, "first")]
         else:
             notes.append(ompl_peer.MISSING)
         if sscbirrt_peer.sscbirrt_available():
-            configs.append((sscbirrt_peer.PLANNER, "goal-states", None))
+            configs.append((sscbirrt_peer.PLANNER, "goal-states", None, "first"))
         else:
             notes.append(sscbirrt_peer.MISSING)
     specs = []
@@ -173,8 +180,9 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
         for key in keys:
             limit = args.time_limit if args.time_limit is not None else _scene_time_limit(key)
             request = args.request or preset.get("requests", {}).get(Path(key).stem)
-            for planner, strategy, bias in configs:
-                specs.append(RunSpec(key, planner, strategy, bias, args.seed + i, limit, request, kinematics))
+            for planner, strategy, bias, objective in configs:
+                specs.append(RunSpec(key, planner, strategy, bias, args.seed + i, limit, request, kinematics,
+                                     str(objective), budget if objective != "first" else None))
     return specs, notes, preset.get("title", "Computation time (s)")
 
 

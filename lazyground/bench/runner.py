@@ -38,6 +38,7 @@ FIELDS = (
     "direct_path_length",  # start to goal in a straight line: the shortened length's lower bound (#16)
     "collision_checks",  # the planner's own checks (#19)
     "goal_attempts",  # goal-sampling attempts over all regions, failed ones included (#19)
+    "objective", "budget",  # first / shortest / fastest and the seconds after the first solution (#30)
 )
 
 
@@ -53,10 +54,12 @@ class RunSpec:
     time_limit: float
     request: str | None = None  # None: the scene's first expectation's request
     kinematics: str | None = None  # car scenes: None keeps the scene's (a results file holds one mode)
+    objective: str = "first"  # lazyground: which solution is returned (#30)
+    budget: float | None = None  # objective shortest/fastest: seconds after the first solution (None: its time)
 
     def key(self) -> tuple:
         """What identifies a run in a results file (for --resume)."""
-        return (self.scene_name, self.planner, self.strategy, _fmt_bias(self.bias), str(self.seed))
+        return (self.scene_name, self.planner, self.strategy, _fmt_bias(self.bias), str(self.seed), str(self.objective))
 
     @property
     def scene_name(self) -> str:
@@ -75,7 +78,8 @@ def _fmt_bias(b) -> str:
 
 
 def row_key(row: dict) -> tuple:
-    return (row["scene"], row["planner"], row["strategy"], _fmt_bias(row["bias"]), str(row["seed"]))
+    return (row["scene"], row["planner"], row["strategy"], _fmt_bias(row["bias"]), str(row["seed"]),
+            str(row.get("objective") or "first"))
 
 
 @dataclass
@@ -135,7 +139,8 @@ def run(spec: RunSpec) -> dict:
     """Run one benchmark configuration; never raises (failures become status "error")."""
     row = {f: "" for f in FIELDS}
     row.update(scene=spec.scene_name, planner=spec.planner, strategy=spec.strategy, bias=_fmt_bias(spec.bias),
-               seed=spec.seed, time_limit=spec.time_limit)
+               seed=spec.seed, time_limit=spec.time_limit, objective=spec.objective,
+               budget="" if spec.budget is None else spec.budget)
     try:
         problem = load_problem(spec.scene)
         if spec.request is not None and not problem.regions:
@@ -177,7 +182,8 @@ def _run_lazyground(problem: Problem, spec: RunSpec) -> dict:
         return result_fields(result, 0.0, region.interpretation if region else "", region.id if region else "")
     from lazyground import api
 
-    report = api.plan(problem.scene, problem.request, seed=spec.seed, world=problem.world, **overrides)
+    report = api.plan(problem.scene, problem.request, seed=spec.seed, world=problem.world, objective=spec.objective,
+                      budget=spec.budget, **overrides)
     region = report.result.goal_region
     fields = result_fields(report.result, report.grounding_s, report.chosen.id if report.chosen else "", region.id if region else "")
     return fields | motion_fields(report.motion)

@@ -53,7 +53,13 @@ def read_csv(path) -> list[dict]:
 # --- statistics -----------------------------------------------------------------------------
 
 def config_label(row: dict) -> str:
-    """How a configuration is named in tables and plots."""
+    """How a configuration is named in tables and plots (an objective other than ``first`` appended)."""
+    objective = row.get("objective") or "first"
+    label = _planner_label(row)
+    return label if objective == "first" or not row["planner"].startswith("lazyground") else f"{label}, {objective}"
+
+
+def _planner_label(row: dict) -> str:
     if row["planner"] == "lazyground":
         return STRATEGY_LABEL.get(row["strategy"], row["strategy"])
     if row["planner"] == "lazyground-bidirectional":
@@ -94,9 +100,10 @@ def group(rows: list[dict]) -> dict[tuple, dict[str, list[dict]]]:
 
     def rank(key):  # ours (one tree, then bidirectional) by bias then strategy as in the paper, then the peers
         label, bias = key
+        base, _, objective = label.partition(", ")  # ours with an objective other than first (#30) after first
         b = float(bias) if bias not in ("", None) else 2.0
-        ours = label in order
-        return (not ours, ours and Algorithm.BIDIRECTIONAL in label, b, order.index(label) if ours else label)
+        ours = base in order
+        return (not ours, ours and Algorithm.BIDIRECTIONAL in label, b, order.index(base) if ours else label, objective)
 
     return dict(sorted(out.items(), key=lambda kv: rank(kv[0])))
 

@@ -3,11 +3,14 @@
 - JSON: ``{"joint_names", "wrap", "trajectory": {"t", "q", "qd", "qdd"}, ...}``; ``wrap`` names
   the coordinates that are angles without limits (continuous joints, a car's heading):
   their ``q`` is unwrapped (continuous along the motion), so interpolate it linearly.
-- CSV: one row per sample, ``t, q.<joint>..., qd.<joint>..., qdd.<joint>...``.
+- CSV: one row per sample, ``t, q.<joint>..., qd.<joint>..., qdd.<joint>..., gripper``; ``gripper`` is
+  1 while the gripper is closed, 0 while open (it changes at the sample where the event's rest begins).
 - ROS: a ``trajectory_msgs/msg/JointTrajectory`` as YAML (``header``, ``joint_names``,
   ``points`` with ``positions``, ``velocities``, ``accelerations``, ``effort`` and
   ``time_from_start: {sec, nanosec}``), e.g. for ``ros2 topic pub`` or a
-  FollowJointTrajectory goal.
+  FollowJointTrajectory goal; beside it, when the motion has gripper events, ``<name>.gripper.yaml``:
+  a list of ``{time_from_start, command}`` with ``command`` a ``control_msgs/msg/GripperCommand``
+  (``position`` in metres, ``max_effort``) sent at that time (issue #30).
 """
 
 from __future__ import annotations
@@ -21,6 +24,38 @@ import yaml
 
 from lazyground.motion import TRAJECTORY_FORMATS as FORMATS
 from lazyground.motion.trajectory import Trajectory
+
+CLOSE, OPEN = "close gripper", "open gripper"  # the events lazyground.motion.steps records
+
+
+def gripper_state(traj: Trajectory) -> np.ndarray:
+    """Per sample of ``traj``: 1.0 while the gripper is closed, 0.0 while open (open at the start)."""
+    state = np.zeros(len(traj.t))
+    for t, event in sorted(traj.events):
+        if event in (CLOSE, OPEN):
+            state[traj.t >= t - 1e-12] = 1.0 if event == CLOSE else 0.0
+    return state
+
+
+def _stamp(t: float) -> dict:
+    ns = int(round(float(t) * 1e9))
+    return {"sec": ns // 1_000_000_000, "nanosec": ns % 1_000_000_000}
+
+
+def ros_gripper_commands(traj: Trajectory, open_position: float = 0.04, closed_position: float = 0.0,
+                         max_effort: float = 0.0) -> list[dict]:
+    """The gripper events as timed ``control_msgs/msg/GripperCommand`` messages (plain data).
+
+    Args:
+        traj: the trajectory whose ``events`` say when the gripper closes and opens.
+        open_position: the command's ``position`` (metres between the fingers) to open.
+        closed_position: its ``position`` to close (the controller stops at the object).
+        max_effort: the command's ``max_effort`` (0: the controller's default).
+    """
+    return [{"time_from_start": _stamp(t),
+             "command": {"position": float(closed_position if e == CLOSE else open_position),
+                         "max_effort": float(max_effort)}}
+            for t, e in sorted(traj.events) if e in (CLOSE, OPEN)]
 
 
 
@@ -62,45 +97,68 @@ def write_trajectory(traj: Trajectory, path: str | Path) -> None:
     elif path.suffix.lower() == ".csv":
         with path.open("w", newline="") as f:
             out = csv.writer(f)
-            out.writerow(["t"] + [f"{k}.{n}" for k in ("q", "qd", "qdd") for n in traj.joint_names])
-            for row in np.column_stack([traj.t, traj.q, traj.qd, traj.qdd]):
+            out.writerow(["t"] + [f"{k}.{n}" for k in ("q", "qd", "qdd") for n in traj.joint_names] + ["gripper"])
+            for row in np.column_stack([traj.t, traj.q, traj.qd, traj.qdd, gripper_state(traj)]):
                 out.writerow([repr(float(x)) for x in row])
     else:
         raise ValueError(f"{path}: trajectory files end in {' or '.join(FORMATS)}")
 
 
 def read_trajectory_csv(path: str | Path) -> dict[str, np.ndarray]:
-    """A CSV written by :func:`write_trajectory`: ``{"t", "q", "qd", "qdd", "joint_names"}``."""
+    """A CSV written by :func:`write_trajectory`: ``{"t", "q", "qd", "qdd", "gripper", "joint_names"}``
+    (``gripper`` all zeros for a file without the column)."""
     with Path(path).open(newline="") as f:
         rows = list(csv.reader(f))
     header, data = rows[0], np.array(rows[1:], float).reshape(-1, len(rows[0]))
-    n = (len(header) - 1) // 3
+    gripper = data[:, -1] if header[-1] == "gripper" else np.zeros(len(data))
+    n = (len(header) - 1 - (header[-1] == "gripper")) // 3
     names = [h.split(".", 1)[1] for h in header[1 : n + 1]]
-    return {"joint_names": names, "t": data[:, 0], "q": data[:, 1 : n + 1], "qd": data[:, n + 1 : 2 * n + 1], "qdd": data[:, 2 * n + 1 :]}
+    return {"joint_names": names, "t": data[:, 0], "q": data[:, 1 : n + 1], "qd": data[:, n + 1 : 2 * n + 1],
+            "qdd": data[:, 2 * n + 1 : 3 * n + 1], "gripper": gripper}
 
 
 def ros_joint_trajectory(traj: Trajectory, frame_id: str = "") -> dict:
     """``trajectory_msgs/msg/JointTrajectory`` as plain data (ROS 2 field names)."""
     points = []
     for t, q, qd, qdd in zip(traj.t, traj.q, traj.qd, traj.qdd):
-        ns = int(round(float(t) * 1e9))
         points.append({
             "positions": [float(x) for x in q],
             "velocities": [float(x) for x in qd],
             "accelerations": [float(x) for x in qdd],
             "effort": [],
-            "time_from_start": {"sec": ns // 1_000_000_000, "nanosec": ns % 1_000_000_000},
+            "time_from_start": _stamp(t),
         })
     return {"header": {"stamp": {"sec": 0, "nanosec": 0}, "frame_id": frame_id}, "joint_names": list(traj.joint_names), "points": points}
 
 
-def write_ros_trajectory(traj: Trajectory, path: str | Path) -> None:
-    """Write ``traj`` as a ``trajectory_msgs/JointTrajectory`` YAML file.
+def gripper_path(path: str | Path) -> Path:
+    """Where :func:`write_ros_trajectory` puts the gripper commands beside ``path``: ``<stem>.gripper.yaml``."""
+    path = Path(path)
+    return path.with_name(path.stem + ".gripper.yaml")
+
+
+def write_ros_trajectory(traj: Trajectory, path: str | Path, **gripper) -> list[Path]:
+    """Write ``traj`` as a ``trajectory_msgs/JointTrajectory`` YAML file and, when it has gripper events,
+    their ``control_msgs/GripperCommand`` sequence beside it (:func:`gripper_path`).
+
+    Args:
+        traj: the trajectory.
+        path: the JointTrajectory file.
+        **gripper: :func:`ros_gripper_commands`' positions and effort.
+
+    Returns:
+        The files written.
 
     Raises:
-        OSError: the file cannot be written.
+        OSError: a file cannot be written.
     """
-    Path(path).write_text(yaml.safe_dump(ros_joint_trajectory(traj), sort_keys=False, default_flow_style=None, width=1 << 16))
+    dump = dict(sort_keys=False, default_flow_style=None, width=1 << 16)
+    Path(path).write_text(yaml.safe_dump(ros_joint_trajectory(traj), **dump))
+    commands = ros_gripper_commands(traj, **gripper)
+    if not commands:
+        return [Path(path)]
+    gripper_path(path).write_text(yaml.safe_dump(commands, **dump))
+    return [Path(path), gripper_path(path)]
 
 
 def read_ros_trajectory(path: str | Path) -> dict[str, np.ndarray]:
@@ -166,6 +224,5 @@ def write_outputs(report, trajectory: str | None = None, ros_trajectory: str | N
         write_trajectory(traj, trajectory)
         lines.append(f"wrote {trajectory}")
     if ros_trajectory:
-        write_ros_trajectory(traj, ros_trajectory)
-        lines.append(f"wrote {ros_trajectory}")
+        lines.extend(f"wrote {p}" for p in write_ros_trajectory(traj, ros_trajectory))
     return lines

@@ -11,16 +11,17 @@ from __future__ import annotations
 
 import importlib
 
-from lazyground.tasks.outcome import Grasp, Lift, Outcome, Placement, Step
+from lazyground.tasks.outcome import Grasp, Lift, ObjectStep, Outcome, Placement, Step
 from lazyground.tasks.worlds import Worlds
 
 TASKS: dict[str, str] = {
     "park": "lazyground.tasks.reach",
     "pick": "lazyground.tasks.reach",
     "place": "lazyground.tasks.place",  # pick and place, with fallback to another object
+    "several": "lazyground.tasks.several",  # pick and place of several objects in turn (grounding.groups; #30)
 }
 
-__all__ = ["TASKS", "Grasp", "Lift", "Outcome", "Placement", "Step", "Worlds", "run", "task"]
+__all__ = ["TASKS", "Grasp", "Lift", "ObjectStep", "Outcome", "Placement", "Step", "Worlds", "run", "task"]
 
 
 def task(action: str):
@@ -39,4 +40,5 @@ def run(scene, grounding, settings, rng, worlds: Worlds, *, seed: int | None = N
         clock=None) -> Outcome:
     """Run the task registered for ``grounding.action`` (see the module docstring); ``clock`` (default
     :func:`lazyground.planning.stop.default_clock`) is the one its stop conditions read."""
-    return task(grounding.action)(scene, grounding, settings, rng, worlds, seed=seed, keep_tree=keep_tree, clock=clock)
+    key = "several" if getattr(grounding, "groups", ()) else grounding.action
+    return task(key)(scene, grounding, settings, rng, worlds, seed=seed, keep_tree=keep_tree, clock=clock)

@@ -48,6 +48,19 @@ class Placement:
 
 
 @dataclass(frozen=True)
+class ObjectStep:
+    """What became of one object of a several-object request (issue #30)."""
+
+    object: str | None  # None: no candidate was left to try
+    status: str  # "done", "already there", "not done"
+    target: str | None = None  # where it was put (or already is)
+    why: str = ""  # not done: the planner's reason; done: which candidates were passed over
+
+    def to_json(self) -> dict:
+        return {"object": self.object, "status": self.status, "target": self.target, "why": self.why}
+
+
+@dataclass(frozen=True)
 class Step:
     """One planned motion of a task."""
 
@@ -83,6 +96,8 @@ class Outcome:
     lift: Lift | None = None
     placement: Placement | None = None
     fallbacks: int = 0  # objects given up on before the one that was placed
+    objects: tuple = ()  # several objects (#30): one ObjectStep per object asked for, in order (tasks.several)
+    improvements: tuple = ()  # objective shortest/fastest: (time, cost, region) of each better solution (tasks.anytime)
 
     @property
     def grasp(self) -> Grasp | None:

@@ -87,7 +87,8 @@ def lift_is_clear(world: DrakeWorld, carrying: DrakeWorld, lift: np.ndarray, res
     return bool(free[-1] and np.all(free[int(np.argmax(free)):]) and np.all(world.configs_free(dense)))
 
 
-def _combine(results: list[PlanResult], status: PlanStatus, path, goal, region, elapsed: float, message: str) -> PlanResult:
+def combine(results: list[PlanResult], status: PlanStatus, path, goal, region, elapsed: float, message: str) -> PlanResult:
+    """One result for several steps: the last one's fields, the counts and lengths summed, the given status and path."""
     last = results[-1]
     return replace(
         last,
@@ -148,7 +149,7 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
 
     def finish(status: PlanStatus, message: str, **done) -> Outcome:
         if results:
-            combined = _combine(results, status, done.get("path"), done.get("goal"), done.get("region"), planning_s(), message)
+            combined = combine(results, status, done.get("path"), done.get("goal"), done.get("region"), planning_s(), message)
         else:
             combined = PlanResult(status, seed, None, None, None, 0, 0, [], 0, planning_s(), 0.0, 0.0, message)
         return Outcome(combined, done.get("steps", ()), world.space.names, tuple(notes), done.get("lift"),

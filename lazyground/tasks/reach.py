@@ -2,11 +2,16 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
+import numpy as np
+
 from lazyground.goals import goal_source_for
 from lazyground.motion.post import post_process
-from lazyground.planning.rrt import solve
+from lazyground.planning.rrt import path_is_valid, solve
 from lazyground.planning.stop import StopCondition
 from lazyground.planning.turns import sweep_note
+from lazyground.tasks.anytime import best_of, improvement_notes
 from lazyground.tasks.car_space import planning_space
 from lazyground.tasks.outcome import Outcome, Step
 
@@ -18,7 +23,8 @@ def make_goal_source(world, regions, sampling=None):
 
 def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, keep_tree: bool = False,
         clock=None) -> Outcome:
-    """Plan to whichever of ``grounding``'s goal regions is reachable first.
+    """Plan to whichever of ``grounding``'s goal regions is reachable first, or the best one found within the
+    budget (``objective``; :mod:`lazyground.tasks.anytime`).
 
     Args:
         scene: the Scene.
@@ -36,13 +42,30 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     world = worlds.get()
     setup_s = worlds.setup_s
     planner = settings.planner
-    source = make_goal_source(world, grounding.goal_regions, settings.goal_sampling)
     space = planning_space(scene, world.space, planner.kinematics)  # a car's curves, or world.space
     stop = StopCondition.after(planner.time_limit, max_iterations=planner.max_iterations, clock=clock)
-    result = solve(space, world, source, world.start, planner, rng, seed=seed, keep_tree=keep_tree, stop=stop)
-    result, motion = post_process(space, world, result, settings, rng)  # shortened and timed, as the space chose
+
+    def attempt(regions, within):
+        source = make_goal_source(world, regions, settings.goal_sampling)
+        result = solve(space, world, source, world.start, planner, rng, seed=seed, keep_tree=keep_tree, stop=within)
+        return post_process(space, world, result, settings, rng)  # shortened and timed, as the space chose
+
+    def connect(template, sample):
+        """The straight line from the start to a drawn goal sample (and its checked approach), if free."""
+        path = np.array([world.start, sample.q])
+        if space.post_processing != "straight" or path_is_valid(
+                space, world, path, planner.resolution / planner.validation_factor) >= 0:
+            return None
+        path = path if sample.final is None else np.vstack([path, sample.final])
+        result = replace(template, path=path, goal=sample, goal_region=template.regions[sample.region],
+                         path_length=space.path_length(path))
+        return post_process(space, world, result, settings, rng)
+
+    best = best_of(attempt, tuple(grounding.goal_regions), space, world.start, planner, stop, connect)
+    result, motion = best.result, best.motion
     notes = world.model_notes + ((motion.note,) if motion is not None and motion.note else ())
     swept = sweep_note(motion.shortcut.path, world.space.names, world.space.wrap, world.coordinates.turns) \
         if motion is not None and result.solved else None
-    notes += (swept,) if swept else ()
-    return Outcome(result, (Step(grounding.action, result, setup_s, motion=motion),), world.space.names, notes)
+    notes += ((swept,) if swept else ()) + improvement_notes(best)
+    return Outcome(result, (Step(grounding.action, result, setup_s, motion=motion),), world.space.names, notes,
+                   improvements=best.improvements)

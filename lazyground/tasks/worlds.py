@@ -24,7 +24,7 @@ class Worlds:
             visual: build worlds with visual geometry (viewers need it).
         """
         self.scene = scene
-        self._visual = visual
+        self.visual = visual
         self._cache: dict[tuple, object] = {} if world is None else {(): world}
         self.setup_s = 0.0  # seconds spent building worlds so far
 
@@ -41,7 +41,7 @@ class Worlds:
 
             t0 = default_clock()
             attached = None if grasp is None else Attachment(self.scene.object(grasp.object_id), grasp.frame, grasp.X_GO)
-            world = DrakeWorld(self.scene, attached=attached, visual=self._visual)
+            world = DrakeWorld(self.scene, attached=attached, visual=self.visual)
             self.setup_s += default_clock() - t0
             self._cache[key] = world
         return world

@@ -83,11 +83,19 @@ def _legend(layout: Layout) -> str:
     return "".join(f'<li><span class="sw" style="background:{c}"></span>{html.escape(t)}</li>' for c, t in items)
 
 
+def _object_item(o) -> str:
+    """One object of a several-object request (#30): done / already there / not done, where, why."""
+    where = f" -> {o.target}" if o.target else ""
+    why = f' <span class="dim">({html.escape(o.why)})</span>' if o.why else ""
+    return f"<li>{html.escape((o.object or '-') + ': ' + o.status + where)}{why}</li>"
+
+
 def panel_html(report, layout: Layout) -> str:
     """The side panel (HTML, CSS and a little JavaScript over Meshcat's global ``viewer``)."""
     steps = "".join(f'<li data-t0="{t0:.3f}" data-t1="{t1:.3f}">{html.escape(label)} '
                     f'<span class="dim">({t0:.1f}-{t1:.1f} s)</span></li>' for label, t0, t1 in layout.windows)
     notes = "".join(f"<li>{html.escape(n)}</li>" for n in tuple(report.grounding.notes) + tuple(report.notes))
+    objects = "".join(_object_item(o) for o in (report.outcome.objects if report.outcome is not None else ()))
     button = ""
     if layout.tree_paths:
         word = "Show" if layout.tree_hidden else "Hide"
@@ -98,6 +106,7 @@ def panel_html(report, layout: Layout) -> str:
   <div class="status {'ok' if report.result.solved else 'bad'}">{_status(report)}</div>
   <h4>Interpretations ({len(report.grounding.interpretations)})</h4><ul class="interps">{_interpretations(report)}</ul>
   {f'<h4>Steps</h4><ul class="steps">{steps}</ul>' if len(layout.windows) > 1 else ''}
+  {f'<h4>Objects</h4><ul class="objects small">{objects}</ul>' if objects else ''}
   <div class="dim small">{_times(report)}</div>
   {f'<ul class="notes small">{notes}</ul>' if notes else ''}
   {button}

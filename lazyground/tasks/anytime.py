@@ -1,0 +1,152 @@
+"""The best answer rather than the first (issue #30): keep planning after the first solution.
+
+With ``objective: shortest`` (or ``fastest``) a step is planned, shortened and timed once as
+usual; then, within ``budget`` seconds (default: as long again as the first solution took) and at
+most ``improve_rounds`` searches, it is planned again, each search over the goal regions that can
+still win, and the best solution by its *shortened* path length (or trajectory duration) is kept.
+
+Pruning: a region whose nearest known goal sample is, in a straight line from the start, at
+least as far as the best shortened path is dropped (the straight line bounds every path to that
+sample; other samples of the region may be nearer, so it is a heuristic bound, as cuRobo's goalset
+costs are). The first searches go to regions not reached yet (other interpretations), later ones
+to every region left (other goal samples and trees). Each search gets at most half of what is left
+of the budget, so an unreachable region cannot take all of it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Callable
+
+import numpy as np
+
+from lazyground.planning.problem import PlanResult, PlanStatus
+from lazyground.planning.stop import StopCondition
+from lazyground.regions import GoalRegion
+from lazyground.settings import Objective, PlannerSettings
+
+Attempt = Callable[[tuple[GoalRegion, ...], StopCondition], tuple[PlanResult, object]]
+Connect = Callable[[PlanResult, object], tuple[PlanResult, object] | None]  # (solved template, goal sample)
+
+
+@dataclass(frozen=True)
+class Improvement:
+    """One better solution: seconds since the step began, its cost, the goal region it reached."""
+
+    time_s: float
+    cost: float
+    region: str
+
+    def to_json(self) -> dict:
+        return {"time_s": round(self.time_s, 6), "cost": round(self.cost, 6), "region": self.region}
+
+
+@dataclass(frozen=True)
+class Anytime:
+    """What :func:`best_of` returns: the best attempt, the improvements in time order and notes."""
+
+    result: PlanResult
+    motion: object | None
+    improvements: tuple[Improvement, ...]
+    searches: int
+    pruned: tuple[str, ...]  # regions dropped because their bound could not beat the best
+
+
+def cost(objective: Objective, result: PlanResult, motion) -> float:
+    """A solved result's cost: its (shortened) path length, or its trajectory's duration for ``fastest``."""
+    if not result.solved:
+        return math.inf
+    if objective is Objective.FASTEST and motion is not None and getattr(motion, "trajectory", None) is not None:
+        return float(motion.trajectory.duration)
+    return float(result.path_length)
+
+
+def _add_bounds(bounds: dict[str, float], space, start: np.ndarray, result: PlanResult) -> None:
+    """Per region id: the straight-line distance from the start to its nearest known goal sample (updated)."""
+    for s in result.goal_samples:
+        rid = result.regions[s.region].id
+        bounds[rid] = min(bounds.get(rid, math.inf), space.distance(start, s.end))
+
+
+def best_of(attempt: Attempt, regions: tuple[GoalRegion, ...], space, start: np.ndarray,
+            planner: PlannerSettings, stop: StopCondition, connect: Connect | None = None) -> Anytime:
+    """Plan with ``attempt`` once, then keep the best of further attempts as ``planner.objective`` asks.
+
+    Args:
+        attempt: plans to some of the regions within a stop condition; returns the result (shortened) and its
+            Motion (or None).
+        regions: every goal region of the step.
+        space: the planning space (its ``distance`` bounds a path from below).
+        start: the step's start configuration.
+        planner: ``objective``, ``budget`` and ``improve_rounds`` are read.
+        stop: the step's stop condition (the budget is a share of it).
+        connect: tries the straight line from the start to a goal sample the first search drew (nearest first,
+            while it could beat the best); returns the result and Motion, or None when the line is blocked.
+
+    Returns:
+        An :class:`Anytime`; its result's counts sum every search; beyond the first, its ``time_s`` is the
+        whole time since ``stop`` began (searches, straight lines and shortening them).
+    """
+    first, motion = attempt(regions, stop)
+    best = (first, motion)
+    if not first.solved:
+        return Anytime(first, motion, (), 1, ())
+    objective = Objective(planner.objective)
+    history = [Improvement(stop.elapsed(), cost(objective, first, motion), first.goal_region.id)]
+    if objective is Objective.FIRST or planner.improve_rounds == 0:
+        return Anytime(first, motion, tuple(history), 1, ())
+    seconds = planner.budget if planner.budget is not None else first.time_s
+    improve = stop.share(seconds=seconds)
+    results, bounds = [first], {}
+    _add_bounds(bounds, space, start, first)
+    reached, tried, pruned = {first.goal_region.id}, set(), set()
+    if connect is not None:  # the cheapest better answers: straight to a goal sample already drawn
+        drawn = sorted(first.goal_samples, key=lambda g: space.distance(start, g.q))
+        for sample in drawn[:planner.improve_rounds]:
+            if improve.should_stop() or space.distance(start, sample.q) >= history[-1].cost:
+                break
+            out = connect(first, sample)
+            if out is not None and cost(objective, *out) < history[-1].cost - 1e-9:
+                best = out
+                history.append(Improvement(stop.elapsed(), cost(objective, *out), out[0].goal_region.id))
+    for _ in range(planner.improve_rounds):
+        if improve.should_stop():
+            break
+        best_cost = history[-1].cost
+        # a path is at least as long as the straight line; a duration has no such bound here
+        alive = [r for r in regions if objective is not Objective.SHORTEST or bounds.get(r.id, 0.0) < best_cost]
+        pruned = {r.id for r in regions} - {r.id for r in alive}
+        if not alive:
+            break
+        fresh = [r for r in alive if r.id not in reached and r.id not in tried]
+        targets = tuple(fresh or alive)
+        tried |= {r.id for r in fresh}
+        result, m = attempt(targets, improve.share(0.5))
+        results.append(result)
+        _add_bounds(bounds, space, start, result)
+        if result.status is PlanStatus.INTERRUPTED:
+            break
+        if not result.solved:
+            continue
+        reached.add(result.goal_region.id)
+        c = cost(objective, result, m)
+        if c < best_cost - 1e-9:
+            best = (result, m)
+            history.append(Improvement(stop.elapsed(), c, result.goal_region.id))
+    result, motion = best
+    total = replace(result, iterations=sum(r.iterations for r in results), tree_size=result.tree_size,
+                    time_s=stop.elapsed(),  # every search, straight line and their shortening: the anytime run
+                    goal_sampling_s=sum(r.goal_sampling_s for r in results),
+                    collision_s=sum(r.collision_s for r in results))
+    return Anytime(total, motion, tuple(history), len(results), tuple(sorted(pruned)))
+
+
+def improvement_notes(best: Anytime) -> tuple[str, ...]:
+    """One note when later searches ran: how many, the cost before and after, what was pruned."""
+    if best.searches <= 1:
+        return ()
+    first, last = best.improvements[0], best.improvements[-1]
+    pruned = f"; pruned {', '.join(best.pruned)}" if best.pruned else ""
+    return (f"best of {best.searches} searches: cost {first.cost:.3f} -> {last.cost:.3f} "
+            f"({len(best.improvements) - 1} improvement(s)){pruned}",)

@@ -1,0 +1,29 @@
+"""Best, not first (issue #30) on the bundled UR5e tabletop: shortest never returns a longer path than first
+from the same seed, and what it returns is valid at the fine resolution."""
+
+import pytest
+
+pytest.importorskip("pydrake")
+
+from lazyground import api  # noqa: E402
+from lazyground.planning import path_is_valid  # noqa: E402
+from lazyground.scene import load_scene  # noqa: E402
+from lazyground.tasks.worlds import Worlds  # noqa: E402
+from lazyground.bundled import bundled_scene  # noqa: E402
+
+SCENE = load_scene(bundled_scene("ur5e_tabletop"))
+# the searches end on these caps, not on the clock (the budget is a backstop)
+CAPS = dict(max_iterations=3000, budget=300.0, improve_rounds=3)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_shortest_is_no_longer_than_first_and_valid(seed):
+    world = Worlds(SCENE, visual=False).get()
+    first = api.plan(SCENE, "pick up a cup", seed=seed, world=world, max_iterations=3000)
+    best = api.plan(SCENE, "pick up a cup", seed=seed, world=world, objective="shortest", **CAPS)
+    assert first.result.solved and best.result.solved
+    assert best.result.path_length <= first.result.path_length + 1e-9
+    costs = [i.cost for i in best.outcome.improvements]
+    assert costs[0] == pytest.approx(first.result.path_length) and costs == sorted(costs, reverse=True)
+    planner = best.settings.planner
+    assert path_is_valid(world.space, world, best.result.path, planner.resolution / planner.validation_factor) < 0
