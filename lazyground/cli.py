@@ -204,6 +204,7 @@ def cmd_plan(args) -> int:
     _import_drake()
     work_begins()
     report = api.plan(scene, args.request, keep_tree=visual, **overrides)
+    _say_compiled()
     if args.json:
         print(json.dumps(report_to_json(report)))
     else:
@@ -226,6 +227,16 @@ def cmd_plan(args) -> int:
         for line in lines:
             print(line, file=sys.stderr if args.json else sys.stdout)
     return EXIT_OK if res.solved else EXIT_FAILED
+
+
+def _say_compiled() -> None:
+    """One line on stderr when this run compiled the collision kernels (the first on a machine: tens of seconds)."""
+    from lazyground.drake import compiled
+
+    done = compiled.compile_report()
+    if done and done[1]:
+        print(f"note: compiled the collision kernels in {done[0]:.0f} s, within the world build (once per machine: "
+              "numba caches them)", file=sys.stderr)
 
 
 def _writing(what: str, write):
