@@ -203,8 +203,12 @@ def cmd_plan(args) -> int:
     visual = bool(args.html or args.meshcat or args.plot or args.animate)
     _import_drake()
     work_begins()
+    from lazyground.drake import compiled
+
+    compiled_before = compiled.compile_report()
     report = api.plan(scene, args.request, keep_tree=visual, **overrides)
-    _say_compiled()
+    if compiled_before is None:
+        _say_compiled(compiled.compile_report())
     if args.json:
         print(json.dumps(report_to_json(report)))
     else:
@@ -229,11 +233,8 @@ def cmd_plan(args) -> int:
     return EXIT_OK if res.solved else EXIT_FAILED
 
 
-def _say_compiled() -> None:
+def _say_compiled(done: tuple[float, bool] | None) -> None:
     """One line on stderr when this run compiled the collision kernels (the first on a machine: tens of seconds)."""
-    from lazyground.drake import compiled
-
-    done = compiled.compile_report()
     if done and done[1]:
         print(f"note: compiled the collision kernels in {done[0]:.0f} s, within the world build (once per machine: "
               "numba caches them)", file=sys.stderr)
