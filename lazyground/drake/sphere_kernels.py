@@ -70,6 +70,13 @@ def _solid_distance(x0, x1, x2, h0, h1, h2, rounding, cylinder):
     return np.sqrt(a * a + b * b + c * c) + min(max(max(d0, d1), d2), 0.0) - rounding
 
 
+@njit(cache=True, inline="always")
+def _offset_distance(vx, vy, vz, R, half, rounding, cylinder):
+    """Signed distance to a solid with world axes R (columns) from a point at world offset v from its centre."""
+    return _solid_distance(R[0, 0] * vx + R[1, 0] * vy + R[2, 0] * vz, R[0, 1] * vx + R[1, 1] * vy + R[2, 1] * vz,
+                           R[0, 2] * vx + R[1, 2] * vy + R[2, 2] * vz, half[0], half[1], half[2], rounding, cylinder)
+
+
 @njit(cache=True)
 def _forward(q, fd, idata, Rs, ps, Rb, pb):
     """World rotation Rb (n, 3, 3) and position pb (n, 3) of every tree body at plant positions q."""
@@ -161,10 +168,7 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap)
                 continue
             thr = env[g, o]
             vx, vy, vz = cx - oo[o, 0], cy - oo[o, 1], cz - oo[o, 2]
-            x0 = oR[o, 0, 0] * vx + oR[o, 1, 0] * vy + oR[o, 2, 0] * vz
-            x1 = oR[o, 0, 1] * vx + oR[o, 1, 1] * vy + oR[o, 2, 1] * vz
-            x2 = oR[o, 0, 2] * vx + oR[o, 1, 2] * vy + oR[o, 2, 2] * vz
-            if _solid_distance(x0, x1, x2, ohalf[o, 0], ohalf[o, 1], ohalf[o, 2], oround[o], ocyl[o]) - rg - thr > 0.0:
+            if _offset_distance(vx, vy, vz, oR[o], ohalf[o], oround[o], ocyl[o]) - rg - thr > 0.0:
                 continue
             if oexact[o] and _inner_reach(node[g], Rb, pb, ic, ir, istart[g], istart[g + 1], oR[o], oo[o], ohalf[o],
                                           oround[o], ocyl[o], thr - below):
@@ -174,10 +178,7 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap)
                 done[g] = 1.0
             for s in range(start[g], start[g + 1]):
                 vx, vy, vz = sph[s, 0] - oo[o, 0], sph[s, 1] - oo[o, 1], sph[s, 2] - oo[o, 2]
-                x0 = oR[o, 0, 0] * vx + oR[o, 1, 0] * vy + oR[o, 2, 0] * vz
-                x1 = oR[o, 0, 1] * vx + oR[o, 1, 1] * vy + oR[o, 2, 1] * vz
-                x2 = oR[o, 0, 2] * vx + oR[o, 1, 2] * vy + oR[o, 2, 2] * vz
-                if _solid_distance(x0, x1, x2, ohalf[o, 0], ohalf[o, 1], ohalf[o, 2], oround[o], ocyl[o]) - sr[s] - thr <= 0.0:
+                if _offset_distance(vx, vy, vz, oR[o], ohalf[o], oround[o], ocyl[o]) - sr[s] - thr <= 0.0:
                     _solid_axes(Rb, node[g], gR, g, A)
                     if _box_gap(A, centre[g], ghalf[g], oR[o], oo[o], ohalf[o]) - ground[g] - oround[o] - thr > 0.0:
                         break  # the two boxes around the solids are apart: clear
@@ -197,10 +198,7 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap)
         for r in range(3):
             for c in range(3):
                 W[r, c] = Rb[bh, r, 0] * gR[h, 0, c] + Rb[bh, r, 1] * gR[h, 1, c] + Rb[bh, r, 2] * gR[h, 2, c]
-        x0 = W[0, 0] * vx + W[1, 0] * vy + W[2, 0] * vz
-        x1 = W[0, 1] * vx + W[1, 1] * vy + W[2, 1] * vz
-        x2 = W[0, 2] * vx + W[1, 2] * vy + W[2, 2] * vz
-        if _solid_distance(x0, x1, x2, ghalf[h, 0], ghalf[h, 1], ghalf[h, 2], ground[h], gcyl[h]) - grad[g] - thr > 0.0:
+        if _offset_distance(vx, vy, vz, W, ghalf[h], ground[h], gcyl[h]) - grad[g] - thr > 0.0:
             continue
         if gexact[h] and _inner_reach(node[g], Rb, pb, ic, ir, istart[g], istart[g + 1], W, centre[h], ghalf[h],
                                       ground[h], gcyl[h], thr - below):
@@ -210,10 +208,7 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap)
             done[g] = 1.0
         for s in range(start[g], start[g + 1]):
             vx, vy, vz = sph[s, 0] - centre[h, 0], sph[s, 1] - centre[h, 1], sph[s, 2] - centre[h, 2]
-            x0 = W[0, 0] * vx + W[1, 0] * vy + W[2, 0] * vz
-            x1 = W[0, 1] * vx + W[1, 1] * vy + W[2, 1] * vz
-            x2 = W[0, 2] * vx + W[1, 2] * vy + W[2, 2] * vz
-            if _solid_distance(x0, x1, x2, ghalf[h, 0], ghalf[h, 1], ghalf[h, 2], ground[h], gcyl[h]) - sr[s] - thr <= 0.0:
+            if _offset_distance(vx, vy, vz, W, ghalf[h], ground[h], gcyl[h]) - sr[s] - thr <= 0.0:
                 _solid_axes(Rb, node[g], gR, g, A)
                 if _box_gap(A, centre[g], ghalf[g], W, centre[h], ghalf[h]) - ground[g] - ground[h] - thr > 0.0:
                     break
@@ -233,10 +228,7 @@ def _inner_reach(b, Rb, pb, ic, ir, lo, hi, R, c, half, rounding, cylinder, limi
         wx = Rb[b, 0, 0] * ic[s, 0] + Rb[b, 0, 1] * ic[s, 1] + Rb[b, 0, 2] * ic[s, 2] + pb[b, 0] - c[0]
         wy = Rb[b, 1, 0] * ic[s, 0] + Rb[b, 1, 1] * ic[s, 1] + Rb[b, 1, 2] * ic[s, 2] + pb[b, 1] - c[1]
         wz = Rb[b, 2, 0] * ic[s, 0] + Rb[b, 2, 1] * ic[s, 1] + Rb[b, 2, 2] * ic[s, 2] + pb[b, 2] - c[2]
-        x0 = R[0, 0] * wx + R[1, 0] * wy + R[2, 0] * wz
-        x1 = R[0, 1] * wx + R[1, 1] * wy + R[2, 1] * wz
-        x2 = R[0, 2] * wx + R[1, 2] * wy + R[2, 2] * wz
-        if _solid_distance(x0, x1, x2, half[0], half[1], half[2], rounding, cylinder) - ir[s] <= limit:
+        if _offset_distance(wx, wy, wz, R, half, rounding, cylinder) - ir[s] <= limit:
             return True
     return False
 
