@@ -116,8 +116,9 @@ class Search:
         return bool(self.samples)
 
     def _ik_in_budget(self) -> bool:
-        """Whether goal sampling is within the strategy's ``attempts_per_iteration`` (goal-sampling attempts
-        per search iteration, counted since the first sample; a source that does not count them: always).
+        """Whether goal sampling is within the strategy's budget: ``free_attempts`` plus ``attempts_per_iteration``
+        per search iteration (goal-sampling attempts counted since the first sample; a source that does not
+        count them: always).
 
         Counted, not timed, so that a seed gives the same run on any machine."""
         total = getattr(self.goals, "total_attempts", None)
@@ -126,7 +127,7 @@ class Search:
             return True
         if self._attempts0 is None:
             self._attempts0 = total
-        return total - self._attempts0 <= ratio * self.iterations
+        return total - self._attempts0 <= ratio * self.iterations + getattr(self.selector, "free_attempts", 0)
 
     def select(self) -> int | None:
         """The strategy's goal sample (skipping dead ones), its attempt counted; None if all are dead."""
@@ -159,6 +160,8 @@ class Search:
             self._below.add(gi)
         if wants_more and only_if_all_stuck and not getattr(self.selector, "resample_alone", False):
             wants_more = len(self._below) >= len(self.samples) - len(self.dead)  # every live sample is stuck (no scan)
+        if wants_more and self._covers:
+            wants_more = self._ik_in_budget()
         if wants_more:
             self.resamplings += 1
             self.draw(getattr(self.selector, "batch", self.settings.resample_count))
