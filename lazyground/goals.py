@@ -28,6 +28,10 @@ from lazyground.settings import GoalSamplingSettings
 
 
 REACHED_FACTOR = 4  # a region whose goals are reached but collide gets this many times the attempts
+# A region none of whose goals were reached, HOPELESS_SHARE of its first HOPELESS_AFTER or more attempts failing for
+# a hopeless reason (an IK target beyond the arm's reach), is given up then (issue #33: cans behind a rack's inner
+# ring, 86-95 % out of reach, took 50 attempts each; the reachable can's regions fail so 35-40 % of the time).
+HOPELESS_AFTER, HOPELESS_SHARE = 20, 0.9
 
 
 class RoundRobinGoalSource:
@@ -37,10 +41,12 @@ class RoundRobinGoalSource:
     is exhausted and skipped from then on; one whose attempts failed for a reason in
     ``reached_reasons`` (the goal was reached, the configuration collided: other goals
     of the region may be free) keeps going for ``REACHED_FACTOR`` times as many
-    (issue 34: a can in an open box was given up on with grasps that exist).
+    (issue 34: a can in an open box was given up on with grasps that exist); one whose
+    attempts nearly all failed for a reason in ``hopeless_reasons`` stops sooner (:meth:`region_budget`).
     """
 
     reached_reasons: tuple[str, ...] = ()
+    hopeless_reasons: tuple[str, ...] = ()  # failures that say the region's goals lie where the robot never gets
 
     def __init__(self, regions: tuple[GoalRegion, ...], give_up_after: int | None = None,
                  attempts_per_sample: int | None = None, sampling: GoalSamplingSettings | None = None):
@@ -65,9 +71,15 @@ class RoundRobinGoalSource:
         return self._time
 
     def region_budget(self, j: int) -> int:
-        """Attempts region ``j`` may take without a valid sample before it is given up."""
-        reached = any(self.stats[j].failures.get(r, 0) for r in self.reached_reasons)
-        return self._give_up_after * (REACHED_FACTOR if reached else 1)
+        """Attempts region ``j`` may take without a valid sample before it is given up: fewer when nearly all
+        of at least HOPELESS_AFTER attempts failed for a ``hopeless_reasons`` reason (issue #33)."""
+        st = self.stats[j]
+        if any(st.failures.get(r, 0) for r in self.reached_reasons):
+            return self._give_up_after * REACHED_FACTOR
+        if self.hopeless_reasons and st.attempts >= HOPELESS_AFTER:
+            if sum(st.failures.get(r, 0) for r in self.hopeless_reasons) >= HOPELESS_SHARE * st.attempts:
+                return min(st.attempts, self._give_up_after)
+        return self._give_up_after
 
     def region_exhausted(self, j: int) -> bool:
         st = self.stats[j]

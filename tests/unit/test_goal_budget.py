@@ -96,3 +96,25 @@ def test_the_round_robin_order_is_unchanged_by_the_incremental_bookkeeping():
             assert source.exhausted() == all(source.region_exhausted(j) for j in range(len(regions)))
             assert source.total_attempts == sum(st.attempts for st in source.stats)
         assert source.order == _reference_order(regions, rates, seed, draws, 6)
+
+
+class Hopeless(RoundRobinGoalSource):
+    """Region 0 always out of reach; region 1 out of reach 40 % of the time (seeded), else in the hand's way."""
+
+    hopeless_reasons = ("out of reach",)
+
+    def attempt(self, j, rng, stop):
+        return None, "out of reach" if j == 0 or rng.random() < 0.4 else "hand in collision"
+
+
+def test_a_region_nearly_always_out_of_reach_is_given_up_sooner():
+    """Issue #33: given up after HOPELESS_AFTER attempts, not give_up_after; a region out of reach 40 % of the
+    time keeps its full budget (over 20 seeds)."""
+    from lazyground.goals import HOPELESS_AFTER
+
+    for seed in range(20):
+        source = Hopeless(_regions(), give_up_after=50)
+        rng = np.random.default_rng(seed)
+        while not source.exhausted():
+            source.draw(10, rng, never())
+        assert [st.attempts for st in source.stats] == [HOPELESS_AFTER, 50]
