@@ -96,7 +96,7 @@ def sweep_tests(rows: list[dict]) -> str:
     """Markdown: in each (family, N, k) cell, every method's mean time against round-robin's (our planner with the
     consecutive strategy; unsolved runs at the limit), with the two-sided Mann-Whitney p. The runs of a cell may be
     different layouts of the family (keys with a layout seed), so a p per cell needs no repeated scene."""
-    from lazyground.bench.compare import _p
+    from lazyground.bench.compare import mann_whitney_p
     from lazyground.bench.tables import counted_time
 
     cells: dict = {}
@@ -110,7 +110,7 @@ def sweep_tests(rows: list[dict]) -> str:
         bt = [counted_time(r) for r in base] if base else None
         for method, rs in sorted(by.items()):
             t = [counted_time(r) for r in rs]
-            p = "" if bt is None or rs is base else f"{_p(t, bt):.3g}"
+            p = "" if bt is None or rs is base else f"{mann_whitney_p(t, bt):.3g}"
             lines.append(f"| {fam} | {n} | {k} | {method} | {len(rs)} | {sum(r['status'] == 'solved' for r in rs)} | "
                          f"{np.mean(t):.2f} | {np.median(t):.2f} | {p} |")
     return "\n".join(lines) + "\n"
