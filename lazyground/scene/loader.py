@@ -142,14 +142,16 @@ def _overlap_problem(scene: Scene) -> str | None:
     may overlap one another (boards that meet, generated racks)."""
     solids = [(f"objects[{i}]", "object", o) for i, o in enumerate(scene.objects) if o.collides]
     solids += [(f"obstacles[{i}]", "obstacle", o) for i, o in enumerate(scene.obstacles) if o.geometry.mesh is None]
+    frames = [(np.asarray(X.xyz), X.rotation()) for X in (b.pose.pose() for _, _, b in solids)]  # once per solid
     hits = []  # (the larger one holds the centre, later solid first, message)
     for n, (key, kind, a) in enumerate(solids):
+        if kind == "obstacle":
+            continue
         centre = np.asarray(a.pose.xyz, dtype=float)
-        for _, other_kind, b in solids:
-            X = b.pose.pose()
-            if b is a or kind == "obstacle":
+        for (_, other_kind, b), (p_WB, R_WB) in zip(solids, frames):
+            if b is a:
                 continue
-            if b.geometry.contains((centre - np.asarray(X.xyz)) @ X.rotation()):
+            if b.geometry.contains((centre - p_WB) @ R_WB):
                 message = f"{key}.pose: {kind} {a.id!r} has its centre inside {other_kind} {b.id!r}"
                 hits.append((a.geometry.volume() > b.geometry.volume(), -n, message))
     return min(hits)[2] if hits else None
