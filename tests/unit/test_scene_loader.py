@@ -157,3 +157,22 @@ def test_deep_nesting_is_refused_not_a_crash():
     text = "a: " + "[" * 100_000 + "]" * 100_000 + "\n"
     with pytest.raises(SceneError, match="nesting too deep"):
         parse_scene(text, "deep.yaml")
+
+
+def test_a_scene_file_is_parsed_once_until_it_changes(tmp_path, monkeypatch):
+    # #31: api.plan on a path loads the file every call; the same text gives the same Scene without parsing it again
+    from lazyground.scene import loader
+
+    path = tmp_path / "s.yaml"
+    path.write_text("name: x\n" + CAR)
+    calls = []
+    parse = loader.parse_scene
+    monkeypatch.setattr(loader, "parse_scene", lambda *a, **k: calls.append(1) or parse(*a, **k))
+    first = load_scene(path)
+    assert load_scene(path) is first and len(calls) == 1
+    path.write_text("name: x\n" + CAR + "planner: {seed: 4}\n")
+    changed = load_scene(path)
+    assert len(calls) == 2 and changed.planner.seed == 4
+    path.write_text("name: x\n" + CAR + "planner: {seed: [}\n")
+    with pytest.raises(SceneError, match="YAML syntax error"):
+        load_scene(path)
