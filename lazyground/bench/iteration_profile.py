@@ -60,14 +60,15 @@ class _Timers:
         for owner, attr, step in _targets():
             inner = owner.__dict__[attr] if isinstance(owner, type) else getattr(owner, attr)
             self._saved.append((owner, attr, inner))
-            setattr(owner, attr, self._wrap(inner, step))
+            setattr(owner, attr, self.wrap(inner, step))
 
     def remove(self) -> None:
         for owner, attr, inner in reversed(self._saved):
             setattr(owner, attr, inner)
         self._saved.clear()
 
-    def _wrap(self, inner, step: str):
+    def wrap(self, inner, step: str):
+        """``inner`` timed as ``step``."""
         stack, seconds, calls, clock, sampling = self._stack, self.seconds, self.calls, time.perf_counter, self._sampling
         mark = int(step == "goal sampling")
 
@@ -111,7 +112,7 @@ def _wrapper_cost(repeats: int = 20000) -> tuple[float, float]:
     for _ in range(repeats):
         plain.f()
     bare = clock() - t0
-    wrapped = timers._wrap(Probe.f, "loop")
+    wrapped = timers.wrap(Probe.f, "loop")
     t0 = clock()
     for _ in range(repeats):
         wrapped(plain)
@@ -154,7 +155,7 @@ def profile_scene(key: str, seeds: range, request: str | None = None) -> ScenePr
             sec, n = timers.take()
             its = max(r.iterations, 1)
             used = {k: max(0.0, sec[k] - n[k] * to_own) for k in STEPS if k != "loop"}
-            used["loop"] = max(0.0, r.time_s - sum(used.values()) - sum(n.values()) * (to_own + to_caller))
+            used["loop"] = r.time_s - sum(used.values()) - sum(n.values()) * (to_own + to_caller)  # may come out < 0: noise
             loop_s = sum(v for k, v in used.items() if k != "goal sampling") or 1.0
             split.append({k: v / loop_s for k, v in used.items() if k != "goal sampling"})  # fractions
             calls.append({k: n[k] / its for k in STEPS})
