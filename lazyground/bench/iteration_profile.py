@@ -99,26 +99,30 @@ class _Timers:
         return out
 
 
-def _wrapper_cost(repeats: int = 20000) -> tuple[float, float]:
-    """(seconds a wrapped call adds to its caller's share, to its own share), measured here."""
+def _wrapper_cost(repeats: int = 5000, tries: int = 7) -> tuple[float, float]:
+    """(seconds a timed call adds to its caller's share, to its own share), measured here: the least of
+    ``tries`` (a loaded machine's pauses only ever add)."""
 
     class Probe:
         def f(self):
             return None
 
-    timers, clock = _Timers(), time.perf_counter
-    plain = Probe()
-    t0 = clock()
-    for _ in range(repeats):
-        plain.f()
-    bare = clock() - t0
-    wrapped = timers.wrap(Probe.f, "loop")
-    t0 = clock()
-    for _ in range(repeats):
-        wrapped(plain)
-    total = clock() - t0
-    own = timers.seconds["loop"]
-    return max(0.0, (total - own - bare) / repeats), max(0.0, own / repeats - bare / repeats)
+    clock, plain, best = time.perf_counter, Probe(), (float("inf"), float("inf"))
+    for _ in range(tries):
+        timers = _Timers()
+        wrapped = timers.wrap(Probe.f, "loop")
+        t0 = clock()
+        for _ in range(repeats):
+            plain.f()
+        bare = clock() - t0
+        t0 = clock()
+        for _ in range(repeats):
+            wrapped(plain)
+        total = clock() - t0
+        own = timers.seconds["loop"]
+        cost = (max(0.0, (total - own - bare) / repeats), max(0.0, (own - bare) / repeats))
+        best = min(best, cost, key=sum)
+    return best
 
 
 @dataclass(frozen=True)
