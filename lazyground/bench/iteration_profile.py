@@ -55,12 +55,32 @@ class _Timers:
         self._stack: list[list[float]] = []
         self._saved: list[tuple] = []
         self._sampling = [0]  # inside goal sampling: its checks and kinematics are its own
+        self._active = [False]  # inside a search (install() ties it to a Search's life)
 
     def install(self) -> None:
+        from lazyground.planning.search import Search
+
         for owner, attr, step in _targets():
             inner = owner.__dict__[attr] if isinstance(owner, type) else getattr(owner, attr)
             self._saved.append((owner, attr, inner))
             setattr(owner, attr, self.wrap(inner, step))
+        # only a search's own calls count (not the motion step's checks after it): from a Search's
+        # construction to its result
+        active = self._active
+        init, result = Search.__dict__["__init__"], Search.__dict__["result"]
+        self._saved += [(Search, "__init__", init), (Search, "result", result)]
+
+        def opened(search, *args, **kwargs):
+            init(search, *args, **kwargs)
+            active[0] = True
+
+        def closed(search, *args, **kwargs):
+            try:
+                return result(search, *args, **kwargs)
+            finally:
+                active[0] = False
+
+        Search.__init__, Search.result = opened, closed
 
     def remove(self) -> None:
         for owner, attr, inner in reversed(self._saved):
@@ -70,10 +90,11 @@ class _Timers:
     def wrap(self, inner, step: str):
         """``inner`` timed as ``step``."""
         stack, seconds, calls, clock, sampling = self._stack, self.seconds, self.calls, time.perf_counter, self._sampling
+        active = self._active
         mark = int(step == "goal sampling")
 
         def timed(*args, **kwargs):
-            if sampling[0] and not mark:
+            if not active[0] or sampling[0] and not mark:
                 return inner(*args, **kwargs)
             sampling[0] += mark
             inside = [0.0]
