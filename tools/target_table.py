@@ -5,6 +5,7 @@ Run from the checkout's root (cwd comes first on sys.path), on a quiet machine (
 
     nice python3 tools/target_table.py                 # seeds 0-9 on Fetch, 0-19 on parking_1
     nice python3 tools/target_table.py --seeds 20 --parking-seeds 40
+    cd /path/to/other/checkout && nice python3 /path/to/this/tools/target_table.py   # the same table on its code
 
 Prints three tables:
 
@@ -55,7 +56,16 @@ def main() -> int:
     sys.path.insert(1, str(Path(__file__).resolve().parent))
     import request_profile
 
-    from lazyground.bench import iteration_profile
+    try:
+        from lazyground.bench import iteration_profile
+    except ImportError:  # a checkout from before the profile (#31's "before"): this tool's own copy, on its code
+        import importlib.util
+
+        path = Path(__file__).resolve().parents[1] / "lazyground/bench/iteration_profile.py"
+        spec = importlib.util.spec_from_file_location("iteration_profile", path)
+        iteration_profile = importlib.util.module_from_spec(spec)
+        sys.modules["iteration_profile"] = iteration_profile
+        spec.loader.exec_module(iteration_profile)
 
     t0 = time.perf_counter()
     print(f"Fetch requests, median over seeds 0-{args.seeds - 1}, ms (world prebuilt; total = api.plan wall less world build):")
