@@ -270,7 +270,7 @@ def line_of(text: str, path: str) -> int | None:
     """The 1-based line of the key a ``SceneError`` path names ("objects[2].type", "planer"), or None."""
     try:
         node = yaml.compose(text, Loader=yaml.SafeLoader)
-    except yaml.YAMLError:
+    except (yaml.YAMLError, RecursionError):  # (deep text libyaml parsed: PyYAML's composer recurses)
         return None
     line = None
     for part in re.findall(r"[^.\[\]]+|\[\d+\]", path):
