@@ -35,12 +35,12 @@ def parking(seeds: int) -> dict:
     from lazyground import api
     from lazyground.drake.world import DrakeWorld
     from lazyground.scene import load_scene
-    from lazyground.settings import Algorithm
+    from lazyground.settings import Algorithm, Strategy
 
     scene = load_scene("parking_1")
     world = DrakeWorld(scene, visual=False)
     request = scene.expect[0].request
-    kw = dict(strategy="reward-penalty", algorithm=Algorithm.RRT, goal_bias=0.05, kinematics="holonomic")
+    kw = dict(strategy=Strategy.REWARD_PENALTY, algorithm=Algorithm.RRT, goal_bias=0.05, kinematics="holonomic")
     api.plan(scene, request, seed=1000, world=world, **kw)
     reports = [api.plan(scene, request, seed=s, world=world, **kw) for s in range(seeds)]
     return dict(planning=statistics.median(r.time_s for r in reports), total=statistics.median(r.total_s for r in reports),
