@@ -326,7 +326,8 @@ def _iteration_profile(args, out: Path) -> int:
     seeds = range(args.seed, args.seed + (args.runs or 10))
     profiles = []
     for key in keys:
-        profiles.append(iteration_profile.profile_scene(resolve_scene(key) or key, seeds, args.request))
+        overrides = {} if args.time_limit is None else {"time_limit": args.time_limit}
+        profiles.append(iteration_profile.profile_scene(resolve_scene(key) or key, seeds, args.request, **overrides))
         print(f"profiled {key}", file=sys.stderr)
     text = iteration_profile.report(profiles)
     (out / "iteration_profile.md").write_text(text)

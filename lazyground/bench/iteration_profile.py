@@ -161,8 +161,8 @@ class SceneProfile:
     timer_us: float  # what one timed call adds (measured; taken off the shares)
 
 
-def profile_scene(key: str, seeds: range, request: str | None = None) -> SceneProfile:
-    """Both passes on one scene (a name or file) over ``seeds``."""
+def profile_scene(key: str, seeds: range, request: str | None = None, **overrides) -> SceneProfile:
+    """Both passes on one scene (a name or file) over ``seeds``; ``overrides``: settings for ``api.plan``."""
     from lazyground import api
     from lazyground.drake.world import DrakeWorld
     from lazyground.scene import load_scene
@@ -170,14 +170,14 @@ def profile_scene(key: str, seeds: range, request: str | None = None) -> ScenePr
     scene = load_scene(key)
     world = DrakeWorld(scene, visual=False)
     request = request or scene.expect[0].request
-    api.plan(scene, request, seed=seeds.stop + 100, world=world)  # warm-up: first-call costs are not an iteration's
-    plain = [api.plan(scene, request, seed=s, world=world).result for s in seeds]
+    api.plan(scene, request, seed=seeds.stop + 100, world=world, **overrides)  # warm-up: first-call costs are not an iteration's
+    plain = [api.plan(scene, request, seed=s, world=world, **overrides).result for s in seeds]
     to_caller, to_own = _wrapper_cost()
     timers, split, calls = _Timers(), [], []
     timers.install()
     try:
         for s in seeds:
-            r = api.plan(scene, request, seed=s, world=world).result
+            r = api.plan(scene, request, seed=s, world=world, **overrides).result
             sec, n = timers.take()
             its = max(r.iterations, 1)
             used = {k: max(0.0, sec[k] - n[k] * to_own) for k in STEPS if k != "loop"}

@@ -286,12 +286,13 @@ def test_iteration_profile_splits_a_search_iteration(tmp_path, capsys):
     from lazyground.planning.tree import Tree
 
     nearest = Tree.__dict__["nearest"]
-    code = main(["bench", "--iteration-profile", "--scenes", "parking_1", "--runs", "1", "--out", str(tmp_path)])
+    code = main(["bench", "--iteration-profile", "--scenes", "parking_1", "--runs", "1", "--time-limit", "600",
+                 "--out", str(tmp_path)])  # (the limit a guard: parking_1 solves in under 1 s)
     assert code == 0
     text = capsys.readouterr().out
     assert "| parking_1 | 1 (1) |" in text and "nn µs" in text
     assert (tmp_path / "iteration_profile.md").read_text() == text
     assert Tree.__dict__["nearest"] is nearest
-    p = iteration_profile.profile_scene("parking_1", range(1))
+    p = iteration_profile.profile_scene("parking_1", range(1), time_limit=600, max_iterations=20_000)
     assert p.iterations > 0 and p.split_us["nn"] > 0 and p.split_us["checks"] > 0
     assert sum(p.split_us.values()) == pytest.approx(p.us_per_iteration, rel=1e-6)
