@@ -121,29 +121,28 @@ class _Timers:
 
 
 def _wrapper_cost(repeats: int = 5000, tries: int = 7) -> tuple[float, float]:
-    """(seconds a timed call adds to its caller's share, to its own share), measured here: the least of
-    ``tries`` (a loaded machine's pauses only ever add)."""
+    """(seconds a timed call adds to its caller's share, to its own share), measured here from the least
+    of ``tries`` readings of each loop (a loaded machine's pauses only ever add)."""
 
     class Probe:
         def f(self):
             return None
 
-    clock, plain, best = time.perf_counter, Probe(), (float("inf"), float("inf"))
+    clock, plain = time.perf_counter, Probe()
+    bare = total = own = float("inf")
     for _ in range(tries):
         timers = _Timers()
         wrapped = timers.wrap(Probe.f, "loop")
         t0 = clock()
         for _ in range(repeats):
             plain.f()
-        bare = clock() - t0
+        bare = min(bare, clock() - t0)
         t0 = clock()
         for _ in range(repeats):
             wrapped(plain)
-        total = clock() - t0
-        own = timers.seconds["loop"]
-        cost = (max(0.0, (total - own - bare) / repeats), max(0.0, (own - bare) / repeats))
-        best = min(best, cost, key=sum)
-    return best
+        total = min(total, clock() - t0)
+        own = min(own, timers.seconds["loop"])
+    return max(0.0, (total - own) / repeats), max(0.0, (own - bare) / repeats)
 
 
 @dataclass(frozen=True)
