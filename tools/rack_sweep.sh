@@ -4,7 +4,7 @@
 # lazyground/bench/baselines.py) and eager all-goal IK. Each size runs RUNS rack layouts (layout seeds 0..RUNS-1, so
 # the reachable can's rank in the nearest-first order varies), one planner seed each. Writes OUT/table.md (the sweep
 # table, and the Mann-Whitney tests against consecutive = round-robin, per layout), OUT/family_sweep.png, results.csv.
-# Usage: tools/rack_sweep.sh [OUT] [RUNS] [SIZES]   (from the repository root; about 40 min on a quiet 2-core machine)
+# Usage: tools/rack_sweep.sh [OUT] [RUNS] [SIZES]   (from the repository root; 40-60 min on a quiet 2-core machine by estimate: 400 runs, ~50 at the limit)
 set -e
 OUT=${1:-bench_output/racks}
 RUNS=${2:-10}
