@@ -70,8 +70,7 @@ class BatchAttempts:
         """The prepared attempt on region ``j`` at round-robin counter ``before`` (``after`` once made).
 
         From the queue when it holds that attempt for this generator; otherwise the queue is
-        dropped and the next ``look_ahead()`` attempts from ``before`` are prepared (asked only then:
-        it sums every region's statistics).
+        dropped and the next ``look_ahead()`` attempts from ``before`` are prepared (asked only then).
         """
         if rng is not self.rng:  # answers drawn from another generator are not this draw's
             self.queue.clear()

@@ -110,6 +110,7 @@ class IKGoalSource(RoundRobinGoalSource):
     """
 
     reached_reasons = ("in collision",)  # IK reached the grasp, the arm collided: another grasp of the region may not
+    hopeless_reasons = ("out of reach",)  # the wrist point beyond the sampled reach (screened before any solve)
 
     def __init__(self, regions: tuple[PoseRegion, ...], world, settings: IKSettings | None = None, **kwargs):
         super().__init__(regions, **kwargs)
@@ -326,7 +327,7 @@ class IKGoalSource(RoundRobinGoalSource):
         ~15 iterations. With 1 in 4, fetch_boxes_3 (~1 in 12) solved its first draw in two batches
         (CPU ms per goal sample 5.6 against 4.6 with 1 in 8, seeds 20-79; /tmp/notes/ik6.md).
         """
-        valid, attempts = sum(st.valid for st in self.stats), sum(st.attempts for st in self.stats)
+        valid, attempts = self.total_valid, self.total_attempts
         rate = (valid + 1) / (attempts + 8)
         need = math.ceil(1.5 * max(self.wanted, 1) / rate)
         return int(min(max(need, LOOK_AHEAD_MIN), max(self.settings.batch_attempts, 1), max(left, LOOK_AHEAD_MIN)))
