@@ -101,6 +101,9 @@ class BatchAttempts:
             group = [it for it in items if it.frame == frame]
             for it, reason in zip(group, self.source.screen(frame, np.array([it.X_WT for it in group]))):
                 it.reason = reason
+        for it, avoided in zip(items, self.source.avoided([it.j for it in items], np.array([it.v for it in items]))):
+            if avoided:
+                it.reason = "kept clear"  # the task's preference rules this target out (IKGoalSource.prefer)
         t1 = time.perf_counter()
         for it in items:
             it.seconds = (t1 - t0) / len(items)

@@ -43,6 +43,7 @@ from lazyground.regions.base import from_unit
 from lazyground.typed_yaml import SceneError
 
 APPROACH_RESOLUTION = 0.01  # rad (or m): spacing of the collision checks along an approach segment
+KEPT_CLEAR = "kept clear"  # a draw the task's preference rules out (where an earlier choice blocked a later step)
 LOOK_AHEAD_MIN = 16  # fewest attempts the batch solver solves at once (below, one iteration's overhead dominates)
 
 
@@ -106,6 +107,10 @@ class IKGoalSource(RoundRobinGoalSource):
         self.last: list[np.ndarray | None] = [None] * len(self.regions)  # per region: its last valid answer
         self.target_screen = TargetScreen(world, frames, settings)
         self.near = world.start  # goals prefer the full-turn equivalent nearest this (the step's start)
+        # which of several drawn targets to try (a task's placement preference, e.g. leave room for later
+        # objects; lazyground/tasks/packing.py): an object with ``draws``, ``pick(j, V)`` -> (N, 6) and
+        # ``avoided(j, V)`` -> (N,) bool; None: one uniform draw per attempt
+        self.prefer = None
         self._turns = getattr(getattr(world, "coordinates", None), "turns", None)
         problems = {f: problem_for_frame(world, f) for f in dict.fromkeys(frames)} if settings.solver == "batch" else {}
         # batches when the chain expresses every frame (else SNOPT on the plant, e.g. for a planar base)
@@ -151,8 +156,17 @@ class IKGoalSource(RoundRobinGoalSource):
         draws one ``self.regions[j].sample(rng)`` each would make, in one ``rng.random((N, 6))``."""
         j = np.asarray(regions, int)
         lo, span, wrapped = (a[j] for a in self._stacked[2:])
-        V = from_unit(lo, span, wrapped, rng.random(lo.shape))
+        if self.prefer is None:
+            V = from_unit(lo, span, wrapped, rng.random(lo.shape))
+        else:  # ``draws`` candidates per attempt, the preferred one kept
+            V = self.prefer.pick(j, from_unit(lo, span, wrapped, rng.random((self.prefer.draws,) + lo.shape)))
         return V, self.target_poses(j, V)
+
+    def avoided(self, regions: list[int], V: np.ndarray) -> np.ndarray:
+        """Which draws ``V`` (N, 6) of ``regions`` the preference rules out (a place to keep clear), (N,) bool."""
+        if self.prefer is None:
+            return np.zeros(len(V), bool)
+        return np.asarray(self.prefer.avoided(np.asarray(regions, int), np.asarray(V, float)), bool)
 
     def approach_shift(self, region: PoseRegion, scale: float) -> np.ndarray:
         """The pre-pose of a target X_WT is X_WT times this: ``scale`` x the approach, in the robot frame's axes."""
@@ -203,9 +217,9 @@ class IKGoalSource(RoundRobinGoalSource):
             self.batch.check(items)
             return self._finish(items[0])
         region = self.regions[j]
-        v = region.sample(rng)
+        v = self.draw_targets([j], rng)[0][0]
         frame, X_WT = self.target_pose_for(region, v)
-        reason = self.screen(frame, X_WT.matrix()[None])[0]
+        reason = KEPT_CLEAR if self.avoided([j], v[None])[0] else self.screen(frame, X_WT.matrix()[None])[0]
         if reason:
             return None, reason
         seeds = [self.last[j]] if self.last[j] is not None and self.settings.warm_start else []
