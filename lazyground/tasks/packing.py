@@ -9,9 +9,10 @@ region's draw, in the region's frame: the surface's top centre):
   first object goes towards an edge or corner, the next one beside it, so one free
   stretch stays as large as it can for what follows. ``draws`` 1 is a uniform placement.
 * **keep clear**: after a backtrack (:mod:`lazyground.tasks.several`), the positions where the
-  re-planned step's earlier placements stood are ruled out: a candidate whose footprint
-  would overlap one is not tried (the IK source's "kept clear"), so the re-planned step makes
-  another choice.
+  re-planned step's earlier placements stood are ruled out: a candidate within the earlier
+  object's footprint radius of one is not tried (the IK source's "kept clear"), so the re-planned
+  step puts its object at least that far away. (Ruling out every overlapping placement, twice the
+  radius, left no room at all on a narrow ledge.)
 
 Footprints are discs: an object's half-diagonal in x, y (a box) or its radius (a cylinder).
 """
@@ -81,7 +82,8 @@ def preference(scene: Scene, carried: str, regions, draws: int, keep_clear: tupl
         carried: the carried object's id (its footprint widens every disc).
         regions: the placement regions, in the IK source's order.
         draws: candidates per attempt (``TaskSettings.placement_draws``; 1 when nothing follows).
-        keep_clear: world discs (x, y, z, radius) ruled out (earlier placements a backtrack undid).
+        keep_clear: world discs (x, y, z, radius) no candidate position may lie in (earlier placements a
+            backtrack undid, each with its object's footprint radius: the new placement moves at least that far).
     """
     r_carried = footprint(scene.object(carried))
     centres, clear = [], []
@@ -92,7 +94,7 @@ def preference(scene: Scene, carried: str, regions, draws: int, keep_clear: tupl
         on = [(p[:2], r) for p, r in others if 0.0 <= p[2] <= ABOVE and np.all(p[:2] >= lo - r - r_carried)
               and np.all(p[:2] <= hi + r + r_carried)]
         centres.append(_free_centre(lo, hi, [(p, r + r_carried) for p, r in on]))
-        discs = [(*_in(X_RW, (x, y, z))[:2], r + r_carried) for x, y, z, r in keep_clear
+        discs = [(*_in(X_RW, (x, y, z))[:2], r) for x, y, z, r in keep_clear
                  if abs(_in(X_RW, (x, y, z))[2]) <= ABOVE]
         clear.append(np.array(discs, float).reshape(-1, 3))
     return Preference(max(1, int(draws)), np.array(centres, float).reshape(-1, 2), tuple(clear))
