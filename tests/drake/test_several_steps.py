@@ -14,6 +14,7 @@ pytest.importorskip("pydrake")
 
 from grounding.spatial import support_of  # noqa: E402
 from lazyground import api  # noqa: E402
+from lazyground.motion.steps import report_trajectory  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 from lazyground.tasks.several import validate_several  # noqa: E402
 
@@ -46,6 +47,8 @@ def test_pick_up_two_cans_puts_one_down_elsewhere_and_holds_the_other():
         assert f"{stowed} stowed on {where}, {held} held" in r.notes[-1]
         assert r.outcome.picked == held and len(r.steps) == 3  # pick, place (stow), pick (held)
         assert r.steps[-1].label == f"pick {held} (held)"
+        events = [e for _, e in report_trajectory(r).events]  # the gripper in every export (CSV, ROS)
+        assert events == ["close gripper", "open gripper", "close gripper"]
 
 
 @pytest.mark.parametrize("request_, pool", [

@@ -81,3 +81,15 @@ def test_a_one_node_tree_is_one_node(parking):
     layout = meshcat_view.draw_layout(report, scene, Meshcat())
     text = " ".join(_panel(f'{panel_html(report, replace(layout, tree_nodes=1))}<style>').split())
     assert "search tree (1 node)" in text
+
+
+def test_object_items_say_where_each_object_went_and_in_which_step():
+    from lazyground.geometry import Pose
+    from lazyground.tasks import ObjectStep, Placement
+    from lazyground.viz.replay_page import _object_item
+
+    stowed = ObjectStep("can_r1", "stowed", "side_counter", "chosen among can_r1, can_r2",
+                        Placement("side_counter/surface", "side_counter", Pose((0.3, 0.55, 0.23))), 0)
+    item = html_lib.unescape(re.sub(r"<[^>]+>", " ", _object_item(stowed)))
+    assert "can_r1: stowed -> side_counter at (0.30, 0.55, 0.23), step 1" in item and "chosen among" in item
+    assert "can_r2: held, step 3" in _object_item(ObjectStep("can_r2", "held", None, "", None, 2))
