@@ -15,6 +15,7 @@ pytest.importorskip("pydrake")
 from grounding.spatial import support_of  # noqa: E402
 from lazyground import api  # noqa: E402
 from lazyground.motion.steps import report_trajectory  # noqa: E402
+from lazyground.report import report_to_json  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 from lazyground.tasks.several import validate_several  # noqa: E402
 
@@ -64,6 +65,11 @@ def test_picking_up_several_stows_on_the_declared_surface(request_, pool):
         rows = statuses(r)
         assert [s for _, s, _ in rows] == ["stowed", "held"]
         assert rows[0][2] == "side_counter" and {o for o, _, _ in rows} <= pool and rows[0][0] != rows[1][0]
+        doc = report_to_json(r)  # --json: which object went where, in which step, and what is held
+        stowed, held = doc["objects"]
+        assert stowed["placement"]["region"].startswith("side_counter") and doc["steps"][stowed["step"]]["label"] == f"pick {stowed['object']}"
+        assert doc["steps"][stowed["step"] + 1]["placement"]["target"] == "side_counter"
+        assert doc["picked"] == held["object"] and doc["steps"][held["step"]]["label"] == f"pick {held['object']} (held)"
 
 
 def _ledge(seeds, **settings):

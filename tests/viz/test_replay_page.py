@@ -62,8 +62,9 @@ def test_pick_and_place_steps_are_labelled(tmp_path):
     pick, place = _step(world, g, q0, q1, g.goal_regions), _step(world, g, q1, q2, g.goal_regions)
     r0 = g.goal_regions[0]
     grasp = Grasp("can1", r0.id, r0.label, "gripper_link", Pose(), Pose())
-    steps = (Step("pick can1", pick.result), Step("place can1", place.result, grasp=grasp))
-    outcome = Outcome(pick.result, steps, world.space.names, placement=Placement("table/top", "table", Pose()))
+    placement = Placement("table/top", "table", Pose())  # each place step names its surface (place.run sets it)
+    steps = (Step("pick can1", pick.result), Step("place can1", place.result, grasp=grasp, placement=placement))
+    outcome = Outcome(pick.result, steps, world.space.names, placement=placement)
     report = replace(pick, outcome=outcome)
     out = tmp_path / "pp.html"
     meshcat_view.write_html(report, scene, out)
