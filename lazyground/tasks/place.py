@@ -32,6 +32,7 @@ from lazyground.settings import RunSettings, TaskSettings
 from lazyground.tasks.outcome import Grasp, Lift, Outcome, Placement, Step
 from lazyground.tasks.worlds import Worlds
 
+PICK_FAILED = "pick: "  # a failed outcome's message starts so when no candidate could be picked (no placement tried)
 
 
 def _regions_by_object(g: Grounding) -> tuple[list[GoalRegion], dict[str, list[GoalRegion]]]:
@@ -165,7 +166,7 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
                      world.start, planner, rng, seed=seed, keep_tree=keep_tree, stop=stop.share())
         results.append(pick)
         if not pick.solved:
-            return finish(pick.status, f"pick: {pick.message}")
+            return finish(pick.status, f"{PICK_FAILED}{pick.message}")
         if stop.timed_out():  # grasped at the limit: no time to lift and place (timeout)
             break
         obj = scene.object(pick.goal_region.object)

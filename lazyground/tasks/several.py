@@ -102,7 +102,8 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
             done.append(_Done(slots[k], obj, out, after, step_worlds if held else Worlds(after, visual=worlds.visual),
                               tuple(left)))
             continue
-        if k > 0 and backtracks > 0 and stop.remaining() > 0 and out.result.status is not PlanStatus.INTERRUPTED:
+        if (k > 0 and backtracks > 0 and stop.remaining() > 0 and out.result.status is not PlanStatus.INTERRUPTED
+                and _may_have_blocked(done[-1], current, left, out, held)):
             undone = done.pop()
             backtracks -= 1
             X = undone.outcome.placement.X_WO
@@ -119,6 +120,23 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
     records = _records(g, done, slots, failure, picking)
     return _outcome(done, records, notes, failure, names, start, seed, stop,
                     settings.task.backtracks - backtracks)
+
+
+BLOCK_RADIUS = 0.3  # m: a placed object farther than this from every candidate cannot have blocked their grasps
+
+
+def _may_have_blocked(last: _Done, scene: Scene, left: list[str], out: Outcome, held: bool) -> bool:
+    """Whether the last placement can be why this step failed, so going back may help.
+
+    Not when no candidate could even be grasped (no valid goal configuration) and the placed object is farther
+    than BLOCK_RADIUS from all of them: an object out of reach stays out of reach wherever the last one went
+    (kitchen: cup_blue, beyond the arm on the counter, made "put all the cups on the table" go back twice in vain).
+    """
+    picked_none = held or out.result.message.startswith(place.PICK_FAILED)
+    if not picked_none or out.result.status is not PlanStatus.NO_VALID_GOAL:
+        return True
+    p = np.asarray(last.outcome.placement.X_WO.xyz)
+    return any(np.linalg.norm(np.asarray(scene.object(o).pose.xyz) - p) <= BLOCK_RADIUS for o in left)
 
 
 def _need(group) -> int:
@@ -168,7 +186,12 @@ def _records(g: Grounding, done: list[_Done], slots: list[int], failure: PlanRes
         missing = slots.count(k) - len(mine)
         if missing:
             why = failure.message if failure is not None else "not planned"
-            out += [ObjectStep(None, "not done", None, why if why.startswith(group.phrase) else f"{group.phrase}: {why}")] * missing
+            why = why if why.startswith(group.phrase) else f"{group.phrase}: {why}"
+            moved_ = {d.object for d in mine}
+            left = [o for o in group.objects if o not in group.already and o not in moved_]
+            # "all": the objects not done are the candidates left; a count names none (any of them would do)
+            names = left if group.count is None and len(left) == missing else [None] * missing
+            out += [ObjectStep(o, "not done", None, why) for o in names]
     return tuple(out)
 
 
