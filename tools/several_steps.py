@@ -1,7 +1,7 @@
 """Rates of several-object requests over seeds (issue #30): picking up several (stow, then hold),
 packing on a narrow ledge (uniform placements against packed), and backtracking.
 
-Run from the checkout's root (cwd comes first on sys.path)::
+Run from anywhere (the script's checkout comes first on sys.path)::
 
     nice python3 tools/several_steps.py --seeds 20
 
@@ -14,12 +14,15 @@ from __future__ import annotations
 
 import argparse
 import statistics
+import sys
 from pathlib import Path
 
-from lazyground import api
-from lazyground.scene import load_scene
-
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from lazyground import api  # noqa: E402
+from lazyground.scene import load_scene  # noqa: E402
+
 ROWS = [  # scene, request, max_iterations per step, settings
     ("yaml_scenes/fetch_cans_1.yaml", "pick up two cans", 12000, {}),
     ("tests/data/scenes/panda_stow.yaml", "pick up all the red cans", 4000, {}),
