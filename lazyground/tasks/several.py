@@ -177,6 +177,8 @@ def _records(g: Grounding, done: list[_Done], slots: list[int], failure: PlanRes
         for d in mine:
             others = [o for o in d.among if o != d.object]
             why = f"chosen among {', '.join(d.among)}: the planner reached it first" if others else ""
+            if d.outcome.fallbacks:  # place.run's notes say which and why ("picked X but could not place it ...")
+                why += f"; {d.outcome.fallbacks} picked before it could not be placed (notes)"
             if d.outcome.held is not None:
                 out.append(ObjectStep(d.object, "held", None, why, step=first_step[id(d)]))
             else:
