@@ -104,22 +104,26 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
             continue
         if (k > 0 and backtracks > 0 and stop.remaining() > 0 and out.result.status is not PlanStatus.INTERRUPTED
                 and _may_have_blocked(done[-1], current, left, out, held)):
-            undone = done.pop()
             backtracks -= 1
-            X = undone.outcome.placement.X_WO
-            keep_clear.setdefault(k - 1, []).append((*X.xyz, packing.footprint(undone.after.object(undone.object))))
-            for later in [s for s in keep_clear if s >= k]:
-                del keep_clear[later]  # the scene they were ruled out in is gone
-            notes.append(f"step {k + 1} ({group.phrase}) found no feasible choice ({out.result.message}); went back "
-                         f"to step {k}: {undone.object} is put elsewhere than {undone.outcome.placement.target} at "
-                         f"({X.xyz[0]:.2f}, {X.xyz[1]:.2f}) (backtrack {settings.task.backtracks - backtracks} of "
-                         f"{settings.task.backtracks})")
+            notes.append(_go_back(done, keep_clear, k, group.phrase, out.result.message,
+                                  f"{settings.task.backtracks - backtracks} of {settings.task.backtracks}"))
             continue
         failure = replace(out.result, message=f"{group.phrase}: {out.result.message}")
         break
     records = _records(g, done, slots, failure, picking)
     return _outcome(done, records, notes, failure, names, start, seed, stop,
                     settings.task.backtracks - backtracks)
+
+
+def _go_back(done: list[_Done], keep_clear: dict, k: int, phrase: str, why: str, count: str) -> str:
+    """Undo step ``k - 1`` (0-based ``k`` failed): its placement is kept clear when it is planned again; the note."""
+    undone = done.pop()
+    X = undone.outcome.placement.X_WO
+    keep_clear.setdefault(k - 1, []).append((*X.xyz, packing.footprint(undone.after.object(undone.object))))
+    for later in [s for s in keep_clear if s >= k]:
+        del keep_clear[later]  # the scene they were ruled out in is gone
+    return (f"step {k + 1} ({phrase}) found no feasible choice ({why}); went back to step {k}: {undone.object} is put "
+            f"elsewhere than {undone.outcome.placement.target} at ({X.xyz[0]:.2f}, {X.xyz[1]:.2f}) (backtrack {count})")
 
 
 BLOCK_RADIUS = 0.3  # m: a placed object farther than this from every candidate cannot have blocked their grasps
