@@ -29,7 +29,7 @@ from typing import Callable
 import numpy as np
 
 from lazyground.drake.ik import settings as ik_settings
-from lazyground.drake.ik.attempts import APPROACH_SCALES, PRE_POSE_ITERATIONS, BatchAttempts, Prepared
+from lazyground.drake.ik.attempts import APPROACH_SCALES, KEPT_CLEAR, PRE_POSE_ITERATIONS, BatchAttempts, Prepared
 from lazyground.drake.ik.screen import TargetScreen
 from lazyground.drake.ik.settings import IKCounters, IKSettings
 from lazyground.drake.ik.solvers import BatchSolver, ProgramSolver, pose_error, problem_for_frame
@@ -43,7 +43,6 @@ from lazyground.regions.base import from_unit
 from lazyground.typed_yaml import SceneError
 
 APPROACH_RESOLUTION = 0.01  # rad (or m): spacing of the collision checks along an approach segment
-KEPT_CLEAR = "kept clear"  # a draw the task's preference rules out (where an earlier choice blocked a later step)
 LOOK_AHEAD_MIN = 16  # fewest attempts the batch solver solves at once (below, one iteration's overhead dominates)
 
 
@@ -162,11 +161,6 @@ class IKGoalSource(RoundRobinGoalSource):
             V = self.prefer.pick(j, from_unit(lo, span, wrapped, rng.random((self.prefer.draws,) + lo.shape)))
         return V, self.target_poses(j, V)
 
-    def avoided(self, regions: list[int], V: np.ndarray) -> np.ndarray:
-        """Which draws ``V`` (N, 6) of ``regions`` the preference rules out (a place to keep clear), (N,) bool."""
-        if self.prefer is None:
-            return np.zeros(len(V), bool)
-        return np.asarray(self.prefer.avoided(np.asarray(regions, int), np.asarray(V, float)), bool)
 
     def approach_shift(self, region: PoseRegion, scale: float) -> np.ndarray:
         """The pre-pose of a target X_WT is X_WT times this: ``scale`` x the approach, in the robot frame's axes."""
@@ -207,6 +201,12 @@ class IKGoalSource(RoundRobinGoalSource):
     def screen(self, frame: str, X_WT: np.ndarray) -> list[str]:
         """Why each target pose (B, 4, 4) of ``frame`` fails before any solve ("" for none): :class:`TargetScreen`."""
         return self.target_screen.reasons(frame, X_WT)
+
+    def avoided(self, regions: list[int], V: np.ndarray) -> np.ndarray:
+        """Which draws ``V`` (N, 6) of ``regions`` the preference rules out (a place to keep clear), (N,) bool."""
+        if self.prefer is None:
+            return np.zeros(len(V), bool)
+        return np.asarray(self.prefer.avoided(np.asarray(regions, int), np.asarray(V, float)), bool)
 
     # --- one attempt -------------------------------------------------------------------------
     def attempt(self, j: int, rng: np.random.Generator, stop: StopCondition) -> tuple[GoalSample | None, str]:
