@@ -161,7 +161,6 @@ class IKGoalSource(RoundRobinGoalSource):
             V = self.prefer.pick(j, from_unit(lo, span, wrapped, rng.random((self.prefer.draws,) + lo.shape)))
         return V, self.target_poses(j, V)
 
-
     def approach_shift(self, region: PoseRegion, scale: float) -> np.ndarray:
         """The pre-pose of a target X_WT is X_WT times this: ``scale`` x the approach, in the robot frame's axes."""
         shift = np.eye(4)
