@@ -29,7 +29,7 @@ from typing import Callable
 import numpy as np
 
 from lazyground.drake.ik import settings as ik_settings
-from lazyground.drake.ik.attempts import APPROACH_SCALES, KEPT_CLEAR, PRE_POSE_ITERATIONS, BatchAttempts, Prepared
+from lazyground.drake.ik.attempts import APPROACH_SCALES, PRE_POSE_ITERATIONS, BatchAttempts, Prepared
 from lazyground.drake.ik.screen import TargetScreen
 from lazyground.drake.ik.settings import IKCounters, IKSettings
 from lazyground.drake.ik.solvers import BatchSolver, ProgramSolver, pose_error, problem_for_frame
@@ -108,7 +108,7 @@ class IKGoalSource(RoundRobinGoalSource):
         self.near = world.start  # goals prefer the full-turn equivalent nearest this (the step's start)
         # which of several drawn targets to try (a task's placement preference, e.g. leave room for later
         # objects; lazyground/tasks/packing.py): an object with ``draws``, ``pick(j, V)`` -> (N, 6) and
-        # ``avoided(j, V)`` -> (N,) bool; None: one uniform draw per attempt
+        # ``avoided(j, V)`` -> (N,) bool; None: one draw per attempt (:meth:`draw`; batch solver only)
         self.prefer = None
         self._turns = getattr(getattr(world, "coordinates", None), "turns", None)
         problems = {f: problem_for_frame(world, f) for f in dict.fromkeys(frames)} if settings.solver == "batch" else {}
@@ -155,10 +155,7 @@ class IKGoalSource(RoundRobinGoalSource):
         draws one ``self.regions[j].sample(rng)`` each would make, in one ``rng.random((N, 6))``."""
         j = np.asarray(regions, int)
         lo, span, wrapped = (a[j] for a in self._stacked[2:])
-        if self.prefer is None:
-            V = from_unit(lo, span, wrapped, rng.random(lo.shape))
-        else:  # ``draws`` candidates per attempt, the preferred one kept
-            V = self.prefer.pick(j, from_unit(lo, span, wrapped, rng.random((self.prefer.draws,) + lo.shape)))
+        V = from_unit(lo, span, wrapped, rng.random(lo.shape))
         return V, self.target_poses(j, V)
 
     def approach_shift(self, region: PoseRegion, scale: float) -> np.ndarray:
@@ -201,6 +198,17 @@ class IKGoalSource(RoundRobinGoalSource):
         """Why each target pose (B, 4, 4) of ``frame`` fails before any solve ("" for none): :class:`TargetScreen`."""
         return self.target_screen.reasons(frame, X_WT)
 
+    def draw(self, regions: list[int], rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`draw_targets`, or with a preference (``prefer``) the preferred of its ``draws`` per attempt.
+
+        The batch solver's attempts draw here; the one-at-a-time solvers (``snopt``, ``ipopt``) draw uniformly.
+        """
+        if self.prefer is None:
+            return self.draw_targets(regions, rng)
+        j = np.asarray(regions, int)
+        V = self.prefer.pick(j, np.stack([self.draw_targets(regions, rng)[0] for _ in range(self.prefer.draws)]))
+        return V, self.target_poses(j, V)
+
     def avoided(self, regions: list[int], V: np.ndarray) -> np.ndarray:
         """Which draws ``V`` (N, 6) of ``regions`` the preference rules out (a place to keep clear), (N,) bool."""
         if self.prefer is None:
@@ -216,9 +224,9 @@ class IKGoalSource(RoundRobinGoalSource):
             self.batch.check(items)
             return self._finish(items[0])
         region = self.regions[j]
-        v = self.draw_targets([j], rng)[0][0]
+        v = region.sample(rng)
         frame, X_WT = self.target_pose_for(region, v)
-        reason = KEPT_CLEAR if self.avoided([j], v[None])[0] else self.screen(frame, X_WT.matrix()[None])[0]
+        reason = self.screen(frame, X_WT.matrix()[None])[0]
         if reason:
             return None, reason
         seeds = [self.last[j]] if self.last[j] is not None and self.settings.warm_start else []
