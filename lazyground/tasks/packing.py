@@ -15,6 +15,8 @@ region's draw, in the region's frame: the surface's top centre):
   radius, left no room at all on a narrow ledge.)
 
 Footprints are discs: an object's half-diagonal in x, y (a box) or its radius (a cylinder).
+The IK goal source applies the preference to the attempts its batch solver draws (the default
+``ik_solver``); with ``snopt`` / ``ipopt`` placements are drawn uniformly.
 """
 
 from __future__ import annotations
