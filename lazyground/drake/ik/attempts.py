@@ -97,7 +97,7 @@ class BatchAttempts:
         s = self.source.settings
         t0 = time.perf_counter()
         items = [Prepared(j, after, v, self.source.frames[j], X)
-                 for (j, after), v, X in zip(plan, *self.source.draw([j for j, _ in plan], rng))]
+                 for (j, after), v, X in zip(plan, *self.source.draw_preferred([j for j, _ in plan], rng))]
         for frame in dict.fromkeys(it.frame for it in items):
             group = [it for it in items if it.frame == frame]
             for it, reason in zip(group, self.source.screen(frame, np.array([it.X_WT for it in group]))):

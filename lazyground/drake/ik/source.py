@@ -108,7 +108,7 @@ class IKGoalSource(RoundRobinGoalSource):
         self.near = world.start  # goals prefer the full-turn equivalent nearest this (the step's start)
         # which of several drawn targets to try (a task's placement preference, e.g. leave room for later
         # objects; lazyground/tasks/packing.py): an object with ``draws``, ``pick(j, V)`` -> (N, 6) and
-        # ``avoided(j, V)`` -> (N,) bool; None: one draw per attempt (:meth:`draw`; batch solver only)
+        # ``avoided(j, V)`` -> (N,) bool; None: one draw per attempt (:meth:`draw_preferred`; batch solver only)
         self.prefer = None
         self._turns = getattr(getattr(world, "coordinates", None), "turns", None)
         problems = {f: problem_for_frame(world, f) for f in dict.fromkeys(frames)} if settings.solver == "batch" else {}
@@ -198,7 +198,7 @@ class IKGoalSource(RoundRobinGoalSource):
         """Why each target pose (B, 4, 4) of ``frame`` fails before any solve ("" for none): :class:`TargetScreen`."""
         return self.target_screen.reasons(frame, X_WT)
 
-    def draw(self, regions: list[int], rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+    def draw_preferred(self, regions: list[int], rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`draw_targets`, or with a preference (``prefer``) the preferred of its ``draws`` per attempt.
 
         The batch solver's attempts draw here; the one-at-a-time solvers (``snopt``, ``ipopt``) draw uniformly.
