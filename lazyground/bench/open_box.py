@@ -18,13 +18,14 @@ WALL, BOTTOM = 0.01, 0.01  # m: wall and bottom thickness
 GAP = 0.01  # m: the can's distance to a wall it stands against
 UR5E_START = {"shoulder_pan_joint": 0.0, "shoulder_lift_joint": -1.570796, "elbow_joint": 1.570796,
               "wrist_1_joint": -1.570796, "wrist_2_joint": -1.570796, "wrist_3_joint": 0.0}
-# per robot: the robot block, the table top's height, the box centre (x, y) on it
+# per robot: the robot block, the table top's height, the box centre's x ahead of the base: near, far
+# (the Fetch's far box is out of reach straight down: its can is grasped at a slant or not at all)
 ROBOTS = {
     "fetch": ({"model": "fetch", "base": {"xyz": [0.0, 0.0, 0.0]}, "start": {**FETCH_START, "torso_lift_joint": 0.1}},
-              0.72, (0.7, 0.0)),
+              0.72, {"near": 0.7, "far": 0.95}),
     "panda": ({"model": "panda", "base": {"xyz": [0.0, 0.0, 0.0]}, "base_link": "panda_link0", "start": PANDA_START},
-              0.0, (0.5, 0.0)),
-    "ur5e": ({"model": "ur5e", "base": {"xyz": [0.0, 0.0, 0.0]}, "start": UR5E_START}, 0.0, (0.5, 0.0)),
+              0.0, {"near": 0.5, "far": 0.75}),
+    "ur5e": ({"model": "ur5e", "base": {"xyz": [0.0, 0.0, 0.0]}, "start": UR5E_START}, 0.0, {"near": 0.5, "far": 0.75}),
 }
 # where the can stands: unit offsets towards the walls (+x: away from the robot, +y: its left)
 PLACES = {"centre": (0, 0), "far wall": (1, 0), "near wall": (-1, 0), "corner": (1, 1)}
@@ -32,21 +33,24 @@ PLACES = {"centre": (0, 0), "far wall": (1, 0), "near wall": (-1, 0), "corner": 
 
 @dataclass(frozen=True)
 class OpenBox:
-    """One variant: ``robot``, inner ``size`` (m, square), wall ``height`` above the bottom (m), ``place`` of the can."""
+    """One variant: ``robot``, inner ``size`` (m, square), wall ``height`` above the bottom (m), ``place`` of the
+    can, ``distance`` of the box ("near" or "far")."""
 
     robot: str
     size: float
     height: float
     place: str
+    distance: str = "near"
 
     @property
     def name(self) -> str:
-        return f"{self.robot} box {self.size:g} walls {self.height:g} {self.place}"
+        return f"{self.robot} {self.distance} box {self.size:g} walls {self.height:g} {self.place}"
 
 
-def variants(robots=tuple(ROBOTS), sizes=(0.20, 0.30), heights=(0.06, 0.09, 0.12), places=tuple(PLACES)) -> list[OpenBox]:
+def variants(robots=tuple(ROBOTS), sizes=(0.20,), heights=(0.06, 0.09, 0.12), places=tuple(PLACES),
+             distances=("near", "far")) -> list[OpenBox]:
     """Every combination, robot by robot."""
-    return [OpenBox(*v) for v in itertools.product(robots, sizes, heights, places)]
+    return [OpenBox(r, s, h, p, d) for r, d, s, h, p in itertools.product(robots, distances, sizes, heights, places)]
 
 
 def _box(id_, xyz, size) -> dict:
@@ -55,7 +59,8 @@ def _box(id_, xyz, size) -> dict:
 
 def scene_dict(v: OpenBox) -> dict:
     """The scene: a table, the open box on it, the can inside."""
-    robot, top, (bx, by) = ROBOTS[v.robot]
+    robot, top, xs = ROBOTS[v.robot]
+    bx, by = xs[v.distance], 0.0
     s, h = v.size, v.height
     outer = s + 2 * WALL
     floor = top + BOTTOM
