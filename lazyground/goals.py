@@ -55,6 +55,7 @@ class RoundRobinGoalSource:
         self.attempts_per_sample = sampling.attempts_per_sample if attempts_per_sample is None else attempts_per_sample
         self.next_region = 0
         self._time = 0.0
+        self._live = 0  # a region last seen not exhausted: exhausted() checks it first (O(1), not O(N) per draw)
 
     @property
     def sample_time(self) -> float:
@@ -70,7 +71,14 @@ class RoundRobinGoalSource:
         return st.valid == 0 and st.attempts >= self.region_budget(j)
 
     def exhausted(self) -> bool:
-        return all(self.region_exhausted(j) for j in range(len(self.regions)))
+        """Whether every region is given up (the last region seen live is checked first, then the others)."""
+        m = len(self.regions)
+        for step in range(m):
+            j = (self._live + step) % m
+            if not self.region_exhausted(j):
+                self._live = j
+                return False
+        return True
 
     def draw(self, n: int, rng: np.random.Generator, stop: StopCondition) -> list[GoalSample]:
         """Up to n new valid samples, round-robin over the regions; fewer if attempts run out or ``stop``
@@ -111,12 +119,15 @@ class RoundRobinGoalSource:
         planned attempt failed). Fewer than ``k`` when no region can take one.
         """
         m = len(self.regions)
-        left = [self.region_budget(j) - st.attempts if st.valid == 0 else k for j, st in enumerate(self.stats)]
+        left: dict[int, int] = {}  # attempts each region passed so far may still take (only those: O(k), not O(N))
         out: list[tuple[int, int]] = []
         idle = 0  # regions passed in a row without a planned attempt
         while len(out) < k and idle < m:
             j = position % m
             position += 1
+            if j not in left:
+                st = self.stats[j]
+                left[j] = self.region_budget(j) - st.attempts if st.valid == 0 else k
             if left[j] > 0:
                 left[j] -= 1
                 out.append((j, position))

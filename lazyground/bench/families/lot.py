@@ -205,6 +205,8 @@ def generate_lot(spec: LotSpec) -> dict:
             for c, end in _runs(row, OCCUPIED) if spec.slots else ():  # a run of parked cars (4.5 x 1.8 m each)
                 x0, x1 = CROSS + c * SPOT_W + PARKED_GAP, CROSS + (end + 1) * SPOT_W - PARKED_GAP
                 obstacles.append(_box(f"parked_{b}_{'sn'[r]}{c}", (x0 + x1) / 2, yc, x1 - x0, PARKED_LEN, 1.5, "brown"))
+    if spec.slots:  # the goal source takes the spots in file order: not the start's bay (the reachable spots) first
+        objects = [objects[i] for i in np.random.default_rng(spec.seed).permutation(len(objects))]
     reachable = sorted(k for k, v in kinds.items() if v == REACHABLE)
     start_y = min(H / 2, BAY / 2)
     counts = {v: sum(1 for x in kinds.values() if x == v) for v in (REACHABLE, BARRIER, NARROW, GATED)}
