@@ -38,11 +38,13 @@ def sweep_keys(name: str, sizes: list[int] | None = None) -> list[str]:
 
 
 def size_of(scene: str) -> tuple[str, int, int] | None:
-    """(family, interpretations N, reachable k) of a bench scene name such as lot_256_2 or rack_panda_64_1."""
+    """(family, interpretations N, reachable k) of a bench scene name such as lot_256_2, lot_256_2_0_576
+    (a fixed layout: family lot-fixed) or rack_panda_64_1."""
     parts = scene.split("_")
     try:
         if parts[0] == "lot":
-            return "lot-fixed" if parts[-1].startswith("of") else "lot", int(parts[1]), int(parts[2])
+            fixed = len(parts) == 5 or parts[-1].startswith("of")  # lot:N:k:seed:slots, or its scene name
+            return "lot-fixed" if fixed else "lot", int(parts[1]), int(parts[2])
         if parts[0] == "rack":
             return f"rack-{parts[1]}", int(parts[2]), int(parts[3])
     except (IndexError, ValueError):
