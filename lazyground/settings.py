@@ -38,6 +38,7 @@ class Strategy(enum.StrEnum):
     CONSECUTIVE = "consecutive"
     RANDOM = "random"
     COVER = "cover"  # reward-penalty covering the regions as samples get stuck (planning/cover.py, issue #33)
+    COVER_CONNECT = "cover-connect"  # cover, and the strategy's goal tree connects to each new start node (#33)
 
 
 class Algorithm(enum.StrEnum):

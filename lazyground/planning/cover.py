@@ -77,3 +77,10 @@ class Cover:
         w = penalty_weight(self._w[index])
         self._set(index, w)
         return w < self._threshold
+
+
+class CoverConnect(Cover):
+    """:class:`Cover`, and each new start-tree node is also a target for the strategy's goal tree
+    (the bidirectional planner's ``_connect_selected``)."""
+
+    connects_selected = True

@@ -14,28 +14,34 @@ from lazyground.drake.world import DrakeWorld
 from lazyground.goals import goal_source_for
 from lazyground.planning.search import path_is_valid
 from lazyground.planning.stop import StopCondition
+from lazyground.tasks.car_space import planning_space
+from tests.counts import BY_COUNTS
 
 
-@pytest.mark.parametrize("key,request_,seeds,cap", [("lot:8:2:0", "park", 6, 3000),
-                                                    ("rack:panda:8:1:0", "pick up a can", 3, 5000)])
-def test_planner_reaches_only_reachable(key, request_, seeds, cap):
+@pytest.mark.parametrize("key,request_,seeds,cap,strategy", [("lot:8:2:0", "park", range(6), 3000, None),
+                                                             ("lot:8:2:0:576", "park", range(4), 2000, "cover-connect"),
+                                                             ("rack:panda:8:1:0", "pick up a can", range(3), 5000, None)])
+def test_planner_reaches_only_reachable(key, request_, seeds, cap, strategy):
     scene = load_family_scene(key)
     world = DrakeWorld(scene, visual=False)
     reachable = set(scene.expect[0].reachable)
     solved = 0
-    for seed in range(seeds):
-        report = api.plan(scene, request_, seed=seed, world=world, algorithm="bidirectional", max_iterations=cap,
-                          time_limit=600.0)
+    for seed in seeds:
+        report = api.plan(scene, request_, seed=seed, world=world, algorithm="bidirectional",
+                          **{**BY_COUNTS, "max_iterations": cap}, **({"strategy": strategy} if strategy else {}))
         if report.status != "solved":
             continue
         solved += 1
         assert report.chosen.id.split(":")[-1] in reachable
-        assert path_is_valid(world.space, world, report.result.path, 0.02) < 0  # finer than the planner's 0.1 m / 0.05 rad
-    assert solved >= seeds - 1
+        # finer than the planner's 0.1 m / 0.05 rad, along the car's curves between the dense waypoints: their chords
+        # cut a turn's corner by ~0.3 mm, and a path may pass closer than that to a parked car (lot:8:2:0:576 seed 0)
+        space = planning_space(scene, world.space, report.settings.planner.kinematics)
+        assert path_is_valid(space, world, report.result.path, 0.02) < 0
+    assert solved >= len(seeds) - 1
 
 
-def test_blocked_spots_have_valid_parked_poses():
-    key = "lot:64:2:0"
+@pytest.mark.parametrize("key", ["lot:64:2:0", "lot:512:2:0:576"])
+def test_blocked_spots_have_valid_parked_poses(key):
     scene = load_family_scene(key)
     world = DrakeWorld(scene, visual=False)
     kinds = spot_kinds(generate(parse_key(key)))

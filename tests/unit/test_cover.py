@@ -76,3 +76,22 @@ def test_cover_paces_goal_sampling_attempts_by_iterations():
         first = settings.initial_goal_samples * draw  # the first draw comes before the pacing
         assert source.total_attempts <= first + Cover.free_attempts + Cover.attempts_per_iteration * res.iterations + draw
         assert source.total_attempts > Cover.free_attempts  # and it does keep drawing
+
+def test_cover_connect_credits_goal_trees_on_start_turns():
+    """cover-connect: each new start-tree node is also a target for the strategy's goal tree, credited; the
+    pockets' trees are penalised there too, and every run still reaches the open region along a valid path."""
+    from lazyground.planning import path_is_valid
+
+    credited = {}
+    for strategy in ("cover", "cover-connect"):
+        settings = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=4_000, algorithm="bidirectional",
+                                   strategy=strategy)
+        total = 0
+        for seed in range(6):
+            world = BoxWorld(WALLS)
+            res = solve(SPACE, world, goal_source(world, _regions(30)), START, settings, np.random.default_rng(seed), seed=seed)
+            assert res.solved and res.goal_region.id == "open"
+            assert path_is_valid(SPACE, world, res.path, settings.resolution / 10) == -1
+            total += sum(s.penalties + s.rewards for s in res.goal_samples)
+        credited[strategy] = total
+    assert credited["cover-connect"] > 2 * credited["cover"]

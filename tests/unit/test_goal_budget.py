@@ -118,3 +118,35 @@ def test_a_region_nearly_always_out_of_reach_is_given_up_sooner():
         while not source.exhausted():
             source.draw(10, rng, never())
         assert [st.attempts for st in source.stats] == [HOPELESS_AFTER, 50]
+
+
+class Counting(RoundRobinGoalSource):
+    """Every attempt valid; counts the regions whose budget is read (issue #33: no O(N) scan per draw)."""
+
+    def __init__(self, regions):
+        self.budget_reads = 0
+        super().__init__(regions, give_up_after=5)
+        self.budget_reads = 0  # the open list is built once at construction; only the draws' reads count
+
+    def region_budget(self, j):
+        self.budget_reads += 1
+        return super().region_budget(j)
+
+    def attempt(self, j, rng, stop):
+        from lazyground.planning.problem import GoalSample
+
+        return GoalSample(q=np.zeros(1), region=j), ""
+
+
+def test_one_sample_costs_the_same_whatever_the_number_of_regions():
+    reads = []
+    for n in (8, 512):
+        regions = tuple(ConfigRegion(id=f"r{k}", interpretation=f"i{k}", object=f"o{k}", lower=(0.0,), upper=(1.0,))
+                        for k in range(n))
+        source, rng = Counting(regions), np.random.default_rng(0)
+        for _ in range(20):
+            assert len(source.draw(1, rng, never())) == 1
+        reads.append(source.budget_reads)
+        attempts = [st.attempts for st in source.stats]
+        assert sum(attempts) == 20 and max(attempts) - min(attempts) <= 1  # still round-robin
+    assert max(reads) <= 3 * 20  # O(draws), not O(regions) (the scan over all of them: 10,051 at 512)

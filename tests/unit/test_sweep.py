@@ -11,6 +11,9 @@ def test_sizes_and_keys():
     assert size_of("lot_256_2") == ("lot", 256, 2) and size_of("rack_panda_64_1_s3") == ("rack-panda", 64, 1)
     assert size_of("parking_1") is None
     assert sweep_keys("lot", [8, 64]) == ["lot:8:2", "lot:64:2"]
+    assert sweep_keys("lot-fixed", [8]) == ["lot:8:2:0:576"]
+    assert size_of("lot_8_2_0_576") == size_of("lot_8_2_s0_of576") == ("lot-fixed", 8, 2)
+    assert size_of("lot_8_2_0") == size_of("lot_8_2_s0") == ("lot", 8, 2)
 
 
 def test_table_counts_unsolved_at_the_limit():
