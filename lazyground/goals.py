@@ -56,6 +56,10 @@ class RoundRobinGoalSource:
         self.next_region = 0
         self._time = 0.0
 
+    def seed_near(self) -> bool:
+        """Solve goals from the step's start from now on (the branch nearest it); False: this source cannot."""
+        return False
+
     @property
     def sample_time(self) -> float:
         return self._time

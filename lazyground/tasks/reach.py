@@ -61,7 +61,12 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
                          path_length=space.path_length(path))
         return post_process(space, world, result, settings, rng)
 
-    best = best_of(attempt, tuple(grounding.goal_regions), space, world.start, planner, stop, connect)
+    def near(regions, n, within):
+        """Up to ``n`` goal samples of ``regions`` solved from the start (none where the goal source cannot)."""
+        source = make_goal_source(world, regions, settings.goal_sampling)
+        return source.draw(n, rng, within) if source.seed_near() else []
+
+    best = best_of(attempt, tuple(grounding.goal_regions), space, world.start, planner, stop, connect, near)
     result, motion = best.result, best.motion
     notes = world.model_notes + ((motion.note,) if motion is not None and motion.note else ())
     swept = sweep_note(motion.shortcut.path, world.space.names, world.space.wrap, world.coordinates.turns) \

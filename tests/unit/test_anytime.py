@@ -107,3 +107,28 @@ def test_straight_lines_to_drawn_goal_samples_come_first_nearest_first_while_the
     assert tried[0] == tuple(NEAR.lower)  # the nearest sample first
     assert best.result.path_length == 2.5 and best.result.goal_region.id == "near"
     assert [i.cost for i in best.improvements] == [12.0, 2.5]
+
+
+@pytest.mark.parametrize("first_region, first_cost, asked", [("far", 12.0, ("near", "mid", "far")), ("near", 5.0, ("near",))])
+def test_goals_solved_from_the_start_are_asked_of_regions_that_can_win_and_tried_in_a_straight_line(
+        first_region, first_cost, asked):
+    from lazyground.tasks.anytime import NEAR_SAMPLES
+
+    calls = []
+
+    def near(regions, n, stop):  # one goal near the start in region "near", indexed into the regions asked
+        calls.append((tuple(r.id for r in regions), n))
+        return [GoalSample(np.array([1.5, 2.0]), [r.id for r in regions].index("near"), extra={"near": True})]
+
+    def connect(template, sample):  # only the goals solved from the start are in a straight line
+        if not sample.extra.get("near"):
+            return None
+        region = template.regions[sample.region]
+        return replace(template, goal=sample, goal_region=region, path_length=SPACE.distance(START, sample.q)), None
+
+    settings = replace(SETTINGS, objective="shortest", budget=100.0, improve_rounds=1)
+    best = best_of(Scripted([(first_region, first_cost), (None, 0.0)]), REGIONS, SPACE, START, settings, StopCondition(),
+                   connect, near)
+    assert calls == [(asked, max(NEAR_SAMPLES, len(asked)))]  # mid (7.9) and far (10.2) cannot beat 5 in a line
+    assert best.result.goal_region.id == "near" and best.result.path_length == pytest.approx(np.hypot(0.5, 1.0))
+    assert [i.cost for i in best.improvements] == [first_cost, pytest.approx(np.hypot(0.5, 1.0))]
