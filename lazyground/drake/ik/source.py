@@ -162,8 +162,9 @@ class IKGoalSource(RoundRobinGoalSource):
     def _near_targets(self, j: np.ndarray, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`draw_targets` when solving from ``near``: per attempt NEAR_CANDIDATES draws, the one whose target
         is nearest the robot frame's pose at ``near`` kept (a free yaw of a top grasp drawn near the hand's yaw
-        at the start turns the wrist least: on ur5e_tabletop the median straight length of 8 samples of the
-        cup's top grasp went from X to Y rad)."""
+        at the start turns the wrist least). Straight length start -> pre-pose -> grasp of the cup's top grasp,
+        median of 80 samples (seeds 0-9): ur5e_tabletop 4.71 rad drawn as the first search draws, 1.96 solved
+        from the start, 0.90 with the nearest of 16 targets; panda_tabletop 3.62, 1.87, 1.71."""
         rows = np.repeat(j, NEAR_CANDIDATES)
         lo, span, wrapped = (a[rows] for a in self._stacked[2:])
         V = from_unit(lo, span, wrapped, rng.random(lo.shape))
