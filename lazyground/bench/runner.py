@@ -39,6 +39,7 @@ FIELDS = (
     "collision_checks",  # the planner's own checks (#19)
     "goal_attempts",  # goal-sampling attempts over all regions, failed ones included (#19)
     "objective", "budget",  # first / shortest / fastest and the seconds after the first solution (#30)
+    "total_s",  # api.plan's wall time less world set-up: grounding, search, shortening and timing (#30)
     "max_sweep",  # rad: the most any revolute joint turns away from its start along the final path (#30)
 )
 
@@ -187,6 +188,7 @@ def _run_lazyground(problem: Problem, spec: RunSpec) -> dict:
                       budget=spec.budget, **overrides)
     region = report.result.goal_region
     fields = result_fields(report.result, report.grounding_s, report.chosen.id if report.chosen else "", region.id if region else "")
+    fields["total_s"] = report.total_s
     return fields | motion_fields(report.motion) | sweep_field(report.motion, problem.world)
 
 

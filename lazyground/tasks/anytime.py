@@ -22,6 +22,7 @@ from typing import Callable
 import numpy as np
 
 from lazyground.planning.problem import GoalSample, PlanResult, PlanStatus
+from lazyground.planning.rrt import path_is_valid
 from lazyground.planning.stop import StopCondition
 from lazyground.regions import GoalRegion
 from lazyground.settings import Objective, PlannerSettings
@@ -29,6 +30,7 @@ from lazyground.settings import Objective, PlannerSettings
 Attempt = Callable[[tuple[GoalRegion, ...], StopCondition], tuple[PlanResult, object]]
 Connect = Callable[[PlanResult, GoalSample], tuple[PlanResult, object] | None]  # (solved template, goal sample)
 Near = Callable[[tuple[GoalRegion, ...], int, StopCondition], list[GoalSample]]  # (regions, how many, stop)
+JOIN_TRIES = 3  # waypoints of the best path a goal sample is joined to at most (joined_path)
 NEAR_SAMPLES = 4  # goal samples solved from the start, at least one per region asked (each ~10-20 ms on a tabletop)
 
 
@@ -76,9 +78,32 @@ def _straight_length(space, start: np.ndarray, sample: GoalSample) -> float:
     return space.distance(start, sample.q) + (0.0 if sample.final is None else space.distance(sample.q, sample.final))
 
 
+def joined_path(space, checker, path: np.ndarray, sample: GoalSample, resolution: float, bound: float,
+                tries: int = JOIN_TRIES) -> np.ndarray | None:
+    """``path`` up to one of its waypoints, then a straight line to ``sample`` (and its approach), if one is free.
+
+    Waypoints are tried by the length of the joined path (the start first when nearest), at most ``tries`` of
+    them, while that length is below ``bound``; each new segment is checked every ``resolution``. The path to
+    the best answer found so far leads around what blocks the straight line from the start (shelves), so a
+    goal beside its end is often one free segment away from a waypoint of it.
+    """
+    path = np.asarray(path, float)
+    head = np.concatenate([[0.0], np.cumsum([space.distance(a, b) for a, b in zip(path[:-1], path[1:])])])
+    after = 0.0 if sample.final is None else space.distance(sample.q, sample.final)
+    joins = sorted((head[k] + space.distance(path[k], sample.q) + after, k) for k in range(len(path) - 1))
+    for length, k in joins[:tries]:
+        if length >= bound:
+            break
+        segment = np.array([path[k], sample.q])
+        if path_is_valid(space, checker, segment, resolution) < 0:
+            tail = [sample.q] if sample.final is None else [sample.q, sample.final]
+            return np.vstack([path[:k + 1], tail])
+    return None
+
+
 def best_of(attempt: Attempt, regions: tuple[GoalRegion, ...], space, start: np.ndarray,
             planner: PlannerSettings, stop: StopCondition, connect: Connect | None = None,
-            near: Near | None = None) -> Anytime:
+            near: Near | None = None, search: Attempt | None = None) -> Anytime:
     """Plan with ``attempt`` once, then keep the best of further attempts as ``planner.objective`` asks.
 
     Args:
@@ -89,15 +114,20 @@ def best_of(attempt: Attempt, regions: tuple[GoalRegion, ...], space, start: np.
         start: the step's start configuration.
         planner: ``objective``, ``budget`` and ``improve_rounds`` are read.
         stop: the step's stop condition (the budget is a share of it).
-        connect: tries the straight line from the start to a goal sample the first search drew (nearest first,
-            while it could beat the best); returns the result and Motion, or None when the line is blocked.
+        connect: joins a goal sample to the best answer so far (given as the template; e.g. by
+            :func:`joined_path`), or None when it cannot; returns the (shortened) result and Motion. It is tried
+            on the goal samples the first search drew, nearest first, while a straight line to them could win.
         near: draws up to n goal samples of the given regions solved from the start (the IK branch nearest
             it; their ``region`` indexes the regions given); ``connect`` then tries the straight line to each,
-            nearest first, before any further search. Regions are asked nearest-first (by their bound).
+            nearest first, before any further search.
+        search: plans as ``attempt`` does, for the searches after the first (default ``attempt``; e.g. with
+            goals solved from the start). They go to regions with a known goal sample that could still win,
+            those not reached yet first; to the others only when none is left.
 
     Returns:
         An :class:`Anytime`; its result's counts sum every search; beyond the first, its ``time_s`` is the
-        whole time since ``stop`` began (searches, straight lines and shortening them).
+        whole time since ``stop`` began (searches, straight lines and shortening them) less the shortening and
+        timing of the motion returned (a report counts that as motion, as for ``first``).
     """
     first, motion = attempt(regions, stop)
     best = (first, motion)
@@ -119,7 +149,8 @@ def best_of(attempt: Attempt, regions: tuple[GoalRegion, ...], space, start: np.
         for sample in sorted(samples, key=lambda g: _straight_length(space, start, g))[:planner.improve_rounds]:
             if improve.should_stop() or _straight_length(space, start, sample) >= history[-1].cost:
                 break
-            out = connect(first, sample)
+            # the best path so far, on the first search's result (its regions are every region, as samples index)
+            out = connect(replace(first, path=best[0].path, path_length=best[0].path_length), sample)
             if out is not None and cost(objective, *out) < history[-1].cost - 1e-9:
                 best = out
                 history.append(Improvement(stop.elapsed(), cost(objective, *out), out[0].goal_region.id))
@@ -142,10 +173,11 @@ def best_of(attempt: Attempt, regions: tuple[GoalRegion, ...], space, start: np.
         pruned = {r.id for r in regions} - {r.id for r in alive}
         if not alive:
             break
-        fresh = [r for r in alive if r.id not in reached and r.id not in tried]
-        targets = tuple(fresh or alive)
+        known = [r for r in alive if r.id in bounds]  # a goal sample exists: IK reaches it, not only in words
+        fresh = [r for r in known if r.id not in reached and r.id not in tried]
+        targets = tuple(fresh or known or alive)
         tried |= {r.id for r in fresh}
-        result, m = attempt(targets, improve.share(0.5))
+        result, m = (search or attempt)(targets, improve.share(0.5))
         results.append(result)
         _add_bounds(bounds, space, start, result)
         if result.status is PlanStatus.INTERRUPTED:
@@ -158,8 +190,10 @@ def best_of(attempt: Attempt, regions: tuple[GoalRegion, ...], space, start: np.
             best = (result, m)
             history.append(Improvement(stop.elapsed(), c, result.goal_region.id))
     result, motion = best
+    # every search, straight line and their shortening but the returned motion's own (the report counts it as motion)
+    own = 0.0 if motion is None else getattr(motion, "shortcut_s", 0.0) + getattr(motion, "timing_s", 0.0)
     total = replace(result, iterations=sum(r.iterations for r in results), tree_size=result.tree_size,
-                    time_s=stop.elapsed(),  # every search, straight line and their shortening: the anytime run
+                    time_s=stop.elapsed() - own,
                     goal_sampling_s=sum(r.goal_sampling_s for r in results),
                     collision_s=sum(r.collision_s for r in results))
     return Anytime(total, motion, tuple(history), len(results), tuple(sorted(pruned)))
