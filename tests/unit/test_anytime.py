@@ -109,9 +109,9 @@ def test_straight_lines_to_drawn_goal_samples_come_first_nearest_first_while_the
     assert [i.cost for i in best.improvements] == [12.0, 2.5]
 
 
-@pytest.mark.parametrize("first_region, first_cost, asked", [("far", 12.0, ("near", "mid", "far")), ("near", 5.0, ("near",))])
-def test_goals_solved_from_the_start_are_asked_of_regions_that_can_win_and_tried_in_a_straight_line(
-        first_region, first_cost, asked):
+@pytest.mark.parametrize("first_region, first_cost", [("far", 12.0), ("near", 5.0)])
+def test_goals_solved_from_the_start_are_asked_of_every_sampled_region_and_tried_in_a_straight_line(
+        first_region, first_cost):
     from lazyground.tasks.anytime import NEAR_SAMPLES
 
     calls = []
@@ -129,6 +129,7 @@ def test_goals_solved_from_the_start_are_asked_of_regions_that_can_win_and_tried
     settings = replace(SETTINGS, objective="shortest", budget=100.0, improve_rounds=1)
     best = best_of(Scripted([(first_region, first_cost), (None, 0.0)]), REGIONS, SPACE, START, settings, StopCondition(),
                    connect, near)
-    assert calls == [(asked, max(NEAR_SAMPLES, len(asked)))]  # mid (7.9) and far (10.2) cannot beat 5 in a line
+    # mid's and far's samples (7.9, 10.2 away) do not beat 5 in a line, but their branches nearest the start might
+    assert calls == [(("near", "mid", "far"), max(NEAR_SAMPLES, 3))]
     assert best.result.goal_region.id == "near" and best.result.path_length == pytest.approx(np.hypot(0.5, 1.0))
     assert [i.cost for i in best.improvements] == [first_cost, pytest.approx(np.hypot(0.5, 1.0))]
