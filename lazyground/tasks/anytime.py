@@ -208,3 +208,40 @@ def improvement_notes(best: Anytime) -> tuple[str, ...]:
     pruned = f"; pruned {', '.join(best.pruned)}" if best.pruned else ""
     return (f"best of {best.searches} searches: cost {first.cost:.3f} -> {last.cost:.3f} "
             f"({len(best.improvements) - 1} improvement(s)){pruned}",)
+
+
+def best_step(plan: Callable[[object, StopCondition], PlanResult], source_for: Callable[[tuple[GoalRegion, ...]], object],
+              regions: tuple[GoalRegion, ...], space, checker, start: np.ndarray, planner: PlannerSettings,
+              stop: StopCondition, rng: np.random.Generator) -> Anytime:
+    """:func:`best_of` for one step of a longer task (a pick and place's pick or place, each object's steps of a
+    several-object task): its raw paths compared by length (the task shortens the steps it returns later).
+
+    Args:
+        plan: plans the step to a goal source's goals within a stop condition (e.g. ``planning.rrt.solve``).
+        source_for: the goal source for some of the step's regions (its ``near`` already set to ``start``).
+        regions, space, start, planner, stop: as for :func:`best_of`.
+        checker: checks the straight segments joining goal samples (:func:`joined_path`).
+        rng: draws the goals solved from the start.
+    """
+    resolution = planner.resolution / planner.validation_factor
+
+    def attempt(rs, within, near=False):
+        source = source_for(rs)
+        if near:
+            source.seed_near()
+        return plan(source, within), None
+
+    def near(rs, n, within):
+        source = source_for(rs)
+        return source.draw(n, rng, within) if source.seed_near() else []
+
+    def connect(template, sample):
+        path = joined_path(space, checker, template.path, sample, resolution, template.path_length) \
+            if space.post_processing == "straight" else None
+        if path is None:
+            return None
+        return replace(template, path=path, goal=sample, goal_region=template.regions[sample.region],
+                       path_length=space.path_length(path)), None
+
+    return best_of(attempt, regions, space, start, planner, stop, connect, near,
+                   search=lambda rs, within: attempt(rs, within, near=True))
