@@ -41,7 +41,9 @@ class IKSettings:
     hand_check: bool = True  # reject targets where the hand alone collides, whatever the arm (drake/ik/hand_probe.py)
     warm_start: bool = False  # first restart from the region's last valid solution (one IK branch)
     seed_near: bool = False  # first restart from the source's ``near`` configuration (the step's start): the IK
-    # branch nearest it (#30: what shortest / fastest draw after the first solution); other restarts as before
+    # branch nearest it wins when it is free (#30); other restarts as before
+    near_targets: bool = False  # targets drawn asking the least joint motion from ``near`` (IKGoalSource.seed_near:
+    # what shortest / fastest draw after the first solution)
     reach_starts: int = 256  # batch solver: starts drawn among about this many reach-map arms nearest the target (0: uniform)
 
 

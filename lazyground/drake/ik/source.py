@@ -44,7 +44,7 @@ from lazyground.regions.base import from_unit
 from lazyground.typed_yaml import SceneError
 
 APPROACH_RESOLUTION = 0.01  # rad (or m): spacing of the collision checks along an approach segment
-NEAR_CANDIDATES = 32  # seed_near: targets drawn per attempt; the one nearest the frame's pose at the start is solved
+NEAR_CANDIDATES = 32  # near_targets: targets drawn per attempt; the one nearest the frame's pose at the start is solved
 NEAR_METRES_PER_RAD = 0.5  # ... "nearest": rotation angle plus distance / this (a wrist turn costs its angle, a reach more)
 LOOK_AHEAD_MIN = 16  # fewest attempts the batch solver solves at once (below, one iteration's overhead dominates)
 
@@ -153,7 +153,7 @@ class IKGoalSource(RoundRobinGoalSource):
         """Draws v (N, 6) and target poses X_WT (N, 4, 4) for attempts on ``regions`` (indices, in order): the
         draws one ``self.regions[j].sample(rng)`` each would make, in one ``rng.random((N, 6))``."""
         j = np.asarray(regions, int)
-        if self.settings.seed_near and self.near is not None and len(j):
+        if self.settings.near_targets and self.near is not None and len(j):
             return self._near_targets(j, rng)
         lo, span, wrapped = (a[j] for a in self._stacked[2:])
         V = from_unit(lo, span, wrapped, rng.random(lo.shape))
@@ -303,7 +303,7 @@ class IKGoalSource(RoundRobinGoalSource):
         attempt whose solve from there fails fails: other restarts would land on other branches)."""
         if self.near is None:
             return False
-        self.settings = replace(self.settings, seed_near=True, restarts=1)
+        self.settings = replace(self.settings, seed_near=True, near_targets=True, restarts=1)
         if self.batch is not None:
             self.batch.queue.clear()  # answers solved before came from other starts
         return True
