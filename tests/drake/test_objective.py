@@ -51,19 +51,3 @@ def test_goals_solved_from_the_start_are_nearer_it(seed):
         assert all(world.config_free(g.q) and world.config_free(g.end) for g in samples)
     assert max(drawn[True]) < np.median(drawn[False])
 
-
-@pytest.mark.parametrize("seed", range(3))
-def test_first_goals_take_the_ik_branch_nearest_the_start(seed):
-    """Deliver 4 of #30: every attempt's first IK restart starts at the start, so a free grasp lands on the branch
-    nearest it (cup_open's top grasp: median straight length 4.71 rad over seeds 0-9 with random restarts only)."""
-    import grounding
-    import numpy as np
-
-    from lazyground.goals import goal_source_for
-    from lazyground.planning.stop import StopCondition
-
-    world = Worlds(SCENE, visual=False).get()
-    regions = tuple(r for r in grounding.ground("pick up a cup", SCENE).goal_regions if r.id == "cup_open/top")
-    samples = goal_source_for(regions, world).draw(8, np.random.default_rng(seed), StopCondition())
-    lengths = [world.space.distance(world.start, g.q) + world.space.distance(g.q, g.end) for g in samples]
-    assert len(samples) == 8 and np.median(lengths) < 3.0
