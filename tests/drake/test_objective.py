@@ -51,3 +51,16 @@ def test_goals_solved_from_the_start_are_nearer_it(seed):
         assert all(world.config_free(g.q) and world.config_free(g.end) for g in samples)
     assert max(drawn[True]) < np.median(drawn[False])
 
+
+
+def test_shortest_in_the_place_task_keeps_both_steps_valid():
+    """The objective in a pick and place (tasks.anytime.best_step per step): both steps re-checked with the carried
+    object, and a note per step that searched more than once."""
+    from lazyground.tasks.place import validate_pick_and_place
+
+    kitchen = load_scene(bundled_scene("kitchen_put_cup_on_table"))
+    report = api.plan(kitchen, "put a cup on the table", seed=2, objective="shortest", **CAPS)
+    assert report.status == "solved"
+    planner = report.settings.planner
+    assert validate_pick_and_place(report, kitchen, planner.resolution / planner.validation_factor) == []
+    assert any(n.startswith(("pick: best of", "place: best of")) for n in report.notes)
