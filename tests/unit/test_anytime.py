@@ -133,3 +133,18 @@ def test_goals_solved_from_the_start_are_asked_of_every_sampled_region_and_tried
     assert calls == [(("near", "mid", "far"), max(NEAR_SAMPLES, 3))]
     assert best.result.goal_region.id == "near" and best.result.path_length == pytest.approx(np.hypot(0.5, 1.0))
     assert [i.cost for i in best.improvements] == [first_cost, pytest.approx(np.hypot(0.5, 1.0))]
+
+
+def test_a_goal_behind_the_wall_is_joined_to_the_waypoint_past_the_gap():
+    from lazyground.tasks.anytime import joined_path
+
+    world = BoxWorld(WALLS)
+    path = np.array([START, [3.5, 8.5], [5.5, 8.5], [6.0, 9.5]])  # through the wall's gap, then on
+    sample = GoalSample(np.array([6.0, 5.0]), 0)  # beyond the wall: blocked from the start and from (3.5, 8.5)
+    joined = joined_path(SPACE, world, path, sample, 0.01, bound=100.0)
+    assert joined is not None and np.allclose(joined, [START, [3.5, 8.5], [5.5, 8.5], [6.0, 5.0]])
+    assert path_is_valid(SPACE, world, joined, 0.01) < 0
+    length = SPACE.path_length(joined)
+    assert joined_path(SPACE, world, path, sample, 0.01, bound=length) is None  # cannot beat the bound: not tried
+    final = replace(sample, final=np.array([6.5, 5.0]))  # an approach segment is kept after the join
+    assert np.allclose(joined_path(SPACE, world, path, final, 0.01, bound=100.0)[-1], [6.5, 5.0])
