@@ -1,16 +1,21 @@
 """The best answer rather than the first (issue #30): keep planning after the first solution.
 
 With ``objective: shortest`` (or ``fastest``) a step is planned, shortened and timed once as
-usual; then, within ``budget`` seconds (default: as long again as the first solution took) and at
-most ``improve_rounds`` searches, it is planned again, each search over the goal regions that can
-still win, and the best solution by its *shortened* path length (or trajectory duration) is kept.
+usual; then, within ``budget`` seconds (default: as long again as the first solution's search took),
+the best solution by its *shortened* path length (or trajectory duration) is kept, found in two ways:
+
+1. One straight segment: goal samples solved by IK from the start (the branch nearest it; the
+   task's ``near`` callable) for every region the first search sampled, and the first search's own
+   samples, nearest first, each joined to the start or to a waypoint of the best path so far
+   (:func:`joined_path`). Cheap, and on open tabletops it reaches the nearest goal in a line.
+2. Further searches (at most ``improve_rounds``; the task's ``search``, goals from the start) to
+   the regions with a known goal sample that can still win, those not reached yet first. Each gets
+   at most half of what is left of the budget, so an unreachable region cannot take all of it.
 
 Pruning: a region whose nearest known goal sample is, in a straight line from the start, at
 least as far as the best shortened path is dropped (the straight line bounds every path to that
 sample; other samples of the region may be nearer, so it is a heuristic bound, as cuRobo's goalset
-costs are). The first searches go to regions not reached yet (other interpretations), later ones
-to every region left (other goal samples and trees). Each search gets at most half of what is left
-of the budget, so an unreachable region cannot take all of it.
+costs are). :func:`best_step` does the same for one step of a longer task (pick and place).
 """
 
 from __future__ import annotations
@@ -212,24 +217,28 @@ def improvement_notes(best: Anytime) -> tuple[str, ...]:
 
 def best_step(plan: Callable[[object, StopCondition], PlanResult], source_for: Callable[[tuple[GoalRegion, ...]], object],
               regions: tuple[GoalRegion, ...], space, checker, start: np.ndarray, planner: PlannerSettings,
-              stop: StopCondition, rng: np.random.Generator) -> Anytime:
-    """:func:`best_of` for one step of a longer task (a pick and place's pick or place, each object's steps of a
-    several-object task): its raw paths compared by length (the task shortens the steps it returns later).
+              stop: StopCondition, rng: np.random.Generator,
+              finish: Callable[[PlanResult], tuple[PlanResult, object]] | None = None) -> Anytime:
+    """:func:`best_of` for one step planned by ``plan`` over goal sources: the first search, goals solved from the
+    start, straight segments joined by :func:`joined_path` and searches with goals from the start.
 
     Args:
         plan: plans the step to a goal source's goals within a stop condition (e.g. ``planning.rrt.solve``).
-        source_for: the goal source for some of the step's regions (its ``near`` already set to ``start``).
+        source_for: the goal source for some of the step's regions (its ``near``: the step's start).
         regions, space, start, planner, stop: as for :func:`best_of`.
-        checker: checks the straight segments joining goal samples (:func:`joined_path`).
+        checker: checks the straight segments joining goal samples.
         rng: draws the goals solved from the start.
+        finish: shortens (and times) a solved result, returning it and its Motion; None: raw paths are compared
+            (a pick and place shortens its steps later).
     """
     resolution = planner.resolution / planner.validation_factor
+    done = finish if finish is not None else (lambda result: (result, None))
 
     def attempt(rs, within, near=False):
         source = source_for(rs)
         if near:
             source.seed_near()
-        return plan(source, within), None
+        return done(plan(source, within))
 
     def near(rs, n, within):
         source = source_for(rs)
@@ -240,8 +249,8 @@ def best_step(plan: Callable[[object, StopCondition], PlanResult], source_for: C
             if space.post_processing == "straight" else None
         if path is None:
             return None
-        return replace(template, path=path, goal=sample, goal_region=template.regions[sample.region],
-                       path_length=space.path_length(path)), None
+        return done(replace(template, path=path, goal=sample, goal_region=template.regions[sample.region],
+                            path_length=space.path_length(path)))
 
     return best_of(attempt, regions, space, start, planner, stop, connect, near,
                    search=lambda rs, within: attempt(rs, within, near=True))

@@ -2,16 +2,12 @@
 
 from __future__ import annotations
 
-from dataclasses import replace
-
-import numpy as np
-
 from lazyground.goals import goal_source_for
 from lazyground.motion.post import post_process
 from lazyground.planning.rrt import solve
 from lazyground.planning.stop import StopCondition
 from lazyground.planning.turns import sweep_note
-from lazyground.tasks.anytime import best_of, improvement_notes, joined_path
+from lazyground.tasks.anytime import best_step, improvement_notes
 from lazyground.tasks.car_space import planning_space
 from lazyground.tasks.outcome import Outcome, Step
 
@@ -45,32 +41,11 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     space = planning_space(scene, world.space, planner.kinematics)  # a car's curves, or world.space
     stop = StopCondition.after(planner.time_limit, max_iterations=planner.max_iterations, clock=clock)
 
-    def attempt(regions, within, near=False):
-        source = make_goal_source(world, regions, settings.goal_sampling)
-        if near:
-            source.seed_near()
-        result = solve(space, world, source, world.start, planner, rng, seed=seed, keep_tree=keep_tree, stop=within)
-        return post_process(space, world, result, settings, rng)  # shortened and timed, as the space chose
-
-    def connect(template, sample):
-        """The best path so far joined to a goal sample by one free straight segment (and its approach), if any."""
-        if space.post_processing != "straight":
-            return None
-        path = joined_path(space, world, template.path, sample, planner.resolution / planner.validation_factor,
-                           template.path_length)
-        if path is None:
-            return None
-        result = replace(template, path=path, goal=sample, goal_region=template.regions[sample.region],
-                         path_length=space.path_length(path))
-        return post_process(space, world, result, settings, rng)
-
-    def near(regions, n, within):
-        """Up to ``n`` goal samples of ``regions`` solved from the start (none where the goal source cannot)."""
-        source = make_goal_source(world, regions, settings.goal_sampling)
-        return source.draw(n, rng, within) if source.seed_near() else []
-
-    best = best_of(attempt, tuple(grounding.goal_regions), space, world.start, planner, stop, connect, near,
-                   search=lambda regions, within: attempt(regions, within, near=True))
+    best = best_step(lambda source, within: solve(space, world, source, world.start, planner, rng, seed=seed,
+                                                  keep_tree=keep_tree, stop=within),
+                     lambda regions: make_goal_source(world, regions, settings.goal_sampling),
+                     tuple(grounding.goal_regions), space, world, world.start, planner, stop, rng,
+                     finish=lambda result: post_process(space, world, result, settings, rng))  # shortened and timed
     result, motion = best.result, best.motion
     notes = world.model_notes + ((motion.note,) if motion is not None and motion.note else ())
     swept = sweep_note(motion.shortcut.path, world.space.names, world.space.wrap, world.coordinates.turns) \
