@@ -297,3 +297,22 @@ def test_objective_table_gives_path_sweep_time_and_ratios_against_first():
     assert first[4:8] == ["3 of 3", "4.00", "4.00", "1"]  # median path; the largest sweep; one run over 1.2 pi
     assert shortest[4:8] == ["2 of 3", "1.50", "0.90", "0"]  # solved runs only; the timeout counts at its limit
     assert shortest[8:] == ["6.000", "0.38", "3.00 |"]  # median of 2, 6 (total_s over time_s) and 10; path 1.5 / 4
+
+
+def test_iteration_profile_splits_a_search_iteration(tmp_path, capsys):
+    # #31: where an iteration's time goes; the shares split the plain pass's time per iteration, and the
+    # timers are gone afterwards
+    from lazyground.bench import iteration_profile
+    from lazyground.planning.tree import Tree
+
+    nearest = Tree.__dict__["nearest"]
+    code = main(["bench", "--iteration-profile", "--scenes", "parking_1", "--runs", "1", "--time-limit", "600",
+                 "--out", str(tmp_path)])  # (the limit a guard: parking_1 solves in under 1 s)
+    assert code == 0
+    text = capsys.readouterr().out
+    assert "| parking_1 | 1 (1) |" in text and "nn µs" in text
+    assert (tmp_path / "iteration_profile.md").read_text() == text
+    assert Tree.__dict__["nearest"] is nearest
+    p = iteration_profile.profile_scene("parking_1", range(1), time_limit=600, max_iterations=20_000)
+    assert p.iterations > 0 and p.split_us["nn"] > 0 and p.split_us["checks"] > 0
+    assert sum(p.split_us.values()) == pytest.approx(p.us_per_iteration, rel=1e-6)
