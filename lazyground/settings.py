@@ -292,7 +292,7 @@ class MotionSettings:
 
 @dataclass(frozen=True)
 class TaskSettings:
-    """How a task shares its run between steps (lazyground/place.py)."""
+    """How a task shares its run between steps (lazyground/tasks/place.py, several.py)."""
 
     place_share: float = setting(0.4, "pick and place: the share of the time limit one placement attempt may "
                                  "use before the planner goes back for another object", _API, low=0.0, high=1.0,
@@ -303,6 +303,12 @@ class TaskSettings:
                               _API, low=0.0, low_open=True)
     lift_step: float = setting(0.01, "pick and place: metres per IK step of the lift (each seeded by the last)", _API,
                                low=0.0, low_open=True)
+    backtracks: int = setting(2, "several objects: how many times a step that finds no feasible choice may send the "
+                              "planner back to re-plan the step before it with another placement "
+                              "(`lazyground/tasks/several.py`)", _EVERYWHERE, low=0.0)
+    placement_draws: int = setting(4, "several objects: candidate positions drawn per placement attempt while more "
+                                   "objects follow; the one farthest from the surface's free-area centre is tried, to "
+                                   "leave room (1: uniform; `lazyground/tasks/packing.py`)", _API, low=1.0)
 
     def __post_init__(self) -> None:
         _coerce_fields(self)

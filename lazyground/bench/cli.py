@@ -362,11 +362,12 @@ def write_outputs(rows: list[dict], out: Path, title: str, notes: list[str], tot
         from lazyground.bench.compare import strategy_table
 
         md += ["## Strategies against consecutive (Mann-Whitney U, two-sided)\n", strategy_table(rows)]
-    from lazyground.bench.sweep import size_of, sweep_plot, sweep_table
+    from lazyground.bench.sweep import size_of, sweep_plot, sweep_table, sweep_tests
 
     family = [r for r in rows if size_of(r["scene"]) is not None]
     if family:
-        md += ["## Against the number of interpretations (generated families)\n", sweep_table(family)]
+        md += ["## Against the number of interpretations (generated families)\n", sweep_table(family),
+               "## Each method against round-robin per size (Mann-Whitney U, two-sided; layouts pooled)\n", sweep_tests(family)]
     objectives = tables.objective_table(rows)
     if objectives:
         md += ["## Objectives: path length, joint sweep and time against first (#30)\n", objectives]

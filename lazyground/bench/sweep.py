@@ -92,6 +92,30 @@ def sweep_table(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
+def sweep_tests(rows: list[dict]) -> str:
+    """Markdown: in each (family, N, k) cell, every method's mean time against round-robin's (our planner with the
+    consecutive strategy; unsolved runs at the limit), with the two-sided Mann-Whitney p. The runs of a cell may be
+    different layouts of the family (keys with a layout seed), so a p per cell needs no repeated scene."""
+    from lazyground.bench.compare import mann_whitney_p
+    from lazyground.bench.tables import counted_time
+
+    cells: dict = {}
+    for r in rows:
+        size = size_of(r["scene"])
+        if size is not None and r["status"] not in ("interrupted", "error"):
+            cells.setdefault(size, {}).setdefault(_method(r), []).append(r)
+    lines = ["| family | N | k | method | runs | solved | mean s | median s | p vs round-robin |", "|---|---|---|---|---|---|---|---|---|"]
+    for (fam, n, k), by in sorted(cells.items()):
+        base = next((rs for rs in by.values() if rs[0]["planner"].startswith("lazyground") and rs[0]["strategy"] == "consecutive"), None)
+        bt = [counted_time(r) for r in base] if base else None
+        for method, rs in sorted(by.items()):
+            t = [counted_time(r) for r in rs]
+            p = "" if bt is None or rs is base else f"{mann_whitney_p(t, bt):.3g}"
+            lines.append(f"| {fam} | {n} | {k} | {method} | {len(rs)} | {sum(r['status'] == 'solved' for r in rs)} | "
+                         f"{np.mean(t):.2f} | {np.median(t):.2f} | {p} |")
+    return "\n".join(lines) + "\n"
+
+
 def sweep_plot(rows: list[dict], path: Path) -> None:
     """One panel per family: median time against N (or k), a line per method, success rate marked."""
     import matplotlib

@@ -184,7 +184,7 @@ def _join(s: Search, ts: Tree, a: int, tg: Tree, b: int) -> PlanResult | None:
         tg.prune(goal_side[bad - n_start])
     else:
         tg.prune(goal_side[-1])
-        s.dead.add(gi)
+        s.retire(gi)
     return None
 
 

@@ -56,3 +56,27 @@ def test_bench_runs_each_baseline_on_a_family_key(planner):
     row = run(RunSpec("lot:8:2", planner, "consecutive", 0.05, 0, 1.0))
     assert row["status"] in ("solved", "timeout"), row["message"]
     assert row["scene"] == "lot_8_2" and float(row["time_s"]) > 0
+
+
+def test_panda_window_cans_are_valid_and_unreachable():
+    """The Panda's window cubbies (pane set back, a hole round link 7): a can's grasps are collision-free
+    for some IK answers, yet with no reachable can (rack:panda:8:0:1, 7 window cans, 1 caged) the planner
+    never returns a path within its cap."""
+    from lazyground.bench.families.rack import WINDOW, can_kinds
+    from lazyground.drake.ik.source import IKGoalSource
+
+    key = "rack:panda:8:0:1"
+    scene = load_family_scene(key)
+    world = DrakeWorld(scene, visual=False)
+    kinds = can_kinds(generate(parse_key(key)))
+    regions = grounding.ground("pick up a can", scene).goal_regions
+    windows = [c for c, k in kinds.items() if k == WINDOW]
+    mine = tuple(r for r in regions if r.object == windows[0])
+    source = IKGoalSource(mine, world, give_up_after=10**6, attempts_per_sample=3000)  # ~0.5 % of attempts are valid
+    samples = source.draw(1, np.random.default_rng(0), StopCondition.after(None))
+    assert samples, "no collision-free grasp of a window can in 3000 attempts"
+    for seed in range(2):
+        report = api.plan(scene, "pick up a can", seed=seed, world=world, algorithm="bidirectional",
+                          strategy="cover", max_iterations=1500, time_limit=600.0)
+        assert report.result.goal_samples, "the window cans gave the planner no goal samples"
+        assert report.status != "solved"

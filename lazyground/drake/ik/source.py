@@ -113,6 +113,7 @@ class IKGoalSource(RoundRobinGoalSource):
     """
 
     reached_reasons = ("in collision",)  # IK reached the grasp, the arm collided: another grasp of the region may not
+    hopeless_reasons = ("out of reach",)  # the wrist point beyond the sampled reach (screened before any solve)
 
     def __init__(self, regions: tuple[PoseRegion, ...], world, settings: IKSettings | None = None, **kwargs):
         super().__init__(regions, **kwargs)
@@ -132,6 +133,10 @@ class IKGoalSource(RoundRobinGoalSource):
         self.last: list[np.ndarray | None] = [None] * len(self.regions)  # per region: its last valid answer
         self.target_screen = TargetScreen(world, self.frames, settings)
         self.near = world.start  # goals prefer the full-turn equivalent nearest this (the step's start)
+        # which of several drawn targets to try (a task's placement preference, e.g. leave room for later
+        # objects; lazyground/tasks/packing.py): an object with ``draws``, ``pick(j, V)`` -> (N, 6) and
+        # ``avoided(j, V)`` -> (N,) bool; None: one draw per attempt (:meth:`draw_preferred`; batch solver only)
+        self.prefer = None
         self._turns = getattr(getattr(world, "coordinates", None), "turns", None)
         problems = {f: problem_for_frame(world, f) for f in dict.fromkeys(self.frames)} if settings.solver == "batch" else {}
         # batches when the chain expresses every frame (else SNOPT on the plant, e.g. for a planar base)
@@ -246,6 +251,23 @@ class IKGoalSource(RoundRobinGoalSource):
     def screen(self, frame: str, X_WT: np.ndarray) -> list[str]:
         """Why each target pose (B, 4, 4) of ``frame`` fails before any solve ("" for none): :class:`TargetScreen`."""
         return self.target_screen.reasons(frame, X_WT)
+
+    def draw_preferred(self, regions: list[int], rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`draw_targets`, or with a preference (``prefer``) the preferred of its ``draws`` per attempt.
+
+        The batch solver's attempts draw here; the one-at-a-time solvers (``snopt``, ``ipopt``) draw uniformly.
+        """
+        if self.prefer is None:
+            return self.draw_targets(regions, rng)
+        j = np.asarray(regions, int)
+        V = self.prefer.pick(j, np.stack([self.draw_targets(regions, rng)[0] for _ in range(self.prefer.draws)]))
+        return V, self.target_poses(j, V)
+
+    def avoided(self, regions: list[int], V: np.ndarray) -> np.ndarray:
+        """Which draws ``V`` (N, 6) of ``regions`` the preference rules out (a place to keep clear), (N,) bool."""
+        if self.prefer is None:
+            return np.zeros(len(V), bool)
+        return np.asarray(self.prefer.avoided(np.asarray(regions, int), np.asarray(V, float)), bool)
 
     # --- one attempt -------------------------------------------------------------------------
     def attempt(self, j: int, rng: np.random.Generator, stop: StopCondition) -> tuple[GoalSample | None, str]:
@@ -382,7 +404,7 @@ class IKGoalSource(RoundRobinGoalSource):
         ~15 iterations. With 1 in 4, fetch_boxes_3 (~1 in 12) solved its first draw in two batches
         (CPU ms per goal sample 5.6 against 4.6 with 1 in 8, seeds 20-79; /tmp/notes/ik6.md).
         """
-        valid, attempts = sum(st.valid for st in self.stats), sum(st.attempts for st in self.stats)
+        valid, attempts = self.total_valid, self.total_attempts
         rate = (valid + 1) / (attempts + 8)
         need = math.ceil(1.5 * max(self.wanted, 1) / rate)
         return int(min(max(need, LOOK_AHEAD_MIN), max(self.settings.batch_attempts, 1), max(left, LOOK_AHEAD_MIN)))
