@@ -265,6 +265,9 @@ class GoalSamplingSettings:
                                        low=0.0, low_open=True)
     ik_restarts: int = setting(3, "IK solves per attempt, each from another random start (workspace regions)",
                                _API, low=0.0, low_open=True)
+    goal_learning: float = setting(0.75, "share of a goal region's draws that follow where its earlier draws "
+                                   "worked (IK reached, collision-free); 0: uniform draws (lazyground/regions/learned.py)",
+                                   _API, low=0.0, high=1.0)
     ik_solver: IKSolver = setting(IKSolver.BATCH, "IK solver: `batch` (numpy damped least squares, many attempts "
                                   "at once), `snopt` or `ipopt` (a Drake program per restart)", _API)
 

@@ -42,6 +42,8 @@ from lazyground.planning.stop import StopCondition
 from lazyground.planning.turns import nearest_turns
 from lazyground.regions import PoseRegion
 from lazyground.regions.base import from_unit
+from lazyground.regions.learned import RegionLearner, outcome_score
+from lazyground.settings import GoalSamplingSettings
 from lazyground.typed_yaml import SceneError
 
 APPROACH_RESOLUTION = 0.01  # rad (or m): spacing of the collision checks along an approach segment
@@ -148,6 +150,8 @@ class IKGoalSource(RoundRobinGoalSource):
             pre = {f: problem_for_frame(world, f, full_turns=False) for f in problems}
             self.batch = BatchAttempts(self, BatchSolver(problems, settings), BatchSolver(pre, settings, PRE_POSE_ITERATIONS))
         self.wanted = 1  # samples the current draw still wants (sizes the batch solver's look-ahead)
+        # draws follow, within each region, the sub-ranges whose earlier draws worked (issue 34)
+        self.learner = RegionLearner([r.unit_map() for r in self.regions], (sampling or GoalSamplingSettings()).goal_learning)
         self.program = ProgramSolver(world, settings)
 
     # --- hooks -------------------------------------------------------------------------------
@@ -184,7 +188,7 @@ class IKGoalSource(RoundRobinGoalSource):
         if self.settings.near_targets and self.near is not None and len(j):
             return self._near_targets(j, rng)
         lo, span, wrapped = (a[j] for a in self._stacked[2:])
-        V = from_unit(lo, span, wrapped, rng.random(lo.shape))
+        V = from_unit(lo, span, wrapped, self.learner.warp(j, rng.random(lo.shape)))
         return V, self.target_poses(j, V)
 
     def _near_targets(self, j: np.ndarray, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
@@ -276,20 +280,27 @@ class IKGoalSource(RoundRobinGoalSource):
                 return None, "time"
             items = self.batch.prepare([(j, -1)], rng)
             self.batch.check(items)
-            return self._finish(items[0])
+            return self.learn(j, items[0].v, *self._finish(items[0]))
         region = self.regions[j]
-        v = region.sample(rng)
+        v = from_unit(*region.unit_map(), self.learner.warp([j], rng.random((1, len(region.lower))))[0])  # region.sample's draws
         frame, X_WT = self.target_pose_for(region, v)
         reason = self.screen(frame, X_WT.matrix()[None])[0]
         if reason:
-            return None, reason
+            return self.learn(j, v, None, reason)
         seeds = [self.last[j]] if self.last[j] is not None and self.settings.warm_start else []
         near = self.near_full() if self.settings.seed_near else None
         seeds = seeds if near is None else [near]
         item = Prepared(j, -1, v, frame, X_WT.matrix())
-        return self._first_valid(item, stop, lambda k: self.solve(frame, X_WT, seeds[k] if k < len(seeds) else self.random_full(rng),
-                                                                        counters=self.region_counters[j]),
-                                 lambda k, q_full, scale: self.approach_from(region, v, q_full, scale))
+        return self.learn(j, v, *self._first_valid(
+            item, stop, lambda k: self.solve(frame, X_WT, seeds[k] if k < len(seeds) else self.random_full(rng), counters=self.region_counters[j]),
+            lambda k, q_full, scale: self.approach_from(region, v, q_full, scale)))
+
+    def learn(self, j: int, v: np.ndarray, sample: GoalSample | None, reason: str) -> tuple[GoalSample | None, str]:
+        """(sample, reason), after scoring the draw ``v`` of region ``j`` by it (:class:`RegionLearner`)."""
+        score = outcome_score(reason, self.reached_reasons)
+        if score is not None:
+            self.learner.record(j, v, score)
+        return sample, reason
 
     def _stop(self, stop: StopCondition) -> StopCondition:
         """One attempt's stop condition: ``attempt_budget`` seconds of ``stop``'s time."""
@@ -387,7 +398,7 @@ class IKGoalSource(RoundRobinGoalSource):
         for i, (j, after) in enumerate(plan):
             item = self.batch.take(j, after, plan[i - 1][1] if i else self.next_region, rng, lambda i=i: self._look_ahead(len(plan) - i))
             a0 = stop.now()
-            sample, reason = self._finish(item)
+            sample, reason = self.learn(j, item.v, *self._finish(item))
             self.wanted -= sample is not None
             yield sample, reason, item.seconds + stop.now() - a0
 
