@@ -66,6 +66,10 @@ class RoundRobinGoalSource:
         self.total_attempts = self.total_valid = 0
         self._open = sorted(j for j in range(len(self.regions)) if not self.region_exhausted(j))  # not given up yet
 
+    def seed_near(self) -> bool:
+        """Solve goals from the step's start from now on (the branch nearest it); False: this source cannot."""
+        return False
+
     @property
     def sample_time(self) -> float:
         return self._time

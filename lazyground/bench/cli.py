@@ -368,6 +368,9 @@ def write_outputs(rows: list[dict], out: Path, title: str, notes: list[str], tot
     if family:
         md += ["## Against the number of interpretations (generated families)\n", sweep_table(family),
                "## Each method against round-robin per size (Mann-Whitney U, two-sided; layouts pooled)\n", sweep_tests(family)]
+    objectives = tables.objective_table(rows)
+    if objectives:
+        md += ["## Objectives: path length, joint sweep and time against first (#30)\n", objectives]
     motion = tables.motion_table(rows)
     if motion:
         md += ["## Shortening and timing after the solve (solved runs, medians)\n", motion]

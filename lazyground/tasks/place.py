@@ -29,6 +29,7 @@ from lazyground.regions import GoalRegion
 from lazyground.robots.end_effector import frame_of
 from lazyground.scene.schema import Scene
 from lazyground.settings import RunSettings, TaskSettings
+from lazyground.tasks.anytime import best_step, improvement_notes
 from lazyground.tasks.outcome import Grasp, Lift, Outcome, Placement, Step
 from lazyground.tasks.worlds import Worlds
 
@@ -162,8 +163,12 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
         candidates = [r for r in grasps if r.object not in excluded]
         if stop.remaining() <= 0 or not candidates:
             break
-        pick = solve(world.space, world, goal_source_for(tuple(candidates), world, settings.goal_sampling),
-                     world.start, planner, rng, seed=seed, keep_tree=keep_tree, stop=stop.share())
+        pick = best_step(lambda source, within: solve(world.space, world, source, world.start, planner, rng, seed=seed,
+                                                      keep_tree=keep_tree, stop=within),
+                         lambda rs: goal_source_for(rs, world, settings.goal_sampling), tuple(candidates), world.space,
+                         world, world.start, planner, stop.share(), rng)
+        notes += [f"pick: {n}" for n in improvement_notes(pick)]
+        pick = pick.result
         results.append(pick)
         if not pick.solved:
             return finish(pick.status, f"{PICK_FAILED}{pick.message}")
@@ -185,8 +190,6 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
         if prefer is not None:
             source.prefer = prefer(obj.id, targets)
         lift = lift_off(world, carrying, source, frame, q_grasp, planner.resolution, settings.task)
-        if lift is not None:
-            source.near = lift.q_lift  # placements prefer the full-turn equivalent nearest where the place step starts
         if lift is None:
             notes.append(f"picked {obj.id} ({pick.goal_region.label}) but could not lift it clear; trying another object")
             excluded.append(obj.id)
@@ -195,8 +198,22 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
         budget = share.budget
         if budget <= 0:  # the lift used up the time: a timeout, not a reason to try another object
             break
-        place = solve(carrying.space, carrying, source, lift.q_lift, planner, rng, seed=seed, keep_tree=keep_tree,
-                      stop=share)
+
+        def placements(rs, q_lift=lift.q_lift, spare=[source], obj_id=obj.id):
+            if spare and rs == targets:
+                made = spare.pop()
+            else:  # shortest / fastest: more searches and draws over some of the targets
+                made = goal_source_for(rs, carrying, settings.goal_sampling)
+                if prefer is not None:
+                    made.prefer = prefer(obj_id, rs)
+            made.near = q_lift  # placements prefer the configuration nearest where the place step starts
+            return made
+
+        place = best_step(lambda source, within: solve(carrying.space, carrying, source, lift.q_lift, planner, rng,
+                                                       seed=seed, keep_tree=keep_tree, stop=within),
+                          placements, targets, carrying.space, carrying, lift.q_lift, planner, share, rng)
+        notes += [f"place: {n}" for n in improvement_notes(place)]
+        place = place.result
         results.append(place)
         if place.status is PlanStatus.INTERRUPTED:  # Ctrl-C is not a reason to try another object
             return finish(place.status, f"place: {place.message}")

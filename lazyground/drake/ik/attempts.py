@@ -116,11 +116,17 @@ class BatchAttempts:
     def _solve_group(self, frame: str, group: list[Prepared], rng: np.random.Generator) -> None:
         s = self.source.settings
         t0 = time.perf_counter()
-        starts = self._starts(frame, group, rng)
-        if s.warm_start:
-            for g, it in enumerate(group):
-                if self.source.last[it.j] is not None:
-                    starts[g * s.restarts] = self.source.last[it.j]
+        near = self.source.near_full() if s.seed_near else None
+        if near is not None and s.restarts == 1:  # every solve from near: no other start to draw
+            starts = np.tile(near, (len(group), 1))
+        else:
+            starts = self._starts(frame, group, rng)
+            if s.warm_start:
+                for g, it in enumerate(group):
+                    if self.source.last[it.j] is not None:
+                        starts[g * s.restarts] = self.source.last[it.j]
+            if near is not None:
+                starts[::s.restarts] = near
         answers, ok = self.solver.solve(frame, np.repeat([it.X_WT for it in group], s.restarts, axis=0), np.array(starts))
         t1 = time.perf_counter()
         share = (t1 - t0) / len(group)

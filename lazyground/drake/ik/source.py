@@ -33,6 +33,7 @@ from lazyground.drake.ik import settings as ik_settings
 from lazyground.drake.ik.attempts import APPROACH_SCALES, PRE_POSE_ITERATIONS, BatchAttempts, Prepared
 from lazyground.drake.ik.screen import TargetScreen
 from lazyground.drake.ik.settings import IKCounters, IKSettings
+from lazyground.drake.ik.batch import pose_errors
 from lazyground.drake.ik.solvers import BatchSolver, ProgramSolver, pose_error, problem_for_frame
 from lazyground.geometry import Pose, rpy_to_matrices
 from lazyground.goals import RoundRobinGoalSource
@@ -46,6 +47,8 @@ from lazyground.settings import GoalSamplingSettings
 from lazyground.typed_yaml import SceneError
 
 APPROACH_RESOLUTION = 0.01  # rad (or m): spacing of the collision checks along an approach segment
+NEAR_CANDIDATES = 32  # near_targets: targets drawn per attempt; the one nearest the frame's pose at the start is solved
+NEAR_METRES_PER_RAD = 0.5  # ... "nearest": rotation angle plus distance / this (a wrist turn costs its angle, a reach more)
 LOOK_AHEAD_MIN = 16  # fewest attempts the batch solver solves at once (below, one iteration's overhead dominates)
 
 
@@ -182,9 +185,36 @@ class IKGoalSource(RoundRobinGoalSource):
         """Draws v (N, 6) and target poses X_WT (N, 4, 4) for attempts on ``regions`` (indices, in order): the
         draws one ``self.regions[j].sample(rng)`` each would make, in one ``rng.random((N, 6))``."""
         j = np.asarray(regions, int)
+        if self.settings.near_targets and self.near is not None and len(j):
+            return self._near_targets(j, rng)
         lo, span, wrapped = (a[j] for a in self._stacked[2:])
         V = from_unit(lo, span, wrapped, self.learner.warp(j, rng.random(lo.shape)))
         return V, self.target_poses(j, V)
+
+    def _near_targets(self, j: np.ndarray, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`draw_targets` when solving from ``near``: per attempt NEAR_CANDIDATES draws, the one whose target
+        asks the least joint motion from ``near`` kept, at first order (|J+ (rotation; translation)| with the
+        frame's Jacobian at ``near``; without a batch chain, the rotation angle plus distance / NEAR_METRES_PER_RAD).
+        A free yaw of a top grasp drawn so turns the wrist least. Straight length start -> pre-pose -> grasp of the
+        cup's top grasp, median of 80 samples (seeds 0-9): ur5e_tabletop 4.71 rad drawn as the first search
+        draws, 1.96 solved from the start, 0.90 with the nearest of 16 targets by angle and distance, 0.88 / 0.87 /
+        0.85 by joint motion with 16 / 32 / 64 targets; panda_tabletop 3.62, 1.87, 1.71, 1.59 / 1.57 / 1.56
+        (64 targets cost ~40 ms per 90 attempts, 32 ~20 ms)."""
+        rows = np.repeat(j, NEAR_CANDIDATES)
+        lo, span, wrapped = (a[rows] for a in self._stacked[2:])
+        V = from_unit(lo, span, wrapped, rng.random(lo.shape))
+        X = self.target_poses(rows, V)
+        near_full = self.near_full()
+        names = list(dict.fromkeys(self.frames[i] for i in j))
+        code = np.array([names.index(self.frames[i]) for i in j]).repeat(NEAR_CANDIDATES)  # per row: its frame
+        w, dp, angle = pose_errors(np.array([self.frame_pose(f, near_full) for f in names])[code], X)
+        far = angle + np.linalg.norm(dp, axis=1) / NEAR_METRES_PER_RAD
+        if self.batch is not None:  # the joint motion the pose change asks at first order: |J+ (w; dp)|
+            inverse = np.array([self._jacobian_inverse(f, near_full) for f in names])
+            far = np.linalg.norm(np.einsum("bij,bj->bi", inverse[code], np.concatenate([w, dp], axis=1)), axis=1)
+        far = far.reshape(len(j), NEAR_CANDIDATES)
+        keep = np.arange(len(j)) * NEAR_CANDIDATES + np.argmin(far, axis=1)
+        return V[keep], X[keep]
 
     def approach_shift(self, region: PoseRegion, scale: float) -> np.ndarray:
         """The pre-pose of a target X_WT is X_WT times this: ``scale`` x the approach, in the robot frame's axes."""
@@ -258,6 +288,8 @@ class IKGoalSource(RoundRobinGoalSource):
         if reason:
             return self.learn(j, v, None, reason)
         seeds = [self.last[j]] if self.last[j] is not None and self.settings.warm_start else []
+        near = self.near_full() if self.settings.seed_near else None
+        seeds = seeds if near is None else [near]
         item = Prepared(j, -1, v, frame, X_WT.matrix())
         return self.learn(j, v, *self._first_valid(
             item, stop, lambda k: self.solve(frame, X_WT, seeds[k] if k < len(seeds) else self.random_full(rng), counters=self.region_counters[j]),
@@ -321,6 +353,30 @@ class IKGoalSource(RoundRobinGoalSource):
                 shift = self._nearest_turns(q, pre)
                 return GoalSample(q=pre + shift, region=j, final=q + shift, extra=extra | {"approach_scale": scale})
         return GoalSample(q=q + self._nearest_turns(q), region=j, extra=extra)
+
+    def seed_near(self) -> bool:
+        """Every attempt solved from ``near`` alone from now on: goals on the IK branch nearest the start (an
+        attempt whose solve from there fails fails: other restarts would land on other branches)."""
+        if self.near is None:
+            return False
+        self.settings = replace(self.settings, seed_near=True, near_targets=True, restarts=1)
+        if self.batch is not None:
+            self.batch.queue.clear()  # answers solved before came from other starts
+        return True
+
+    def _jacobian_inverse(self, frame: str, q_full: np.ndarray) -> np.ndarray:
+        """The pseudo-inverse (n, 6) of ``frame``'s Jacobian over its chain at ``q_full`` (held joints' columns zero)."""
+        problem = self.batch.solver.problems[frame]
+        _, J = problem.chain.forward(q_full[problem.chain.index][None], jacobian=True)
+        return np.linalg.pinv(J[0] * problem.free)
+
+    def near_full(self) -> np.ndarray | None:
+        """Full plant positions at ``near`` (the step's start), or None without one."""
+        if self.near is None:
+            return None
+        q = self.world.q_full.copy()
+        q[self.planned] = self.near
+        return q
 
     def _nearest_turns(self, q: np.ndarray, *together: np.ndarray) -> np.ndarray:
         """Full turns taking goal ``q`` (and its pre-pose) nearest the start: the same grasp, a shorter motion (#28)."""
