@@ -127,6 +127,9 @@ class BatchAttempts:
                         starts[g * s.restarts] = self.source.last[it.j]
             if near is not None:
                 starts[::s.restarts] = near
+            elif s.near_first and self.source.near is not None:
+                first = [g for g, it in enumerate(group) if self.source.stats[it.j].valid == 0]
+                starts[[g * s.restarts for g in first]] = self.source.near_full()
         answers, ok = self.solver.solve(frame, np.repeat([it.X_WT for it in group], s.restarts, axis=0), np.array(starts))
         t1 = time.perf_counter()
         share = (t1 - t0) / len(group)

@@ -290,6 +290,8 @@ class IKGoalSource(RoundRobinGoalSource):
         seeds = [self.last[j]] if self.last[j] is not None and self.settings.warm_start else []
         near = self.near_full() if self.settings.seed_near else None
         seeds = seeds if near is None else [near]
+        if near is None and self.settings.near_first and self.near is not None and self.stats[j].valid == 0:
+            seeds = [self.near_full()]
         item = Prepared(j, -1, v, frame, X_WT.matrix())
         return self.learn(j, v, *self._first_valid(
             item, stop, lambda k: self.solve(frame, X_WT, seeds[k] if k < len(seeds) else self.random_full(rng), counters=self.region_counters[j]),
