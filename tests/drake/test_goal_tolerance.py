@@ -13,12 +13,13 @@ from lazyground.planning.rrt import path_is_valid  # noqa: E402
 from lazyground.report import report_to_json  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 from lazyground.tolerance import accepted_error  # noqa: E402
+from tests.counts import BY_COUNTS  # noqa: E402
 
 
 def test_fetch_json_states_the_goal_tolerance_and_the_goal_meets_it():
     scene = load_scene("fetch_cans_1")
     world = DrakeWorld(scene)
-    report = api.plan(scene, "pick up the can on the table", seed=3, world=world, time_limit=1e6, max_iterations=12_000)  # by seed
+    report = api.plan(scene, "pick up the can on the table", seed=3, world=world, **{**BY_COUNTS, "max_iterations": 12_000})  # by seed
     res = report.result
     assert res.solved, res.message
     assert path_is_valid(world.space, world, res.path, report.settings.planner.resolution / 10) == -1
@@ -33,7 +34,7 @@ def test_fetch_json_states_the_goal_tolerance_and_the_goal_meets_it():
 
 
 def test_parking_goals_are_met_exactly_so_no_tolerance_is_stated():
-    report = api.plan("parking_1", "park", seed=3)
+    report = api.plan("parking_1", "park", seed=3, **BY_COUNTS)
     assert report.result.solved
     assert report_to_json(report)["goal_tolerance"] is None
     assert report.result.goal_region.contains(report.result.path[-1])
