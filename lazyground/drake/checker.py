@@ -242,7 +242,22 @@ class DrakeChecker:
         measure = self._edge(self.drake.MeasureEdgeCollisionFree, a, b, resolution)
         return max(0.0, measure.alpha_or(0.0))
 
-    def _certified_edge(self, a: np.ndarray, b: np.ndarray, resolution: float, fraction: bool):
+    def edge_part_free(self, a: np.ndarray, b: np.ndarray, resolution: float, first: int = 0,
+                       stop: int | None = None) -> bool:
+        """Whether the steps at positions ``first`` .. ``stop`` - 1 of a → b, in interior-first bisection order
+        (:meth:`_interior_first`), are free at ``resolution``: the whole edge by default, in one compiled call with
+        early exit (a shortcut's candidate edges, whose ends lie on a checked path; a search probing a few steps
+        first). The steps and answers are :meth:`edge_free`'s (Drake's); only the order and the part differ.
+
+        Raises:
+            ValueError: this checker has no compiled certifier (a car's: Drake checks its edges).
+        """
+        if self.compiled is None:
+            raise ValueError("edge_part_free needs the compiled certifier")
+        return bool(self._certified_edge(a, b, resolution, fraction=False, part=(first, stop)))
+
+    def _certified_edge(self, a: np.ndarray, b: np.ndarray, resolution: float, fraction: bool,
+                        part: tuple[int, int | None] | None = None):
         """Drake's ``CheckEdgeCollisionFree`` (``fraction``: ``MeasureEdgeCollisionFree``'s free fraction) at
         ``resolution``, with the certifier: the same steps (q_k = qa + k / n (qb - qa), k = 0..n, n =
         max(1, ceil(Drake's distance / resolution)); the certifier's margin covers the last bit by which Drake's
@@ -258,7 +273,7 @@ class DrakeChecker:
         qb = self.coordinates.full(a + self.coordinates.space.difference(a, b))
         # Drake's own distance: a sum in another order can differ in the last bit, and so the step count
         n = max(1, int(np.ceil(self.drake.ComputeConfigurationDistance(qa, qb) / resolution)))
-        order = np.arange(n + 1) if fraction else self._bisection(n)
+        order = np.arange(n + 1) if fraction else self._bisection(n) if part is None else self._interior_first(n)[slice(*part)]
         begin, out = 0, (1.0 if fraction else True)
         while True:
             p, code, pairs = self.compiled.first_open(qa, qb, n, order, begin)
@@ -292,6 +307,14 @@ class DrakeChecker:
                         nxt += [(lo, mid), (mid, hi)]
                 level = nxt
             order = self._orders[n] = np.array(out, np.int64)
+        return order
+
+    def _interior_first(self, n: int) -> np.ndarray:
+        """Steps 0..n of an edge, the middles of ever finer halvings first, the ends last (0, then n)."""
+        order = self._orders.get(-n)
+        if order is None:
+            ends_first = self._bisection(n)
+            order = self._orders[-n] = np.concatenate([ends_first[2:], ends_first[1::-1]])
         return order
 
     def _edge(self, check, a, b, resolution: float):

@@ -96,6 +96,12 @@ class DrakeWorld:
         """Whether the motion a → b is free at ``resolution`` (see :meth:`DrakeChecker.edge_free`)."""
         return self._checker_for(resolution).edge_free(a, b, resolution)
 
+    @property
+    def edge_part_free(self):
+        """The checker's ordered, partial edge check (:meth:`DrakeChecker.edge_part_free`); None when it has no
+        compiled certifier (a car's world: its edges go to Drake's batch checks)."""
+        return self.checker.edge_part_free if self.checker.compiled is not None else None
+
     def edge_fraction(self, a: np.ndarray, b: np.ndarray, resolution: float) -> float:
         """The free fraction of a → b at ``resolution`` (see :meth:`DrakeChecker.edge_fraction`)."""
         return self._checker_for(resolution).edge_fraction(a, b, resolution)
