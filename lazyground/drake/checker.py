@@ -140,13 +140,26 @@ class DrakeChecker:
         self.checks += len(qs)
         return free
 
-    def _batch(self, configs: np.ndarray) -> np.ndarray:
-        """The batch's answers: the certifier proves what it can and SceneGraph measures the pairs it leaves open
-        (:meth:`_open_free`); a world without certifier goes to Drake's batch check, on several threads when
-        that is many (lazyground.drake.parallel)."""
+    def configs_free_along(self, qs: np.ndarray) -> np.ndarray:
+        """:meth:`configs_free` of configurations in sequence, each close to the one before (a path checked
+        densely): the same answers, most of them proven from an earlier configuration's clearance
+        (:meth:`CompiledCertifier.sweep`); :meth:`configs_free` where there is no certifier."""
+        qs = np.atleast_2d(qs)
+        if self.compiled is None or len(qs) == 1:
+            return self.configs_free(qs)
+        t0 = time.perf_counter()
+        free = self._batch(self.coordinates.full(qs), along=True)
+        self.check_time += time.perf_counter() - t0
+        self.checks += len(qs)
+        return free
+
+    def _batch(self, configs: np.ndarray, along: bool = False) -> np.ndarray:
+        """The batch's answers: the certifier proves what it can (``along``: rows in sequence, :meth:`configs_free_along`)
+        and SceneGraph measures the pairs it leaves open (:meth:`_open_free`); a world without certifier goes to
+        Drake's batch check, on several threads when that is many (lazyground.drake.parallel)."""
         if self.compiled is None:
             return np.asarray(self.drake.CheckConfigsCollisionFree(list(configs), parallelize=parallel_batch(len(configs))), bool)
-        count, pairs = self.compiled.certify(configs)
+        count, pairs = (self.compiled.sweep if along else self.compiled.certify)(configs)
         free = count == 0
         self.certified += int(free.sum())
         for i in np.flatnonzero(count > 0):

@@ -92,6 +92,10 @@ class DrakeWorld:
     def configs_free(self, qs: np.ndarray) -> np.ndarray:
         return self.checker.configs_free(qs)
 
+    def configs_free_along(self, qs: np.ndarray) -> np.ndarray:
+        """:meth:`configs_free` of configurations in sequence along a path (see :meth:`DrakeChecker.configs_free_along`)."""
+        return self.checker.configs_free_along(qs)
+
     def edge_free(self, a: np.ndarray, b: np.ndarray, resolution: float) -> bool:
         """Whether the motion a → b is free at ``resolution`` (see :meth:`DrakeChecker.edge_free`)."""
         return self._checker_for(resolution).edge_free(a, b, resolution)

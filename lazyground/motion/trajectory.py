@@ -166,7 +166,7 @@ def assemble(space: ConfigSpace, checker: ValidityChecker, q0: np.ndarray, n_pie
             slowdowns += 1
             timed = [([_slowed(part, slower) for part in curves], label) for curves, label in timed]
             continue
-        bad = first_colliding_join(space, checker, qs, fine_resolution)
+        bad = first_colliding_join(space, checker, qs, fine_resolution, along=True)
         if bad is None:
             break
         # the piece playing at the colliding join is redone more cautiously; the whole output is checked
