@@ -16,7 +16,8 @@ relative to each other by at most the sum of both bounds over the joints above o
 geometry moved less than its clearance, and every self pair's two geometries less than the
 pair's, is free for Drake's checker as the anchor is (the same lower bounds, less the
 distances moved). Any other configuration gets the whole test (``_row``): its answer then
-is the whole test's, and it becomes the next anchor when every clearance there is positive.
+is the whole test's. A configuration not covered becomes the next anchor when every clearance there
+is positive; after a failed attempt the next ones wait 4, 8, ... MAX_WAIT rows.
 """
 
 from __future__ import annotations
@@ -29,6 +30,8 @@ from lazyground.drake.sphere_kernels import (_HEAD, _NF, _G, _O, _P, _M, PRISMAT
 
 ROOM = 0.1  # metres: clearances are bounded to this (farther obstacles need no distance)
 ENOUGH = 0.05  # metres: a bounding-sphere clearance this large is not refined by the solid's distance
+MAX_WAIT = 32  # rows: the most between two anchor attempts (near an obstacle most attempts fail: ~1/2 of the rows
+# of a Fetch trajectory; a whole test per attempt and row there, or 1/16 more rows tested in full)
 SAFETY = 1e-9  # metres: a moved distance must stay this far below its clearance (rounding of the bound itself)
 
 
@@ -135,7 +138,7 @@ def sweep_rows(Q, fd, idata, work, above, pairs):
     out = np.empty(Q.shape[0], np.int64)
     cap = pairs.shape[1]
     anchored = False
-    wait = 0  # rows to go before the next anchor attempt (after one that failed)
+    wait, backoff = 0, 2  # rows to go before the next anchor attempt; after each that fails, twice as many
     for r in range(Q.shape[0]):
         if anchored:
             s = 0.0
@@ -174,6 +177,7 @@ def sweep_rows(Q, fd, idata, work, above, pairs):
         if wait == 0:
             if _clearance(Q[r], fd, idata, Rs, ps, Rb, pb, centre, W, above, lever, clear_g, clear_k):
                 anchored = True
+                backoff = 2
                 for c in range(Q.shape[1]):
                     qa[c] = Q[r, c]
                 tight = 0  # the pairs with less than ROOM first, in ``order``
@@ -194,7 +198,8 @@ def sweep_rows(Q, fd, idata, work, above, pairs):
                 out[r] = 0
                 continue
             anchored = False
-            wait = 4
+            backoff = min(2 * backoff, MAX_WAIT)
+            wait = backoff
         else:
             wait -= 1
         out[r] = _row(Q[r], fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs[r], cap)
