@@ -112,12 +112,9 @@ def _forward(q, fd, idata, Rs, ps, Rb, pb):
             pb[k, r] = ps[a, r] + Rs[a, r, 0] * F[k, 0, 3] + Rs[a, r, 1] * F[k, 1, 3] + Rs[a, r, 2] * F[k, 2, 3]
 
 
-@njit(cache=True)
-def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap):
-    """Open pairs of one configuration into ``pairs``; returns their count (0: certified; -1: more than ``cap``;
-    COLLIDES: a pair proven closer than Drake's padding, by a sphere inside a moving geometry reaching into the
-    exact solid of the other side, ``below`` under the pair's threshold)."""
-    _forward(q, fd, idata, Rs, ps, Rb, pb)
+@njit(cache=True, inline="always")
+def _blocks(fd, idata):
+    """Views of the certifier's blocks in the flat arrays (see :func:`pack`), in the order _row unpacks them."""
     G, S, O, P, I = idata[_G], idata[_S], idata[_O], idata[_P], idata[_I]
     f = idata[7:7 + _NF]
     i = idata[7 + _NF:_HEAD]
@@ -148,11 +145,30 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap)
     istart = idata[i[10]:i[10] + G + 1]
     gexact = idata[i[11]:i[11] + G]
     oexact = idata[i[12]:i[12] + O]
-    for g in range(G):
+    return (gR, go, ghalf, ground, grad, sc, sr, oR, oo, ohalf, oround, ac, ah, reach2, env, sthr, ic, ir, below, node,
+            start, gcyl, ocyl, mover, other, istart, gexact, oexact)
+
+
+@njit(cache=True, inline="always")
+def _centres(node, go, Rb, pb, centre):
+    """World centres of every moving geometry's solid (its bounding sphere's) into ``centre``."""
+    for g in range(len(node)):
         b = node[g]
         for r in range(3):
             centre[g, r] = Rb[b, r, 0] * go[g, 0] + Rb[b, r, 1] * go[g, 1] + Rb[b, r, 2] * go[g, 2] + pb[b, r]
-        done[g] = 0.0
+
+
+@njit(cache=True)
+def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap):
+    """Open pairs of one configuration into ``pairs``; returns their count (0: certified; -1: more than ``cap``;
+    COLLIDES: a pair proven closer than Drake's padding, by a sphere inside a moving geometry reaching into the
+    exact solid of the other side, ``below`` under the pair's threshold)."""
+    _forward(q, fd, idata, Rs, ps, Rb, pb)
+    G, O, P = idata[_G], idata[_O], idata[_P]
+    (gR, go, ghalf, ground, grad, sc, sr, oR, oo, ohalf, oround, ac, ah, reach2, env, sthr, ic, ir, below, node, start,
+     gcyl, ocyl, mover, other, istart, gexact, oexact) = _blocks(fd, idata)
+    _centres(node, go, Rb, pb, centre)
+    done[:] = 0.0
     count = 0
     for g in range(G):
         cx, cy, cz, rg = centre[g, 0], centre[g, 1], centre[g, 2], grad[g]

@@ -25,8 +25,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from lazyground.drake.sphere_kernels import (_HEAD, _NF, _G, _O, _P, _M, PRISMATIC_KIND, _forward, _offset_distance,
-                                             _row, _views)
+from lazyground.drake.sphere_kernels import (_HEAD, _NF, _G, _O, _P, _M, PRISMATIC_KIND, _blocks, _centres, _forward,
+                                             _offset_distance, _row, _views)
 
 ROOM = 0.1  # metres: clearances are bounded to this (farther obstacles need no distance)
 ENOUGH = 0.05  # metres: a bounding-sphere clearance this large is not refined by the solid's distance
@@ -41,32 +41,10 @@ def _clearance(q, fd, idata, Rs, ps, Rb, pb, centre, W, above, lever, clear_g, c
     the levers (G, m) into ``lever``; returns whether all are positive (q is then free for Drake's checker)."""
     _forward(q, fd, idata, Rs, ps, Rb, pb)
     m, G, O, P = idata[_M], idata[_G], idata[_O], idata[_P]
-    f = idata[7:7 + _NF]
-    i = idata[7 + _NF:_HEAD]
-    go = fd[f[3]:f[3] + 3 * G].reshape((G, 3))
-    ghalf = fd[f[4]:f[4] + 3 * G].reshape((G, 3))
-    ground, grad = fd[f[5]:f[5] + G], fd[f[6]:f[6] + G]
-    gR = fd[f[2]:f[2] + 9 * G].reshape((G, 3, 3))
-    oR = fd[f[9]:f[9] + 9 * O].reshape((O, 3, 3))
-    oo = fd[f[10]:f[10] + 3 * O].reshape((O, 3))
-    ohalf = fd[f[11]:f[11] + 3 * O].reshape((O, 3))
-    oround = fd[f[12]:f[12] + O]
-    ac = fd[f[13]:f[13] + 3 * O].reshape((3, O))
-    ah = fd[f[14]:f[14] + 3 * O].reshape((3, O))
-    reach2 = fd[f[20]:f[20] + G * O].reshape((G, O))
-    env = fd[f[15]:f[15] + G * O].reshape((G, O))
-    sthr = fd[f[16]:f[16] + P]
-    o_ = 7 + _NF
-    kinds = idata[idata[o_ + 1]:idata[o_ + 1] + m]
-    node = idata[i[4]:i[4] + G]
-    gcyl = idata[i[6]:i[6] + G]
-    ocyl = idata[i[7]:i[7] + O]
-    mover = idata[i[8]:i[8] + P]
-    other = idata[i[9]:i[9] + P]
-    for g in range(G):
-        b = node[g]
-        for r in range(3):
-            centre[g, r] = Rb[b, r, 0] * go[g, 0] + Rb[b, r, 1] * go[g, 1] + Rb[b, r, 2] * go[g, 2] + pb[b, r]
+    (gR, go, ghalf, ground, grad, sc, sr, oR, oo, ohalf, oround, ac, ah, reach2, env, sthr, ic, ir, below, node, start,
+     gcyl, ocyl, mover, other, istart, gexact, oexact) = _blocks(fd, idata)  # the cover and inner spheres: unused
+    kinds = idata[idata[7 + _NF + 1]:idata[7 + _NF + 1] + m]
+    _centres(node, go, Rb, pb, centre)
     ok = True
     for g in range(G):
         cx, cy, cz, rg = centre[g, 0], centre[g, 1], centre[g, 2], grad[g]
