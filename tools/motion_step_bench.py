@@ -28,7 +28,7 @@ SCENES = {"fetch_cans_1": "pick up a can", "fetch_cans_2": "pick up a can", "fet
 # (label, module, attribute): what each sub-phase times; a class method as "Class.method"
 PHASES = [
     ("greedy", "lazyground.motion.shortcut", "_greedy"),
-    ("random", "lazyground.motion.shortcut", "_random_shortcuts"),
+    ("shortcuts", "lazyground.motion.shortcut", "_random_shortcuts"),
     ("relax", "lazyground.motion.shortcut", "_relax"),
     ("fine", "lazyground.motion.shortcut", "_FineCheck.first_failure"),
     ("toppra", "lazyground.motion.trajectory", "_time_curve"),

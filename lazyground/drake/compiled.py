@@ -14,7 +14,6 @@ import time
 import numpy as np
 
 from lazyground.drake import sphere_kernels as kernels
-from lazyground.drake import sweep_kernels
 from lazyground.drake.chain import PRISMATIC
 from lazyground.drake.sphere_kernels import COLLIDES  # noqa: F401  (re-exported: a row's code)
 
@@ -36,10 +35,10 @@ def warm_up() -> float:
     kernels.certify_rows(np.zeros((1, 1)), fd, idata, work, np.zeros((1, CAP), np.int64))
     kernels.certify_one(np.zeros(1), fd, idata, work, pairs)
     kernels.first_open(np.zeros(1), np.ones(1), 2, np.arange(3), 0, fd, idata, work, pairs)
-    sweep_kernels.sweep_rows(np.zeros((2, 1)), fd, idata, work, _above(_TOY), np.zeros((2, CAP), np.int64))
+    kernels.sweep_rows(np.zeros((2, 1)), fd, idata, work, _above(_TOY), np.zeros((2, CAP), np.int64))
     _compile_s = time.perf_counter() - t0
     _compiled_now = any(sum(k.stats.cache_misses.values()) for k in (kernels.certify_rows, kernels.certify_one,
-                                                                    kernels.first_open, sweep_kernels.sweep_rows))
+                                                                    kernels.first_open, kernels.sweep_rows))
     return _compile_s
 
 
@@ -76,10 +75,10 @@ class CompiledCertifier:
     def sweep(self, q_full: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`certify` of rows in sequence, each close to the one before (a densely checked path): a row
         within reach of an earlier one certified with room to spare is certified from it
-        (lazyground.drake.sweep_kernels); the others get the whole test. The same codes where those are 0."""
+        (lazyground.drake.sphere_kernels.sweep_rows); the others get the whole test. The same codes where those are 0."""
         q = np.ascontiguousarray(np.atleast_2d(q_full), float)
         pairs = np.empty((len(q), CAP), np.int64)
-        return sweep_kernels.sweep_rows(q, self.fd, self.idata, self._work, self._above, pairs), pairs
+        return kernels.sweep_rows(q, self.fd, self.idata, self._work, self._above, pairs), pairs
 
     def first_open(self, qa: np.ndarray, qb: np.ndarray, steps: int, order: np.ndarray, begin: int = 0):
         """The first position p >= begin of ``order`` whose configuration qa + order[p] / steps (qb - qa) is not
