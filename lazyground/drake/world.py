@@ -98,7 +98,8 @@ class DrakeWorld:
 
     def edge_free(self, a: np.ndarray, b: np.ndarray, resolution: float) -> bool:
         """Whether the motion a → b is free at ``resolution`` (see :meth:`DrakeChecker.edge_free`)."""
-        return self._checker_for(resolution).edge_free(a, b, resolution)
+        checker = self.checker if self.checker.compiled is not None else self._checker_for(resolution)  # any resolution
+        return checker.edge_free(a, b, resolution)
 
     @property
     def edge_part_free(self):
