@@ -87,3 +87,16 @@ def compare_edges(world, rng: np.random.Generator, n: int, resolution: float = 0
         free += theirs
         mismatches += (ours != theirs) + (abs(frac_ours - frac_theirs) > 1e-12)
     return EdgeComparison(n, free, int(mismatches))
+
+
+def compare_sweeps(world, rng: np.random.Generator, n: int, step: float = 0.005) -> ConfigComparison:
+    """The sweep's codes (:meth:`CompiledCertifier.sweep`, configurations in sequence) against Drake's answers,
+    on n random straight segments stepped every ``step`` (a fine check's spacing) in one sequence: free runs
+    proven from anchors up to where the segments enter obstacles."""
+    ends = [world.space.sample(rng) for _ in range(2 * n)]
+    q = world.full(np.vstack([world.space.discretize(a, b, step) for a, b in zip(ends[0::2], ends[1::2])]))
+    code, _ = world.checker.compiled.sweep(q)
+    drake = drake_free(world, q)
+    return ConfigComparison(len(q), int(drake.sum()), int((code == 0).sum()), int((code == COLLIDES).sum()),
+                            int(((code != 0) & (code != COLLIDES)).sum()), int(((code == 0) & ~drake).sum()),
+                            int(((code == COLLIDES) & drake).sum()))

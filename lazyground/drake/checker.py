@@ -147,13 +147,26 @@ class DrakeChecker:
         self.checks += len(qs)
         return free
 
-    def _batch(self, configs: np.ndarray) -> np.ndarray:
-        """The batch's answers: the certifier proves what it can and SceneGraph measures the pairs it leaves open
-        (:meth:`_open_free`); a world without certifier goes to Drake's batch check, on several threads when
-        that is many (lazyground.drake.parallel)."""
+    def configs_free_along(self, qs: np.ndarray) -> np.ndarray:
+        """:meth:`configs_free` of configurations in sequence, each close to the one before (a path checked
+        densely): the same answers, most of them proven from an earlier configuration's clearance
+        (:meth:`CompiledCertifier.sweep`); :meth:`configs_free` where there is no certifier."""
+        qs = np.atleast_2d(qs)
+        if self.compiled is None or len(qs) == 1:
+            return self.configs_free(qs)
+        t0 = time.perf_counter()
+        free = self._batch(self.coordinates.full(qs), along=True)
+        self.check_time += time.perf_counter() - t0
+        self.checks += len(qs)
+        return free
+
+    def _batch(self, configs: np.ndarray, along: bool = False) -> np.ndarray:
+        """The batch's answers: the certifier proves what it can (``along``: rows in sequence, :meth:`configs_free_along`)
+        and SceneGraph measures the pairs it leaves open (:meth:`_open_free`); a world without certifier goes to
+        Drake's batch check, on several threads when that is many (lazyground.drake.parallel)."""
         if self.compiled is None:
             return np.asarray(self.drake.CheckConfigsCollisionFree(list(configs), parallelize=parallel_batch(len(configs))), bool)
-        count, pairs = self.compiled.certify(configs)
+        count, pairs = (self.compiled.sweep if along else self.compiled.certify)(configs)
         free = count == 0
         self.certified += int(free.sum())
         for i in np.flatnonzero(count > 0):
@@ -249,7 +262,22 @@ class DrakeChecker:
         measure = self._edge(self.drake.MeasureEdgeCollisionFree, a, b, resolution)
         return max(0.0, measure.alpha_or(0.0))
 
-    def _certified_edge(self, a: np.ndarray, b: np.ndarray, resolution: float, fraction: bool):
+    def edge_part_free(self, a: np.ndarray, b: np.ndarray, resolution: float, first: int = 0,
+                       stop: int | None = None) -> bool:
+        """Whether the steps at positions ``first`` .. ``stop`` - 1 of a → b, in interior-first bisection order
+        (:meth:`_interior_first`), are free at ``resolution``: the whole edge by default, in one compiled call with
+        early exit (a shortcut's candidate edges, whose ends lie on a checked path; a search probing a few steps
+        first). The steps and answers are :meth:`edge_free`'s (Drake's); only the order and the part differ.
+
+        Raises:
+            ValueError: this checker has no compiled certifier (a car's: Drake checks its edges).
+        """
+        if self.compiled is None:
+            raise ValueError("edge_part_free needs the compiled certifier")
+        return bool(self._certified_edge(a, b, resolution, fraction=False, part=(first, stop)))
+
+    def _certified_edge(self, a: np.ndarray, b: np.ndarray, resolution: float, fraction: bool,
+                        part: tuple[int, int | None] | None = None):
         """Drake's ``CheckEdgeCollisionFree`` (``fraction``: ``MeasureEdgeCollisionFree``'s free fraction) at
         ``resolution``, with the certifier: the same steps (q_k = qa + k / n (qb - qa), k = 0..n, n =
         max(1, ceil(Drake's distance / resolution)); the certifier's margin covers the last bit by which Drake's
@@ -267,7 +295,8 @@ class DrakeChecker:
         # Drake's own distance: a sum in another order can differ in the last bit, and so the step count
         # (math.ceil: np.ceil's number, without a numpy scalar)
         n = max(1, math.ceil(self._distance(qa, qb) / resolution))
-        order = self._sequence(n) if fraction else self._bisection(n)
+        order = (self._sequence(n) if fraction else self._bisection(n) if part is None
+                 else self._interior_first(n)[slice(*part)])
         begin, out = 0, (1.0 if fraction else True)
         first_open = self.compiled.first_open
         while True:
@@ -309,6 +338,14 @@ class DrakeChecker:
                         nxt += [(lo, mid), (mid, hi)]
                 level = nxt
             order = self._orders[n] = np.array(out, np.int64)
+        return order
+
+    def _interior_first(self, n: int) -> np.ndarray:
+        """Steps 0..n of an edge, the middles of ever finer halvings first, the ends last (0, then n)."""
+        order = self._orders.get(-n)
+        if order is None:
+            ends_first = self._bisection(n)
+            order = self._orders[-n] = np.concatenate([ends_first[2:], ends_first[1::-1]])
         return order
 
     def _edge(self, check, a, b, resolution: float):

@@ -35,9 +35,10 @@ def warm_up() -> float:
     kernels.certify_rows(np.zeros((1, 1)), fd, idata, work, np.zeros((1, CAP), np.int64))
     kernels.certify_one(np.zeros(1), fd, idata, work, pairs)
     kernels.first_open(np.zeros(1), np.ones(1), 2, np.arange(3), 0, fd, idata, work, pairs)
+    kernels.sweep_rows(np.zeros((2, 1)), fd, idata, work, _above(_TOY), np.zeros((2, CAP), np.int64))
     _compile_s = time.perf_counter() - t0
     _compiled_now = any(sum(k.stats.cache_misses.values()) for k in (kernels.certify_rows, kernels.certify_one,
-                                                                    kernels.first_open))
+                                                                    kernels.first_open, kernels.sweep_rows))
     return _compile_s
 
 
@@ -53,7 +54,9 @@ class CompiledCertifier:
     def __init__(self, cert):
         assert PRISMATIC == kernels.PRISMATIC_KIND
         warm_up()
-        self.fd, self.idata = kernels.pack(cert.kernel_blocks())
+        blocks = cert.kernel_blocks()
+        self.fd, self.idata = kernels.pack(blocks)
+        self._above = _above(blocks)
         self._open = np.zeros(CAP + 1, np.int64)
         self._work = np.zeros(kernels.work_size(self.idata))
 
@@ -69,6 +72,14 @@ class CompiledCertifier:
         pairs = np.empty((len(q), CAP), np.int64)
         return kernels.certify_rows(q, self.fd, self.idata, self._work, pairs), pairs
 
+    def sweep(self, q_full: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`certify` of rows in sequence, each close to the one before (a densely checked path): a row
+        within reach of an earlier one certified with room to spare is certified from it
+        (lazyground.drake.sphere_kernels.sweep_rows); the others get the whole test. The same codes where those are 0."""
+        q = np.ascontiguousarray(np.atleast_2d(q_full), float)
+        pairs = np.empty((len(q), CAP), np.int64)
+        return kernels.sweep_rows(q, self.fd, self.idata, self._work, self._above, pairs), pairs
+
     def first_open(self, qa: np.ndarray, qb: np.ndarray, steps: int, order: np.ndarray, begin: int = 0):
         """The first position p >= begin of ``order`` whose configuration qa + order[p] / steps (qb - qa) is not
         certified, and its code (:meth:`certify`) and open pairs (None: too many to list or colliding);
@@ -78,6 +89,18 @@ class CompiledCertifier:
             return -1, 0, None
         count = int(self._open[-1])
         return p, count, (self._open[:count].copy() if count > 0 else None)
+
+
+def _above(blocks: dict) -> np.ndarray:
+    """(geometries, joints): 1 where the joint is above the geometry's body in the tree (moving it moves the geometry)."""
+    parent, slot, node = (np.asarray(blocks[k], np.int64).reshape(-1) for k in ("parent", "slot", "node"))
+    above = np.zeros((len(node), len(parent)), np.int64)
+    for g, b in enumerate(node):
+        s = slot[b]
+        while s > 0:  # slot s is joint s - 1's frame; slot 0 the world
+            above[g, s - 1] = 1
+            s = parent[s - 1]
+    return above
 
 
 # the smallest certifier the kernels accept: one revolute joint, a sphere, a box (for warm_up's compilation)

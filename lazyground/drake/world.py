@@ -92,10 +92,20 @@ class DrakeWorld:
     def configs_free(self, qs: np.ndarray) -> np.ndarray:
         return self.checker.configs_free(qs)
 
+    def configs_free_along(self, qs: np.ndarray) -> np.ndarray:
+        """:meth:`configs_free` of configurations in sequence along a path (see :meth:`DrakeChecker.configs_free_along`)."""
+        return self.checker.configs_free_along(qs)
+
     def edge_free(self, a: np.ndarray, b: np.ndarray, resolution: float) -> bool:
         """Whether the motion a → b is free at ``resolution`` (see :meth:`DrakeChecker.edge_free`)."""
         checker = self.checker if self.checker.compiled is not None else self._checker_for(resolution)  # any resolution
         return checker.edge_free(a, b, resolution)
+
+    @property
+    def edge_part_free(self):
+        """The checker's ordered, partial edge check (:meth:`DrakeChecker.edge_part_free`); None when it has no
+        compiled certifier (a car's world: its edges go to Drake's batch checks)."""
+        return self.checker.edge_part_free if self.checker.compiled is not None else None
 
     def edge_fraction(self, a: np.ndarray, b: np.ndarray, resolution: float) -> float:
         """The free fraction of a → b at ``resolution`` (see :meth:`DrakeChecker.edge_fraction`)."""

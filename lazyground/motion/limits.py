@@ -9,6 +9,7 @@ URDF); accelerations come from ``robot.yaml`` only (``acceleration_limits``, the
 
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -43,8 +44,12 @@ def position_joints(plant, instance) -> dict[int, str]:
     return out
 
 
+_WORLD_LIMITS: "weakref.WeakKeyDictionary[object, Limits]" = weakref.WeakKeyDictionary()
+
+
 def world_limits(world, defaults: RobotDefaults | None = None) -> Limits:
-    """The limits of ``world``'s planned coordinates (see module docstring).
+    """The limits of ``world``'s planned coordinates (see module docstring); with the default ``defaults``,
+    read once per world (its model and robot.yaml are read when it is built: ~1 ms a request otherwise).
 
     Args:
         world: a DrakeWorld (``plant``, ``robot``, ``planned``, ``space``, ``scene``).
@@ -54,7 +59,13 @@ def world_limits(world, defaults: RobotDefaults | None = None) -> Limits:
         SceneError: a planned coordinate has no finite velocity or no acceleration limit.
     """
     if defaults is None:
-        defaults = defaults_for_model(world.scene.robot.model)
+        if world not in _WORLD_LIMITS:
+            _WORLD_LIMITS[world] = _limits(world, defaults_for_model(world.scene.robot.model))
+        return _WORLD_LIMITS[world]
+    return _limits(world, defaults)
+
+
+def _limits(world, defaults: RobotDefaults | None) -> Limits:
     plant = world.plant
     if plant.num_positions() != plant.num_velocities():
         raise SceneError(f"{world.scene.source}: robot.model: time parameterisation needs q̇ = v (no floating bodies)")

@@ -38,6 +38,7 @@ import numpy as np
 from lazyground.motion.curve import segment_lengths
 from lazyground.motion.edges import bisected_edge
 from lazyground.motion.relax import relax
+from lazyground.motion.validate import sequence_free
 from lazyground.planning.problem import ValidityChecker
 from lazyground.planning.space import ConfigSpace
 from lazyground.planning.stop import StopCondition
@@ -293,7 +294,7 @@ class _FineCheck:
         todo = {key: (a, b) for key, a, b, _ in segments if key not in self.known}
         if todo:
             chunks = [self.space.discretize(a, b, self.resolution) for a, b in todo.values()]
-            free = np.asarray(self.checker.configs_free(np.vstack(chunks)), bool)
+            free = np.asarray(sequence_free(self.checker, np.vstack(chunks)), bool)
             ends = np.cumsum([len(c) for c in chunks])
             for key, end, n in zip(todo, ends, (len(c) for c in chunks)):
                 self.known[key] = bool(free[end - n : end].all())
@@ -303,7 +304,7 @@ class _FineCheck:
         """Whether a -> b passes the check (remembered)."""
         key = _segment_key(a, b)
         if key not in self.known:
-            self.known[key] = bool(np.all(self.checker.configs_free(self.space.discretize(a, b, self.resolution))))
+            self.known[key] = bool(np.all(sequence_free(self.checker, self.space.discretize(a, b, self.resolution))))
         return self.known[key]
 
     @property

@@ -51,22 +51,31 @@ def trajectory_problems(
 
 
 def first_colliding_join(space: ConfigSpace, checker: ValidityChecker, q: np.ndarray, resolution: float,
-                         from_first_free: bool = False) -> int | None:
+                         from_first_free: bool = False, along: bool = False) -> int | None:
     """The sample k where the motion through ``q`` first collides, checked every ``resolution``; None if free.
 
     The one check of sampled motions: :func:`trajectory_problems` and the timing itself
     (:func:`lazyground.motion.trajectory.time_path` checks its output with it, so what it
-    returns passes this re-check by construction).
+    returns passes this re-check by construction). ``along``: through :func:`sequence_free` (the
+    timing's; the same answers, cheaper), else ``configs_free`` (the re-check's).
     """
     q = np.asarray(q, float)
     if len(q) < 2:
         return None
     dense, owner = _dense(space, q, resolution)
-    free = checker.configs_free(space.interpolate(dense, dense, 0.0) if space.wrap.any() else dense)
+    dense = space.interpolate(dense, dense, 0.0) if space.wrap.any() else dense
+    free = sequence_free(checker, dense) if along else checker.configs_free(dense)
     if from_first_free:
         free[: int(np.argmax(free))] = True
     bad = np.flatnonzero(~free)
     return None if not len(bad) else int(owner[bad[0]])
+
+
+def sequence_free(checker: ValidityChecker, qs: np.ndarray) -> np.ndarray:
+    """``checker.configs_free(qs)`` for configurations in sequence along a path, through the checker's
+    ``configs_free_along`` when it has one (lazyground.drake: most proven from the ones before)."""
+    along = getattr(checker, "configs_free_along", None)
+    return along(qs) if along is not None else checker.configs_free(qs)
 
 
 def _dense(space: ConfigSpace, q: np.ndarray, resolution: float) -> tuple[np.ndarray, np.ndarray]:

@@ -9,7 +9,7 @@ import pytest
 
 pytest.importorskip("pydrake")
 
-from lazyground.drake.certify_check import compare_configs, compare_edges  # noqa: E402
+from lazyground.drake.certify_check import compare_configs, compare_edges, compare_sweeps  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 
@@ -28,6 +28,10 @@ def test_claims_agree_with_drake(scene):
     assert c.open > 0
     e = compare_edges(world, rng, 60)
     assert e.mismatches == 0 and 0 < e.free < e.edges
+    # configurations in sequence (a path checked finely): most free ones proven from an anchor before them
+    s = compare_sweeps(world, rng, 4)
+    assert s.wrong_free == 0 and s.wrong_collides == 0
+    assert s.proven_free > 0.5 * s.drake_free and s.drake_free < s.configs
 
 
 def test_edges_at_any_resolution_on_one_checker():
