@@ -1,4 +1,4 @@
-"""Time parameterisation: TOPP-RA over a smooth curve through a path.
+"""Time parameterisation on Drake: TOPP-RA over a smooth curve through a path.
 
 Each piece of the path (pieces end where the robot must stop: the start of a straight
 approach) gets a blended B-spline (:mod:`lazyground.motion.curve`). The sampled output is
@@ -6,8 +6,7 @@ checked densely at the fine resolution (its samples and the joins between them, 
 check ``lazyground.motion.validate`` re-runs); a piece whose curve collides is redone with
 less blending, then as the piecewise-linear path with a stop at every waypoint. When even
 that fails (the path grazes an obstacle between the points its own fine check tested)
-there is no trajectory (:class:`MotionError`). TOPP-RA (Pham and Pham, IEEE T-RO 2018; :mod:`lazyground.motion.toppra`,
-which replaced Drake's ``Toppra``: the same durations, ~5x cheaper) finds the fastest timing under
+there is no trajectory (:class:`MotionError`). Drake's ``Toppra`` (Pham and Pham, IEEE T-RO 2018) finds the fastest timing under
 per-joint velocity and acceleration limits. TOPP-RA enforces its constraints at grid
 points; the sampled trajectory is then slowed uniformly by the largest overshoot between
 them, so every sample respects the limits. ``speed`` s scales the limits to s v_max and
@@ -16,6 +15,9 @@ s^2 a_max, i.e. the same motion played 1/s times slower.
 
 from __future__ import annotations
 
+import contextlib
+import functools
+import logging
 import time
 from dataclasses import dataclass, replace
 
@@ -24,7 +26,6 @@ import numpy as np
 from lazyground.motion.car_timing import car_piece_timer
 from lazyground.motion.curve import Curve, blended_curve, unwrap_path
 from lazyground.motion.limits import Limits  # noqa: F401  (re-exported: callers time paths under Limits)
-from lazyground.motion.toppra import PathTiming, toppra
 from lazyground.motion.validate import first_colliding_join
 from lazyground.planning.problem import ValidityChecker
 from lazyground.planning.space import ConfigSpace
@@ -284,24 +285,29 @@ class _Timed:
     """One curve q(u) timed by u(t) on [0, duration]; ``stretch`` >= 1 slows u(t) uniformly."""
 
     curve: Curve
-    s_of_t: PathTiming  # u(t) (lazyground.motion.toppra)
+    s_of_t: object  # pydrake PiecewisePolynomial u(t)
     stretch: float
 
     @property
     def duration(self) -> float:
         return self.s_of_t.end_time() * self.stretch
 
+    def _u(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        tau = np.clip(np.asarray(t, float) / self.stretch, 0.0, self.s_of_t.end_time())
+        return tau, np.clip(self.s_of_t.vector_values(tau)[0], 0.0, 1.0)
+
     def evaluate(self, t: np.ndarray):
         """q, qd, qdd at times t in [0, duration]."""
-        u, ud, udd = self.s_of_t.evaluate(np.asarray(t, float) / self.stretch)
-        u, ud, udd = np.clip(u, 0.0, 1.0), ud / self.stretch, udd / self.stretch**2
+        tau, u = self._u(t)
+        ud = self.s_of_t.derivative(1).vector_values(tau)[0] / self.stretch
+        udd = self.s_of_t.derivative(2).vector_values(tau)[0] / self.stretch**2
         d1, d2 = self.curve.spline(1)(u), self.curve.spline(2)(u)
         return self.curve.spline()(u), d1 * ud[:, None], d2 * (ud**2)[:, None] + d1 * udd[:, None]
 
 
 # TOPP-RA's grid: ``TimingSettings.grid_per_span`` points in every knot span of the B-spline
 # (curvature changes within a span; the uniform slow-down below absorbs the overshoot between grid
-# points). Its solve costs ~40 us per grid point (Drake's cost ~0.2 ms). A grid that leaves TOPP-RA no finite solution (a
+# points). Its solve costs ~0.3 ms per grid point. A grid that leaves TOPP-RA no finite solution (a
 # single straight span with 2 points does) is refined.
 MIN_GRID = 9
 # At most this many grid points per curve: a car's curve through its dense samples has thousands of
@@ -330,9 +336,15 @@ def _resting_time(points: np.ndarray, limits: Limits) -> float:
 
 def _time_curve(curve: Curve, limits: Limits, dt: float, grid: int) -> _Timed:
     """TOPP-RA on the curve, then the uniform slow-down that makes dense samples respect the limits."""
+    from pydrake.multibody.optimization import Toppra
+
+    path = _drake_bspline(curve)
     for per_span in (grid, 2 * grid):
-        points = _toppra_grid(curve, per_span)
-        s_of_t = toppra(points, curve.spline(1)(points), curve.spline(2)(points), limits.velocity, limits.acceleration)
+        toppra = Toppra(path, _point_plant(len(limits.velocity)), _toppra_grid(curve, per_span))
+        toppra.AddJointVelocityLimit(-limits.velocity, limits.velocity)
+        toppra.AddJointAccelerationLimit(-limits.acceleration, limits.acceleration)
+        with _drake_log_muted():  # a failure is retried on a finer grid, then timed by stops: no error to print
+            s_of_t = toppra.SolvePathParameterization()
         # a grid too coarse for the curve can leave TOPP-RA a near-zero speed somewhere (durations of
         # 1e8 s): more than SANE x resting at every control point is no solution
         if s_of_t is not None and s_of_t.end_time() <= SANE * _resting_time(curve.control, limits):
@@ -349,6 +361,49 @@ def _time_curve(curve: Curve, limits: Limits, dt: float, grid: int) -> _Timed:
     over_a = np.max(np.abs(qdd) / limits.acceleration)
     stretch = max(1.0, over_v, np.sqrt(over_a)) * (1.0 + 1e-6)
     return _Timed(curve, s_of_t, stretch)
+
+
+@contextlib.contextmanager
+def _drake_log_muted():
+    """Drake's log records (pydrake sends them to the ``drake`` Python logger) dropped inside."""
+    logger = logging.getLogger("drake")
+    drop = logging.Filter("no record passes a filter named so")  # a Filter passes only records of its name
+    logger.addFilter(drop)
+    try:
+        yield
+    finally:
+        logger.removeFilter(drop)
+
+
+def _drake_bspline(curve: Curve):
+    from pydrake.math import BsplineBasis
+    from pydrake.trajectories import BsplineTrajectory
+
+    from lazyground.motion.curve import DEGREE
+
+    basis = BsplineBasis(DEGREE + 1, list(curve.knots))
+    return BsplineTrajectory(basis, [c.reshape(-1, 1) for c in curve.control])
+
+
+@functools.lru_cache(maxsize=8)
+def _point_plant(dim: int):
+    """A plant whose positions are the planned coordinates (a chain of prismatic joints).
+
+    Joint velocity and acceleration limits involve no dynamics, so TOPP-RA needs only a plant
+    with ``dim`` positions and q̇ = v; this keeps timing independent of the robot's plant
+    (fixed joints, a planar car's joint) and of which coordinates are planned.
+    """
+    from pydrake.multibody.plant import MultibodyPlant
+    from pydrake.multibody.tree import PrismaticJoint, SpatialInertia, UnitInertia
+
+    plant = MultibodyPlant(0.0)
+    parent = plant.world_body()
+    for k in range(dim):
+        body = plant.AddRigidBody(f"coordinate_{k}", SpatialInertia(1.0, np.zeros(3), UnitInertia(1.0, 1.0, 1.0)))
+        plant.AddJoint(PrismaticJoint(f"coordinate_{k}", parent.body_frame(), body.body_frame(), [1.0, 0.0, 0.0]))
+        parent = body
+    plant.Finalize()
+    return plant
 
 
 @dataclass(frozen=True)
