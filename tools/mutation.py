@@ -5,19 +5,22 @@ Usage (from the repository root; dev extra: ``pip install -e .[dev]``)::
     nice python3 tools/mutation.py                      # every module below (about an hour on 2 cores)
     nice python3 tools/mutation.py regions strategies   # some of them
     nice python3 tools/mutation.py --survivors regions  # again, only the survivors, with the tests added since
+    nice -n 19 python3 tools/mutation.py spheres --sample 120 --seed 0   # a seeded sample of a module's mutants
     python3 tools/mutation.py --list                    # the modules and their tests
 
 Each module runs in a scratch copy of the working tree (``--work``, default /tmp/lazyground-mutation/<module>),
 whose pyproject.toml gets a ``[tool.mutmut]`` section naming that module's files and tests; mutmut then runs,
 for each mutant, the tests that reach the mutated function. The score printed is killed / (killed + survived),
 mutants that time out counted as killed; the surviving mutants are listed (``mutmut show NAME`` in the scratch
-copy shows one). Equivalent mutants are listed in docs/reliability.md.
+copy shows one). Equivalent mutants are listed in docs/reliability.md. With ``--sample N``, mutmut first makes
+every mutant (and maps tests to functions), then only N of them drawn with ``--seed`` are run and counted.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import random
 import shutil
 import subprocess
 import sys
@@ -37,10 +40,13 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                 "tests/contract/test_planner_contract.py"]),
     "validate": (["lazyground/motion/validate.py", "lazyground/motion/limits.py"],
                  ["tests/unit/test_validate.py", "tests/unit/test_motion_checks.py"]),
-    "spatial": (["grounding/spatial.py"], ["tests/unit/test_grounding.py", "tests/unit/test_grounding_base_pose.py"]),
+    "spatial": (["grounding/spatial.py"], ["tests/unit/test_grounding.py", "tests/unit/test_grounding_base_pose.py",
+                                          "tests/unit/test_grounding_language.py"]),
     "resolve": (["grounding/resolve.py"], ["tests/unit/test_grounding.py", "tests/unit/test_grounding_base_pose.py",
-                                          "tests/unit/test_grounding_errors.py"]),
-    "parse": (["grounding/parse.py"], ["tests/unit/test_grounding.py", "tests/unit/test_grounding_errors.py"]),
+                                          "tests/unit/test_grounding_errors.py", "tests/unit/test_grounding_language.py",
+                                          "tests/unit/test_grounding_several.py"]),
+    "parse": (["grounding/parse.py"], ["tests/unit/test_grounding.py", "tests/unit/test_grounding_errors.py",
+                                      "tests/unit/test_grounding_language.py", "tests/unit/test_grounding_several.py"]),
     "spheres": (["lazyground/drake/spheres.py"], ["tests/drake/test_spheres.py"]),
     "checker": (["lazyground/drake/checker.py"], ["tests/drake/test_fast_checks.py", "tests/contract/test_checker_contract.py"]),
 }
@@ -63,11 +69,31 @@ def _results(scratch: Path) -> str:
     return subprocess.run(["mutmut", "results", "--all", "true"], cwd=scratch, capture_output=True, text=True).stdout
 
 
-def run_module(name: str, work: Path, children: int, survivors_only: bool = False) -> dict:
+def _statuses(scratch: Path) -> dict[str, str]:
+    out = {}
+    for line in _results(scratch).splitlines():
+        key, _, status = line.strip().rpartition(": ")
+        if key:
+            out[key] = status
+    return out
+
+
+def _sample_names(scratch: Path, children: int, size: int, seed: int) -> list[str]:
+    """Make every mutant and the test map (a run filtered to no mutant: mutmut stops before running any), then
+    draw ``size`` mutant names with ``random.Random(seed)`` from the sorted list."""
+    subprocess.run(["mutmut", "run", "--max-children", str(children), "no-such-mutant-*"], cwd=scratch, check=False,
+                   capture_output=True)
+    names = sorted(_statuses(scratch))
+    return sorted(random.Random(seed).sample(names, min(size, len(names))))
+
+
+def run_module(name: str, work: Path, children: int, survivors_only: bool = False,
+               sample: int | None = None, seed: int = 0) -> dict:
     """Copy the tree, configure mutmut for ``name``, run it; returns the counts by status and the survivors.
 
     With ``survivors_only``, keep the scratch copy of an earlier run, copy the current tests into it and run
-    only the mutants that survived there (after tests were added to kill them)."""
+    only the mutants that survived there (after tests were added to kill them). With ``sample``, run and count
+    only that many mutants drawn with ``seed``."""
     files, tests = MODULES[name]
     scratch = work / name
     names = []
@@ -82,22 +108,26 @@ def run_module(name: str, work: Path, children: int, survivors_only: bool = Fals
         shutil.copytree(REPO, scratch, ignore=IGNORE, symlinks=True)
         pyproject = scratch / "pyproject.toml"
         pyproject.write_text(pyproject.read_text() + _mutmut_section(files, tests))
+        if sample is not None:
+            names = _sample_names(scratch, children, sample, seed)
     if names or not survivors_only:
         subprocess.run(["mutmut", "run", "--max-children", str(children), *names], cwd=scratch, check=False)
-    out = _results(scratch)
+    statuses = _statuses(scratch)
+    counted = names if sample is not None and not survivors_only else [k for k, v in statuses.items() if v != "not checked"]
     counts: dict[str, int] = {}
     survivors = []
-    for line in out.splitlines():
-        key, _, status = line.strip().rpartition(": ")
-        if not key:
-            continue
+    for key in counted:
+        status = statuses[key]
         counts[status] = counts.get(status, 0) + 1
         if status == "survived":
             survivors.append(key)
     killed = counts.get("killed", 0) + counts.get("timeout", 0)
     survived = counts.get("survived", 0)
     score = killed / (killed + survived) if killed + survived else float("nan")
-    return {"module": name, "counts": counts, "score": score, "survivors": survivors, "scratch": str(scratch)}
+    result = {"module": name, "counts": counts, "score": score, "survivors": survivors, "scratch": str(scratch),
+              "sample": None if sample is None else {"size": len(counted), "seed": seed}}
+    (scratch / "mutation-result.json").write_text(json.dumps(result, indent=1))
+    return result
 
 
 def main(argv=None) -> int:
@@ -106,6 +136,8 @@ def main(argv=None) -> int:
     p.add_argument("--work", type=Path, default=Path("/tmp/lazyground-mutation"), help="scratch copies go here")
     p.add_argument("--children", type=int, default=1, help="mutmut worker processes (default 1: a shared machine)")
     p.add_argument("--list", action="store_true", help="print the modules and their tests, run nothing")
+    p.add_argument("--sample", type=int, help="run only this many of each module's mutants, drawn with --seed")
+    p.add_argument("--seed", type=int, default=0, help="seed of the --sample draw (default 0)")
     p.add_argument("--survivors", action="store_true",
                    help="re-run only an earlier run's surviving mutants, with the current tests")
     args = p.parse_args(argv)
@@ -118,7 +150,8 @@ def main(argv=None) -> int:
             print(f"{name}: {' '.join(files)}  <-  {' '.join(tests)}")
         return 0
     args.work.mkdir(parents=True, exist_ok=True)
-    results = [run_module(m, args.work, args.children, args.survivors) for m in args.modules or MODULES]
+    results = [run_module(m, args.work, args.children, args.survivors, args.sample, args.seed)
+               for m in args.modules or MODULES]
     print("\n| module | killed | survived | other | score |\n| --- | --- | --- | --- | --- |")
     for r in results:
         c = r["counts"]
