@@ -65,6 +65,18 @@ def _mutmut_section(files: list[str], tests: list[str]) -> str:
     ]) + "\n"
 
 
+# mutmut runs every selected test under coverage at each start (mutate_only_covered_lines), minutes per module;
+# once the mutants exist (and are not regenerated: the sources are older), that run is skipped
+_MUTMUT_AGAIN = ("import sys, mutmut.__main__ as m; m.store_lines_covered_by_tests = lambda: None; "
+                 "sys.argv[0] = 'mutmut'; m.cli()")
+
+
+def _mutmut_run(scratch: Path, children: int, names: list[str]) -> None:
+    again = (scratch / "mutants" / "mutmut-stats.json").exists()
+    head = [sys.executable, "-c", _MUTMUT_AGAIN] if again else ["mutmut"]
+    subprocess.run([*head, "run", "--max-children", str(children), *names], cwd=scratch, check=False)
+
+
 def _results(scratch: Path) -> str:
     return subprocess.run(["mutmut", "results", "--all", "true"], cwd=scratch, capture_output=True, text=True).stdout
 
@@ -81,19 +93,21 @@ def _statuses(scratch: Path) -> dict[str, str]:
 def _sample_names(scratch: Path, children: int, size: int, seed: int) -> list[str]:
     """Make every mutant and the test map (a run filtered to no mutant: mutmut stops before running any), then
     draw ``size`` mutant names with ``random.Random(seed)`` from the sorted list."""
-    subprocess.run(["mutmut", "run", "--max-children", str(children), "no-such-mutant-*"], cwd=scratch, check=False,
-                   capture_output=True)
+    if not (scratch / "mutants" / "mutmut-stats.json").exists():
+        subprocess.run(["mutmut", "run", "--max-children", str(children), "no-such-mutant-*"], cwd=scratch,
+                       check=False, capture_output=True)
     names = sorted(_statuses(scratch))
     return sorted(random.Random(seed).sample(names, min(size, len(names))))
 
 
 def run_module(name: str, work: Path, children: int, survivors_only: bool = False,
-               sample: int | None = None, seed: int = 0) -> dict:
+               sample: int | None = None, seed: int = 0, keep: bool = False) -> dict:
     """Copy the tree, configure mutmut for ``name``, run it; returns the counts by status and the survivors.
 
     With ``survivors_only``, keep the scratch copy of an earlier run, copy the current tests into it and run
     only the mutants that survived there (after tests were added to kill them). With ``sample``, run and count
-    only that many mutants drawn with ``seed``."""
+    only that many mutants drawn with ``seed``. With ``keep``, an earlier run's scratch copy is used as it is
+    and mutants it has already judged are not run again."""
     files, tests = MODULES[name]
     scratch = work / name
     names = []
@@ -103,15 +117,20 @@ def run_module(name: str, work: Path, children: int, survivors_only: bool = Fals
             shutil.copytree(REPO / "tests", dest, ignore=IGNORE, dirs_exist_ok=True)
         (scratch / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)  # re-map tests to functions: new tests count
     else:
-        if scratch.exists():
-            shutil.rmtree(scratch)
-        shutil.copytree(REPO, scratch, ignore=IGNORE, symlinks=True)
-        pyproject = scratch / "pyproject.toml"
-        pyproject.write_text(pyproject.read_text() + _mutmut_section(files, tests))
+        if not (keep and scratch.exists()):
+            if scratch.exists():
+                shutil.rmtree(scratch)
+            shutil.copytree(REPO, scratch, ignore=IGNORE, symlinks=True)
+            pyproject = scratch / "pyproject.toml"
+            pyproject.write_text(pyproject.read_text() + _mutmut_section(files, tests))
         if sample is not None:
             names = _sample_names(scratch, children, sample, seed)
-    if names or not survivors_only:
-        subprocess.run(["mutmut", "run", "--max-children", str(children), *names], cwd=scratch, check=False)
+    todo = names
+    if keep and names:
+        judged = _statuses(scratch)
+        todo = [n for n in names if judged.get(n) == "not checked"]
+    if todo or not (survivors_only or keep and names):
+        _mutmut_run(scratch, children, todo)
     statuses = _statuses(scratch)
     counted = names if sample is not None and not survivors_only else [k for k, v in statuses.items() if v != "not checked"]
     counts: dict[str, int] = {}
@@ -138,6 +157,8 @@ def main(argv=None) -> int:
     p.add_argument("--list", action="store_true", help="print the modules and their tests, run nothing")
     p.add_argument("--sample", type=int, help="run only this many of each module's mutants, drawn with --seed")
     p.add_argument("--seed", type=int, default=0, help="seed of the --sample draw (default 0)")
+    p.add_argument("--keep", action="store_true",
+                   help="use an earlier run's scratch copy as it is; do not run again the mutants it judged")
     p.add_argument("--survivors", action="store_true",
                    help="re-run only an earlier run's surviving mutants, with the current tests")
     args = p.parse_args(argv)
@@ -150,7 +171,7 @@ def main(argv=None) -> int:
             print(f"{name}: {' '.join(files)}  <-  {' '.join(tests)}")
         return 0
     args.work.mkdir(parents=True, exist_ok=True)
-    results = [run_module(m, args.work, args.children, args.survivors, args.sample, args.seed)
+    results = [run_module(m, args.work, args.children, args.survivors, args.sample, args.seed, args.keep)
                for m in args.modules or MODULES]
     print("\n| module | killed | survived | other | score |\n| --- | --- | --- | --- | --- |")
     for r in results:
