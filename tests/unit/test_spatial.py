@@ -223,5 +223,7 @@ def test_rows_are_lines_of_one_heading_split_at_wide_gaps():
     second = [spot("b0", 6.0, 0.0), spot("b1", 6.0, 2.5)]
     turned = [spot("t0", 20.0, 0.0, yaw=math.pi / 2), spot("t1", 22.5, 0.0, yaw=math.pi / 2)]
     back = [spot("r0", 0.2, -2.5, yaw=math.pi)]
-    out = spatial.rows(line + second + turned + back)
-    assert sorted([o.id for o in r] for r in out) == [["a3", "a4"], ["b0", "b1"], ["r0", "a0", "a1", "a2"], ["t1", "t0"]]
+    off = [spot("s0", -0.5, 15.0)]  # 0.5 m off the first line: not within it (tol 0.5 is exclusive)
+    out = spatial.rows(line + second + turned + back + off)
+    assert sorted([o.id for o in r] for r in out) == [["a3", "a4"], ["b0", "b1"], ["r0", "a0", "a1", "a2"], ["s0"],
+                                                      ["t1", "t0"]]
