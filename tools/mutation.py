@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import random
 import shutil
 import subprocess
@@ -70,13 +71,14 @@ def _mutmut_section(files: list[str], tests: list[str]) -> str:
 
 
 # mutmut runs every selected test under coverage at each start (mutate_only_covered_lines), minutes per module;
-# once the mutants exist (and are not regenerated: the sources are older), that run is skipped
+# once the mutants exist (and are not regenerated: the sources are older) that pass decides nothing: skipped
+# (the map of tests to functions, mutmut-stats.json, is still made when missing)
 _MUTMUT_AGAIN = ("import sys, mutmut.__main__ as m; m.store_lines_covered_by_tests = lambda: None; "
                  "sys.argv[0] = 'mutmut'; m.cli()")
 
 
 def _mutmut_run(scratch: Path, children: int, names: list[str]) -> None:
-    again = (scratch / "mutants" / "mutmut-stats.json").exists()
+    again = (scratch / "mutants" / "grounding").exists() or (scratch / "mutants" / "lazyground").exists()
     head = [sys.executable, "-c", _MUTMUT_AGAIN] if again else ["mutmut"]
     subprocess.run([*head, "run", "--max-children", str(children), *names], cwd=scratch, check=False)
 
@@ -155,6 +157,25 @@ def run_module(name: str, work: Path, children: int, survivors_only: bool = Fals
     return result
 
 
+def recheck(name: str, work: Path, tests: list[str] | None = None) -> dict:
+    """Run an earlier run's survivors again against the current tests, without mutmut's bookkeeping: the current
+    tests are copied into the scratch copy and, per survivor, pytest runs there with ``MUTANT_UNDER_TEST`` set
+    (mutmut's switch for the mutant). Returns {mutant: "killed" | "survived"}; mutmut's own results stay as
+    they were (``--survivors`` updates them, at the cost of mapping tests to functions again)."""
+    scratch = work / name
+    result = json.loads((scratch / "mutation-result.json").read_text())
+    shutil.copytree(REPO / "tests", scratch / "mutants" / "tests", ignore=IGNORE, dirs_exist_ok=True)
+    selection = tests or [t for t in MODULES[name][1] if t.startswith("tests/")]
+    out = {}
+    for mutant in result["survivors"]:
+        env = {**os.environ, "MUTANT_UNDER_TEST": mutant}
+        run = subprocess.run([sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", *selection],
+                             cwd=scratch / "mutants", env=env, capture_output=True, text=True)
+        out[mutant] = "survived" if run.returncode == 0 else "killed"
+    (scratch / "recheck-result.json").write_text(json.dumps(out, indent=1))
+    return out
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("modules", nargs="*", help=f"of {', '.join(MODULES)} (default: all)")
@@ -163,6 +184,9 @@ def main(argv=None) -> int:
     p.add_argument("--list", action="store_true", help="print the modules and their tests, run nothing")
     p.add_argument("--sample", type=int, help="run only this many of each module's mutants, drawn with --seed")
     p.add_argument("--seed", type=int, default=0, help="seed of the --sample draw (default 0)")
+    p.add_argument("--recheck", action="store_true",
+                   help="run the survivors of an earlier run against the current tests (no mutmut bookkeeping)")
+    p.add_argument("--tests", nargs="+", help="with --recheck: these test files instead of the module's selection")
     p.add_argument("--keep", action="store_true",
                    help="use an earlier run's scratch copy as it is; do not run again the mutants it judged")
     p.add_argument("--survivors", action="store_true",
@@ -177,6 +201,13 @@ def main(argv=None) -> int:
             print(f"{name}: {' '.join(files)}  <-  {' '.join(tests)}")
         return 0
     args.work.mkdir(parents=True, exist_ok=True)
+    if args.recheck:
+        for m in args.modules:
+            out = recheck(m, args.work, args.tests)
+            killed = sum(v == "killed" for v in out.values())
+            print(f"{m}: {killed} of {len(out)} survivors killed by the current tests")
+            print("\n".join(f"  {k}: {v}" for k, v in out.items()))
+        return 0
     results = [run_module(m, args.work, args.children, args.survivors, args.sample, args.seed, args.keep)
                for m in args.modules or MODULES]
     print("\n| module | killed | survived | other | score |\n| --- | --- | --- | --- | --- |")
