@@ -46,7 +46,7 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
     "resolve": (["grounding/resolve.py"], ["tests/unit/test_resolve.py", "tests/unit/test_grounding.py", "tests/unit/test_grounding_base_pose.py",
                                           "tests/unit/test_grounding_errors.py", "tests/unit/test_grounding_language.py",
                                           "tests/unit/test_grounding_several.py"]),
-    "parse": (["grounding/parse.py"], ["tests/unit/test_grounding.py", "tests/unit/test_grounding_errors.py",
+    "parse": (["grounding/parse.py"], ["tests/unit/test_parse_edges.py", "tests/unit/test_grounding.py", "tests/unit/test_grounding_errors.py",
                                       "tests/unit/test_grounding_language.py", "tests/unit/test_grounding_several.py"]),
     # Drake modules: tests that compare with Drake's own checker, seconds per mutant (test_spheres.py's
     # 7-scene soundness sweep, 85 s, is left out: test_compiled_certifier.py compares every scene with Drake)
