@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import difflib
+import functools
 import re
 import types
 import typing
@@ -24,8 +25,8 @@ class SceneError(ValueError):
     """A scene file that cannot be used; the message is one line."""
 
 
-class _UniqueKeyLoader(yaml.SafeLoader):
-    """``yaml.SafeLoader`` refusing a key given twice in one mapping (PyYAML keeps the last one silently)."""
+class _UniqueKeys:
+    """Refuses a key given twice in one mapping (PyYAML keeps the last one silently); mixed into a loader."""
 
     def construct_mapping(self, node, deep=False):
         if isinstance(node, yaml.MappingNode):
@@ -45,12 +46,31 @@ class _UniqueKeyLoader(yaml.SafeLoader):
         return super().construct_mapping(node, deep)
 
 
+class _UniqueKeyLoader(_UniqueKeys, yaml.SafeLoader):
+    """``yaml.SafeLoader`` refusing duplicate keys (pure Python: its errors are the ones users see)."""
+
+
+# libyaml's parser (~10x faster), when PyYAML was built with it. It composes nested collections
+# recursively in C, without Python's recursion limit: text this short nests at most ~8k deep, far
+# below what overflows the stack (100k did; 20k did not), so longer text keeps the Python parser.
+_FAST_LOADER = type("_UniqueKeyCLoader", (_UniqueKeys, yaml.CSafeLoader), {}) if hasattr(yaml, "CSafeLoader") else None
+FAST_YAML_MAX_CHARS = 16 * 1024
+
+
 def load_yaml(text: str):
     """``yaml.safe_load`` that also refuses duplicate keys (a ``yaml.YAMLError`` naming the key and both lines).
 
     Empty documents after a ``---`` are ignored (``ros2 topic echo`` ends a message with one); two
-    documents with content are a ``yaml.YAMLError``."""
-    docs = [d for d in yaml.load_all(text, Loader=_UniqueKeyLoader) if d is not None]
+    documents with content are a ``yaml.YAMLError``. Short text is parsed by libyaml when available;
+    text it refuses is parsed again by PyYAML's own parser, so an error reads the same either way."""
+    docs = None
+    if _FAST_LOADER is not None and len(text) <= FAST_YAML_MAX_CHARS:
+        try:
+            docs = [d for d in yaml.load_all(text, Loader=_FAST_LOADER) if d is not None]
+        except yaml.YAMLError:
+            docs = None
+    if docs is None:
+        docs = [d for d in yaml.load_all(text, Loader=_UniqueKeyLoader) if d is not None]
     if len(docs) > 1:
         raise yaml.composer.ComposerError(None, None, f"{len(docs)} YAML documents separated by '---'; give one", None)
     return docs[0] if docs else None
@@ -184,7 +204,7 @@ def load_dataclass(value: Any, cls, path: str):
     """
     if not isinstance(value, dict):
         _fail(path, f"expected a mapping, got {describe(value)}")
-    hints = get_type_hints(cls)
+    hints = _type_hints(cls)
     fields = {f.name: f for f in dataclasses.fields(cls) if f.init}
     for key in value:
         if key not in fields:
@@ -216,6 +236,12 @@ def load_dataclass(value: Any, cls, path: str):
     return obj
 
 
+@functools.lru_cache(maxsize=None)
+def _type_hints(cls) -> dict:
+    """``typing.get_type_hints`` of a dataclass, resolved once (it evaluates the annotations' strings each call)."""
+    return get_type_hints(cls)
+
+
 def positive(v) -> str | None:
     values = v if isinstance(v, tuple) else (v,)
     bad = [x for x in values if x <= 0]
@@ -244,7 +270,7 @@ def line_of(text: str, path: str) -> int | None:
     """The 1-based line of the key a ``SceneError`` path names ("objects[2].type", "planer"), or None."""
     try:
         node = yaml.compose(text, Loader=yaml.SafeLoader)
-    except yaml.YAMLError:
+    except (yaml.YAMLError, RecursionError):  # (deep text libyaml parsed: PyYAML's composer recurses)
         return None
     line = None
     for part in re.findall(r"[^.\[\]]+|\[\d+\]", path):

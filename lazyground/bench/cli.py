@@ -57,6 +57,9 @@ def build_parser() -> argparse.ArgumentParser:
                    "lot-fraction; time to the first solution against N (family_sweep.png)")
     p.add_argument("--sizes", help="--family-sweep: the sizes (N, or k for lot-fraction) instead of the sweep's own")
     p.add_argument("--nn-scaling", action="store_true", help="time per iteration from 1,000 to 100,000 tree nodes")
+    p.add_argument("--iteration-profile", action="store_true", help="where a search iteration's time goes (nearest "
+                   "neighbours, steering, checks, bookkeeping) on --scenes (default: the three Fetch scenes), --runs seeds "
+                   "(default 10), in this process")
     p.add_argument("--scenes", help="comma list: scene files, names in yaml_scenes/, arm:<dof>, or generated families "
                    "lot:<free>:<reachable>[:<seed>] and rack:<panda|fetch>:<objects>:<reachable>[:<seed>]")
     p.add_argument("--strategies", help=f"comma list of {BY_NAME['strategy'].allowed()}")
@@ -262,6 +265,8 @@ def _main(args) -> int:
                 nn_scaling.plot(scaling, args.plot, dpi=PLOT_DPI)
                 print(f"wrote {args.plot}", file=sys.stderr)
             return EXIT_OK
+    if args.iteration_profile:
+        return _iteration_profile(args, out)
     specs, notes, title = plan_specs(args)
     for note in notes:
         print(f"note: {note}", file=sys.stderr)
@@ -311,6 +316,22 @@ def _main(args) -> int:
     if interrupted:
         print(f"interrupted: kept {progress.done} finished run(s) in {csv_path}", file=sys.stderr)
         return EXIT_INTERRUPTED
+    return EXIT_OK
+
+
+def _iteration_profile(args, out: Path) -> int:
+    from lazyground.bench import iteration_profile
+
+    keys = _csv_list(args.scenes, ["fetch_cans_1", "fetch_cans_2", "fetch_boxes_3"])
+    seeds = range(args.seed, args.seed + (args.runs or 10))
+    profiles = []
+    for key in keys:
+        overrides = {} if args.time_limit is None else {"time_limit": args.time_limit}
+        profiles.append(iteration_profile.profile_scene(resolve_scene(key) or key, seeds, args.request, **overrides))
+        print(f"profiled {key}", file=sys.stderr)
+    text = iteration_profile.report(profiles)
+    (out / "iteration_profile.md").write_text(text)
+    print(text, end="")
     return EXIT_OK
 
 

@@ -9,6 +9,7 @@ checker per resolution.
 
 from __future__ import annotations
 
+import math
 import time
 
 import numpy as np
@@ -18,6 +19,8 @@ from lazyground.drake.compiled import COLLIDES, CompiledCertifier
 from lazyground.drake.coordinates import Coordinates
 from lazyground.drake.parallel import parallel_batch
 from lazyground.drake.spheres import sphere_certifier
+
+_clock = time.perf_counter
 
 # Drake needs a positive step at construction; a checker built without a resolution
 # replaces this once, before its first edge check, and never again.
@@ -62,6 +65,10 @@ class DrakeChecker:
         self.certifier = sphere_certifier(self.drake) if certify else None
         self.compiled = CompiledCertifier(self.certifier) if self.certifier is not None else None
         self._orders = {}  # bisection order of an edge's steps, by step count (_bisection)
+        self._sequences = {}  # steps in order, by step count (_sequence)
+        # bound once: an edge check's glue is a fifth of its cost on Fetch (#31)
+        self._difference = coordinates.space.difference
+        self._distance = self.drake.ComputeConfigurationDistance
         self.certified = 0  # configurations the certifier proved free
         self._pairs = {}  # the certifier's pairs as SceneGraph's (id, id, padding), as they come up (_pair)
 
@@ -76,13 +83,13 @@ class DrakeChecker:
         return self._resolution is None or self._resolution == resolution or self.compiled is not None
 
     def config_free(self, q: np.ndarray) -> bool:
-        t0 = time.perf_counter()
+        t0 = _clock()
         q_full = self.coordinates.full(q)
         if self.compiled is None:
             free = self._free(q_full)
         else:
             free = self._decide(q_full, *self.compiled.certify_one(q_full))
-        self.check_time += time.perf_counter() - t0
+        self.check_time += _clock() - t0
         self.checks += 1
         return free
 
@@ -96,7 +103,7 @@ class DrakeChecker:
         """
         if not self._penetration_first:
             return self.config_free(q)
-        t0 = time.perf_counter()
+        t0 = _clock()
         q_full = self.coordinates.full(q)
         if self.compiled is None:
             free = not self._penetrates(q_full)
@@ -104,7 +111,7 @@ class DrakeChecker:
             code, pairs = self.compiled.certify_one(q_full)
             free = code == 0 or code != COLLIDES and (
                 self._open_free(q_full, pairs, unpadded=True) if code > 0 else not self._penetrates(q_full))
-        self.check_time += time.perf_counter() - t0
+        self.check_time += _clock() - t0
         self.checks += 1
         return free
 
@@ -252,16 +259,19 @@ class DrakeChecker:
         called colliding by Drake or by a proof of it, and every other step is proven free."""
         if self._resolution is None:
             self._resolution = resolution
-        t0 = time.perf_counter()
+        t0 = _clock()
         a = np.asarray(a, float)
-        qa = self.coordinates.full(a)
-        qb = self.coordinates.full(a + self.coordinates.space.difference(a, b))
+        full = self.coordinates.full
+        qa = full(a)
+        qb = full(a + self._difference(a, b))
         # Drake's own distance: a sum in another order can differ in the last bit, and so the step count
-        n = max(1, int(np.ceil(self.drake.ComputeConfigurationDistance(qa, qb) / resolution)))
-        order = np.arange(n + 1) if fraction else self._bisection(n)
+        # (math.ceil: np.ceil's number, without a numpy scalar)
+        n = max(1, math.ceil(self._distance(qa, qb) / resolution))
+        order = self._sequence(n) if fraction else self._bisection(n)
         begin, out = 0, (1.0 if fraction else True)
+        first_open = self.compiled.first_open
         while True:
-            p, code, pairs = self.compiled.first_open(qa, qb, n, order, begin)
+            p, code, pairs = first_open(qa, qb, n, order, begin)
             if p < 0:
                 break
             k = int(order[p])
@@ -271,9 +281,16 @@ class DrakeChecker:
                 out = max(0.0, (k - 1) / n) if fraction else False
                 break
             begin = p + 1
-        self.check_time += time.perf_counter() - t0
+        self.check_time += _clock() - t0
         self.checks += 1
         return out
+
+    def _sequence(self, n: int) -> np.ndarray:
+        """Steps 0..n in order (an edge's free fraction is measured from its start), kept per n."""
+        order = self._sequences.get(n)
+        if order is None:
+            order = self._sequences[n] = np.arange(n + 1)
+        return order
 
     def _bisection(self, n: int) -> np.ndarray:
         """Steps 0..n of an edge in the order to check them: the end n first (a planner's extension usually

@@ -94,7 +94,8 @@ class DrakeWorld:
 
     def edge_free(self, a: np.ndarray, b: np.ndarray, resolution: float) -> bool:
         """Whether the motion a → b is free at ``resolution`` (see :meth:`DrakeChecker.edge_free`)."""
-        return self._checker_for(resolution).edge_free(a, b, resolution)
+        checker = self.checker if self.checker.compiled is not None else self._checker_for(resolution)  # any resolution
+        return checker.edge_free(a, b, resolution)
 
     def edge_fraction(self, a: np.ndarray, b: np.ndarray, resolution: float) -> float:
         """The free fraction of a → b at ``resolution`` (see :meth:`DrakeChecker.edge_fraction`)."""

@@ -25,13 +25,16 @@ def nearest_turns(q: np.ndarray, start: np.ndarray, lower: np.ndarray, upper: np
     Returns:
         The shift (n,) to add to ``q`` (and to ``together``): zeros where no nearer equivalent is within the limits.
     """
-    q, start, lower, upper = (np.asarray(a, float) for a in (q, start, lower, upper))
-    shift = np.zeros_like(q)
-    for i in np.flatnonzero(turns):
-        k = np.round((start[i] - q[i]) / TURN)
-        candidates = sorted({0.0, *(k + np.arange(-2, 3))}, key=lambda c: abs(q[i] + c * TURN - start[i]))
+    # Python floats: the same IEEE arithmetic as numpy's scalars (round: half to even, as np.round), ~10x cheaper
+    q, start, lower, upper = (np.asarray(a, float).tolist() for a in (q, start, lower, upper))
+    together = [np.asarray(t, float).tolist() for t in together]
+    shift = np.zeros(len(q))
+    for i in np.flatnonzero(turns).tolist():
+        qi, si = q[i], start[i]
+        k = float(round((si - qi) / TURN))
+        candidates = sorted({0.0, k - 2.0, k - 1.0, k, k + 1.0, k + 2.0}, key=lambda c: abs(qi + c * TURN - si))
         for c in candidates:  # nearest first; the limits may rule out the nearest
-            values = [q[i] + c * TURN] + [t[i] + c * TURN for t in together]
+            values = [qi + c * TURN] + [t[i] + c * TURN for t in together]
             if c == 0.0 or all(lower[i] - 1e-9 <= v <= upper[i] + 1e-9 for v in values):
                 shift[i] = c * TURN
                 break

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from collections import OrderedDict
 from dataclasses import replace
 from pathlib import Path
 
@@ -17,6 +18,8 @@ from lazyground.scene.schema import Scene, SceneObject
 from lazyground.typed_yaml import SceneError, line_of, load_dataclass, load_yaml
 
 MAX_SCENE_BYTES = 5 * 1024 * 1024
+SCENE_CACHE_SIZE = 8  # scene files kept parsed per process (api.plan on a path loads its file every call)
+_SCENES: "OrderedDict[tuple, Scene]" = OrderedDict()
 REPO_ROOT = Path(__file__).resolve().parents[2]
 
 
@@ -113,7 +116,18 @@ def load_scene(path: str | os.PathLike, robot_overrides: dict | None = None) -> 
         text = path.read_text(encoding="utf-8")
     except UnicodeDecodeError:
         raise SceneError(f"{path}: not a UTF-8 text file") from None
-    return parse_scene(text, str(path), path.parent, robot_overrides)
+    # Parsed once per text: the same file unchanged gives the same (frozen) Scene; a robot's own files
+    # (robot.yaml, models) are read as the loader always has, cached by path (they ship with the package).
+    key = (str(path), text, repr(sorted((robot_overrides or {}).items())), os.environ.get("LAZYGROUND_MODELS", ""))
+    scene = _SCENES.get(key)
+    if scene is None:
+        scene = parse_scene(text, str(path), path.parent, robot_overrides)
+        _SCENES[key] = scene
+        while len(_SCENES) > SCENE_CACHE_SIZE:
+            _SCENES.popitem(last=False)
+    else:
+        _SCENES.move_to_end(key)
+    return scene
 
 
 def _not_a_scene(text: str, data: dict | None = None) -> str | None:
@@ -142,14 +156,16 @@ def _overlap_problem(scene: Scene) -> str | None:
     may overlap one another (boards that meet, generated racks)."""
     solids = [(f"objects[{i}]", "object", o) for i, o in enumerate(scene.objects) if o.collides]
     solids += [(f"obstacles[{i}]", "obstacle", o) for i, o in enumerate(scene.obstacles) if o.geometry.mesh is None]
+    frames = [(np.asarray(X.xyz), X.rotation()) for X in (b.pose.pose() for _, _, b in solids)]  # once per solid
     hits = []  # (the larger one holds the centre, later solid first, message)
     for n, (key, kind, a) in enumerate(solids):
+        if kind == "obstacle":
+            continue
         centre = np.asarray(a.pose.xyz, dtype=float)
-        for _, other_kind, b in solids:
-            X = b.pose.pose()
-            if b is a or kind == "obstacle":
+        for (_, other_kind, b), (p_WB, R_WB) in zip(solids, frames):
+            if b is a:
                 continue
-            if b.geometry.contains((centre - np.asarray(X.xyz)) @ X.rotation()):
+            if b.geometry.contains((centre - p_WB) @ R_WB):
                 message = f"{key}.pose: {kind} {a.id!r} has its centre inside {other_kind} {b.id!r}"
                 hits.append((a.geometry.volume() > b.geometry.volume(), -n, message))
     return min(hits)[2] if hits else None

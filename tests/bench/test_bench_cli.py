@@ -277,3 +277,22 @@ def test_strategy_table_compares_with_consecutive_by_mann_whitney():
     assert float(rp[6]) == pytest.approx((10.0 + sum(20.0 + i for i in range(1, 6))) / 6, abs=1e-3)  # timeout at the limit
     # all of one sample above all of the other: the exact two-sided p-value for 6 vs 6 is 2 / C(12, 6)
     assert float(rp[-2]) == pytest.approx(2 / 924, rel=3e-3) and float(rp[-1].rstrip(" |")) == pytest.approx(2 / 924, rel=3e-3)
+
+
+def test_iteration_profile_splits_a_search_iteration(tmp_path, capsys):
+    # #31: where an iteration's time goes; the shares split the plain pass's time per iteration, and the
+    # timers are gone afterwards
+    from lazyground.bench import iteration_profile
+    from lazyground.planning.tree import Tree
+
+    nearest = Tree.__dict__["nearest"]
+    code = main(["bench", "--iteration-profile", "--scenes", "parking_1", "--runs", "1", "--time-limit", "600",
+                 "--out", str(tmp_path)])  # (the limit a guard: parking_1 solves in under 1 s)
+    assert code == 0
+    text = capsys.readouterr().out
+    assert "| parking_1 | 1 (1) |" in text and "nn µs" in text
+    assert (tmp_path / "iteration_profile.md").read_text() == text
+    assert Tree.__dict__["nearest"] is nearest
+    p = iteration_profile.profile_scene("parking_1", range(1), time_limit=600, max_iterations=20_000)
+    assert p.iterations > 0 and p.split_us["nn"] > 0 and p.split_us["checks"] > 0
+    assert sum(p.split_us.values()) == pytest.approx(p.us_per_iteration, rel=1e-6)

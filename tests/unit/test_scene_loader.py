@@ -118,3 +118,61 @@ def test_per_algorithm_settings_apply_only_to_their_algorithm():
     assert (one.step_size, one.resolution, one.goal_extension) == (2.65, 0.05, "partial")
     explicit = planner_settings(scene, algorithm="rrt", step_size=1.0, goal_extension="connect")
     assert (explicit.step_size, explicit.goal_extension) == (1.0, "connect")  # the caller's word is last
+
+
+def test_fast_yaml_parser_reads_every_bundled_scene_as_pyyaml_does():
+    # #31: scenes parse with libyaml (~10x faster than PyYAML's pure-Python parser); same data, same errors
+    from lazyground import typed_yaml
+    from lazyground.bundled import bundled_scene, scene_names
+
+    if typed_yaml._FAST_LOADER is None:
+        pytest.skip("PyYAML built without libyaml")
+    for name in scene_names():
+        text = bundled_scene(name).read_text()
+        assert len(text) <= typed_yaml.FAST_YAML_MAX_CHARS
+        fast = list(yaml.load_all(text, Loader=typed_yaml._FAST_LOADER))
+        assert fast == list(yaml.load_all(text, Loader=typed_yaml._UniqueKeyLoader)), name
+
+
+def test_an_error_reads_the_same_with_the_fast_parser():
+    from lazyground import typed_yaml
+
+    text = "objects: []\nplanner: {seed: 1}\nobjects: [a]\n"
+    messages = []
+    for fast in (typed_yaml.FAST_YAML_MAX_CHARS, -1):
+        old, typed_yaml.FAST_YAML_MAX_CHARS = typed_yaml.FAST_YAML_MAX_CHARS, fast
+        try:
+            with pytest.raises(yaml.YAMLError) as info:
+                typed_yaml.load_yaml(text)
+        finally:
+            typed_yaml.FAST_YAML_MAX_CHARS = old
+        messages.append(str(info.value))
+    assert messages[0] == messages[1]
+    assert "duplicate key 'objects' (first at line 1)" in messages[0] and "line 3" in messages[0]
+
+
+def test_deep_nesting_is_refused_not_a_crash():
+    # libyaml composes nested collections in C without Python's recursion limit (100k levels overflowed the
+    # stack): long text keeps PyYAML's parser, which stops at the recursion limit
+    text = "a: " + "[" * 100_000 + "]" * 100_000 + "\n"
+    with pytest.raises(SceneError, match="nesting too deep"):
+        parse_scene(text, "deep.yaml")
+
+
+def test_a_scene_file_is_parsed_once_until_it_changes(tmp_path, monkeypatch):
+    # #31: api.plan on a path loads the file every call; the same text gives the same Scene without parsing it again
+    from lazyground.scene import loader
+
+    path = tmp_path / "s.yaml"
+    path.write_text("name: x\n" + CAR)
+    calls = []
+    parse = loader.parse_scene
+    monkeypatch.setattr(loader, "parse_scene", lambda *a, **k: calls.append(1) or parse(*a, **k))
+    first = load_scene(path)
+    assert load_scene(path) is first and len(calls) == 1
+    path.write_text("name: x\n" + CAR + "planner: {seed: 4}\n")
+    changed = load_scene(path)
+    assert len(calls) == 2 and changed.planner.seed == 4
+    path.write_text("name: x\n" + CAR + "planner: {seed: [}\n")
+    with pytest.raises(SceneError, match="YAML syntax error"):
+        load_scene(path)

@@ -13,6 +13,7 @@ Both judge an answer by forward kinematics against the accepted error of the tol
 
 from __future__ import annotations
 
+import weakref
 from typing import Protocol
 
 import numpy as np
@@ -68,12 +69,24 @@ class BatchSolver:
         return answers, (np.linalg.norm(dp, axis=1) <= max_dp) & (angle <= max_angle)
 
 
+_PROBLEMS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()  # world -> {(frame, full_turns): problem}
+
+
 def problem_for_frame(world, frame: str, full_turns: bool = True) -> BatchIKProblem | None:
     """The chain to ``frame`` with its planned joints free, or None when the chain cannot express it.
 
     With ``full_turns`` a joint whose limits span a full turn wraps (IK may pass its seam);
-    without, only the joints the planner's space wraps do.
+    without, only the joints the planner's space wraps do. Built once per world and arguments
+    (~5 ms a frame, against a goal source per plan; the problem is frozen and read only).
     """
+    problems = _PROBLEMS.setdefault(world, {})
+    key = (frame, full_turns)
+    if key not in problems:
+        problems[key] = _problem_for_frame(world, frame, full_turns)
+    return problems[key]
+
+
+def _problem_for_frame(world, frame: str, full_turns: bool) -> BatchIKProblem | None:
     try:
         chain = chain_to_frame(world.plant, world.plant.GetFrameByName(frame))
     except ValueError:  # e.g. a planar base: SNOPT on the plant instead

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 import time
+import weakref
 from dataclasses import replace
 from typing import Callable
 
@@ -44,6 +45,47 @@ from lazyground.typed_yaml import SceneError
 
 APPROACH_RESOLUTION = 0.01  # rad (or m): spacing of the collision checks along an approach segment
 LOOK_AHEAD_MIN = 16  # fewest attempts the batch solver solves at once (below, one iteration's overhead dominates)
+
+
+_TABLES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()  # world -> {regions: _region_table's}
+
+
+def _region_table(world, regions: tuple, attached) -> tuple:
+    """(frames, factors, index, stacked) of ``regions`` in ``world``: read only, so built once per world and
+    regions (30 regions of fetch_boxes_3: a few ms against a goal source per plan; #31).
+
+    Raises:
+        ValueError: a region is not a pose region, or a placement region without a carried object.
+        SceneError: the robot has no frame a region constrains.
+    """
+    tables = _TABLES.setdefault(world, {})
+    if regions not in tables:
+        tables[regions] = _build_region_table(world, regions, attached)
+    return tables[regions]
+
+
+def _build_region_table(world, regions: tuple, attached) -> tuple:
+    frames = []
+    for r in regions:
+        if not isinstance(r, PoseRegion):
+            raise ValueError(f"region {r.id} is a {r.kind} region, not a pose region; use its registered goal source")
+        frame = r.robot_target(r.X_WR, attached)[0]  # raises for a placement without a carried object
+        if not world.plant.HasFrameNamed(frame):  # a scene/request mismatch, not a bug
+            raise SceneError(f"{world.scene.source}: robot: no frame {frame!r} to reach goal region {r.id} with (set robot.end_effector)")
+        frames.append(frame)
+    # X_WT = X_WR · X_RS(v) · X_SE · X_ET, where robot_target's X_ET takes the region's
+    # target to the robot frame (identity, or the carried object's grasp); the approach,
+    # given in the target's axes, is d = X_ET^-1 · T(approach) · X_ET in the robot frame's
+    factors = {}
+    for r in regions:
+        X_ET = r.robot_target(Pose(), attached)[1].matrix()
+        T = np.eye(4)
+        T[:3, 3] = r.approach
+        factors[r.id] = (r.X_WR.matrix(), r.X_SE.matrix() @ X_ET, (np.linalg.inv(X_ET) @ T @ X_ET)[:3, 3])
+    # per region, stacked for drawing many targets at once (target_poses): X_WR, X_ST and the unit map
+    index = {r.id: j for j, r in enumerate(regions)}
+    stacked = [np.array(a) for a in zip(*(factors[r.id][:2] + r.unit_map() for r in regions))]
+    return tuple(frames), factors, index, stacked
 
 
 class IKGoalSource(RoundRobinGoalSource):
@@ -76,27 +118,8 @@ class IKGoalSource(RoundRobinGoalSource):
             settings = ik_settings.DEFAULT_IK_SETTINGS if sampling is None else replace(
                 ik_settings.DEFAULT_IK_SETTINGS, restarts=sampling.ik_restarts, solver=str(sampling.ik_solver))
         attached = getattr(world, "attached", None)
-        frames = []
-        for r in self.regions:
-            if not isinstance(r, PoseRegion):
-                raise ValueError(f"region {r.id} is a {r.kind} region, not a pose region; use its registered goal source")
-            frame = r.robot_target(r.X_WR, attached)[0]  # raises for a placement without a carried object
-            if not world.plant.HasFrameNamed(frame):  # a scene/request mismatch, not a bug
-                raise SceneError(f"{world.scene.source}: robot: no frame {frame!r} to reach goal region {r.id} with (set robot.end_effector)")
-            frames.append(frame)
-        # X_WT = X_WR · X_RS(v) · X_SE · X_ET, where robot_target's X_ET takes the region's
-        # target to the robot frame (identity, or the carried object's grasp); the approach,
-        # given in the target's axes, is d = X_ET^-1 · T(approach) · X_ET in the robot frame's
-        self.frames = tuple(frames)  # per region: the robot frame its targets are for
-        self._factors = {}
-        for r in self.regions:
-            X_ET = r.robot_target(Pose(), attached)[1].matrix()
-            T = np.eye(4)
-            T[:3, 3] = r.approach
-            self._factors[r.id] = (r.X_WR.matrix(), r.X_SE.matrix() @ X_ET, (np.linalg.inv(X_ET) @ T @ X_ET)[:3, 3])
-        # per region, stacked for drawing many targets at once (target_poses): X_WR, X_ST and the unit map
-        self._index = {r.id: j for j, r in enumerate(self.regions)}
-        self._stacked = [np.array(a) for a in zip(*(self._factors[r.id][:2] + r.unit_map() for r in self.regions))]
+        # per region: the robot frame its targets are for, its factors, and the stacked arrays (_region_table)
+        self.frames, self._factors, self._index, self._stacked = _region_table(world, tuple(self.regions), attached)
         self.world = world
         self.settings = settings
         self.counters = IKCounters()
@@ -104,10 +127,10 @@ class IKGoalSource(RoundRobinGoalSource):
         self._kinematics = world.kinematics
         self.planned = np.asarray(world.planned, int)
         self.last: list[np.ndarray | None] = [None] * len(self.regions)  # per region: its last valid answer
-        self.target_screen = TargetScreen(world, frames, settings)
+        self.target_screen = TargetScreen(world, self.frames, settings)
         self.near = world.start  # goals prefer the full-turn equivalent nearest this (the step's start)
         self._turns = getattr(getattr(world, "coordinates", None), "turns", None)
-        problems = {f: problem_for_frame(world, f) for f in dict.fromkeys(frames)} if settings.solver == "batch" else {}
+        problems = {f: problem_for_frame(world, f) for f in dict.fromkeys(self.frames)} if settings.solver == "batch" else {}
         # batches when the chain expresses every frame (else SNOPT on the plant, e.g. for a planar base)
         self.batch = None
         if problems and None not in problems.values():
