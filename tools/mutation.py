@@ -56,7 +56,8 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                                                    "tests/drake/test_compiled_certifier.py"]),
 }
 
-IGNORE = shutil.ignore_patterns(".git", "mutants", "__pycache__", ".pytest_cache", ".hypothesis", "lazyground_output",
+# *.pyc, not __pycache__: numba keeps its compiled kernels there (.nbi/.nbc), 50 s to compile again per copy
+IGNORE = shutil.ignore_patterns(".git", "mutants", "*.pyc", ".pytest_cache", ".hypothesis", "lazyground_output",
                                 "bench_output", "*.egg-info")
 
 
