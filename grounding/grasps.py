@@ -15,7 +15,8 @@ top face, and the Panda's fingertips, 9 mm past its TCP, closed above a can's ri
 Templates (their numbers live in lazyground/scene/types.yaml):
 
 - ``top``: from above, R on the top face, R.x down; one region per closing
-  direction that fits (for a cylinder, any yaw).
+  direction that fits (for a cylinder, any yaw). With ``tilt``, angled: the approach
+  slanted from the vertical, still entering by the top face (:func:`angled`).
 - ``side_faces``: into each vertical face of a box, fingers closing horizontally.
 - ``side_around``: a cylinder's side from any horizontal direction at a few heights,
   approach horizontal, fingers closing horizontally.
@@ -83,7 +84,10 @@ def _reach(spec, ee: EndEffectorSpec) -> tuple[float, float]:
 
 def top(obj, spec, interpretation, ee):
     """From above, the fingers ``depth`` below the top face. A cylinder: any yaw. A box: the fingers close
-    along its x or its y, one region for each that fits (roll fixed, the gripper being symmetric)."""
+    along its x or its y, one region for each that fits (roll fixed, the gripper being symmetric).
+    With ``tilt: [t0, t1]`` (degrees), the approach slants from the vertical: :func:`angled`."""
+    if "tilt" in spec:
+        return angled(obj, spec, interpretation, ee)
     d0, d1 = _reach(spec, ee)
     hx, hy, _ = obj.geometry.half_extents()
     X_WR = _top_face(obj)
@@ -95,6 +99,36 @@ def top(obj, spec, interpretation, ee):
     return [make_region(WorkspaceRegion, obj, interpretation, label, (d0, 0, 0, roll[0], 0, 0), (d1, 0, 0, roll[1], 0, 0), ee,
                         X_WR=X_WR, approach=_approach_back(spec))
             for label, width, roll in options if fits(width, ee, spec)]
+
+
+def angled(obj, spec, interpretation, ee):
+    """From above at a slant (issue 34: a can in an open box whose walls block the side grasps, out of
+    reach straight down): the approach tilted ``tilt: [t0, t1]`` degrees from the vertical about the
+    closing axis, which stays horizontal, its line through the top face's centre, so the fingers enter
+    by the top face at every tilt and reach ``depth`` past it along the approach.
+
+    A cylinder: any yaw, tilt in [t0, t1] (one region, "angled"). A box: the fingers close across its y
+    or its x as for ``top``, tilted to either side, tilt in [-t1, t1] ("angled y", "angled x").
+    R sits on the top face centre with R.z down; a draw is (0, 0, u, 0, tilt, yaw): the yaw about the
+    vertical, then the tilt about the closing axis; X_SE puts the grasp point the depth range's middle
+    along the tilted approach, and u (a vertical shift of the line, at most half the depth range times
+    cos t1) spreads the depth over the range without leaving it at any tilt.
+    """
+    d0, d1 = _reach(spec, ee)
+    t0, t1 = (math.radians(float(t)) for t in spec["tilt"])
+    if not 0.0 <= t0 <= t1 < math.pi / 2:
+        raise ValueError(f"tilt must be 0 <= t0 <= t1 < 90 degrees, got {spec['tilt']}")
+    hx, hy, hz = obj.geometry.half_extents()
+    X_WR = obj.pose.pose().compose(Pose((0.0, 0.0, hz), (math.pi, 0.0, 0.0)))
+    X_SE = Pose((0.0, 0.0, (d0 + d1) / 2), (0.0, -math.pi / 2, 0.0))  # N.x = S.z (the tilted approach), N.y = S.y
+    u = (d1 - d0) / 2 * math.cos(t1)
+    if _is_cylinder(obj):
+        options = [("angled", 2 * hx, (t0, t1), (-math.pi, math.pi))]
+    else:  # R.y is the object's -y: yaw 0 closes across its y, yaw pi/2 across its x
+        options = [("angled y", 2 * hy, (-t1, t1), (0.0, 0.0)), ("angled x", 2 * hx, (-t1, t1), (math.pi / 2, math.pi / 2))]
+    return [make_region(WorkspaceRegion, obj, interpretation, label, (0, 0, -u, 0, tilt[0], yaw[0]), (0, 0, u, 0, tilt[1], yaw[1]), ee,
+                        X_WR=X_WR, X_SE=X_SE, approach=_approach_back(spec))
+            for label, width, tilt, yaw in options if fits(width, ee, spec)]
 
 
 FACES = {"+x": (0, 1, math.pi), "-x": (0, -1, 0.0), "+y": (1, 1, -math.pi / 2), "-y": (1, -1, math.pi / 2)}

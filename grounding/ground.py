@@ -269,9 +269,13 @@ SOME = 2  # "some cans", "a few boxes": how many are moved
 def ground_several(request: str, c: Clause, res: Resolver, scene: Scene) -> Grounding:
     """The grounding of a several-object request: groups in order, every candidate's place interpretations.
 
+    "pick up two cans" (action ``pick``): the robot holds one object at a time, so every object but the
+    last is put down on a stow surface (:func:`stow_surfaces`); each candidate has a pick interpretation
+    (the last step) and place interpretations to its stow surfaces.
+
     Raises:
-        GroundingError: picking several objects without a place, a count above what the scene holds,
-            nothing to clear, or what :func:`grounding.ground._frame` refuses.
+        GroundingError: a count above what the scene holds, nothing to clear, nowhere to stow, or what
+            :func:`grounding.ground._frame` refuses.
     """
     ee = end_effector_of(scene.robot)
     notes: list[str] = []
@@ -279,23 +283,59 @@ def ground_several(request: str, c: Clause, res: Resolver, scene: Scene) -> Grou
         parts, targets = _clearing(c, res, scene, notes)
     else:
         parts, targets = _parts(c, res, notes)
+    picking = targets is None
     memo: dict = {}
     interps, groups = [], []
     for phrase, objs, count in parts:
-        mine = [_interpretation("place", o, t, scene, ee=ee, memo=memo) for o in objs for t in targets if o.id != t.id]
+        if picking:
+            mine = [i for o in objs for i in [_interpretation("pick", o, None, scene, ee=ee)]
+                    + [_interpretation("place", o, t, scene, ee=ee, memo=memo) for t in stow_surfaces(o, res, scene)]]
+        else:
+            mine = [_interpretation("place", o, t, scene, ee=ee, memo=memo) for o in objs for t in targets if o.id != t.id]
         mine, unfit = _graspable(mine, scene, ee) if mine else ([], [])
         notes += unfit
         ids = tuple(dict.fromkeys(i.objects[0] for i in mine))
         if count is not None and count > len(ids):
             raise GroundingError(f"{phrase!r} asks for {count}; the scene has {len(ids)} that fit "
                                  f"({', '.join(ids) or 'none'})")
-        target_ids = {t.id for t in targets}
+        target_ids = set() if picking else {t.id for t in targets}
         already = tuple(o for o in ids if res.support(scene.object(o)) in target_ids)
         interps += [i for i in mine if i.id not in {j.id for j in interps}]
         groups.append(Group(phrase, ids, count, already))
     if not interps:
         raise GroundingError(f"nothing to move for {request!r}")
-    return Grounding(request, "place", tuple(interps), tuple(notes + res.notes), tuple(groups))
+    if picking:
+        _check_stow(groups, interps, scene, notes)
+    return Grounding(request, "pick" if picking else "place", tuple(interps), tuple(notes + res.notes), tuple(groups))
+
+
+def stow_surfaces(obj: SceneObject, res: Resolver, scene: Scene) -> list[SceneObject]:
+    """Where ``obj`` may be put down to free the gripper: the scene's ``stow:`` surfaces, else every
+    support surface but the one it rests on (putting it back where it was would undo the pick).
+
+    Raises:
+        GroundingError: a ``stow:`` entry that is no support surface.
+    """
+    if scene.stow:
+        out = [scene.object(s) for s in scene.stow]
+        bad = [o.id for o in out if not res.has_role(o.type, "support")]
+        if bad:
+            raise GroundingError(f"stow: {bad[0]!r} is a {scene.object(bad[0]).type}, not a surface to put things on")
+        return [o for o in out if o.id != obj.id]
+    return [o for o in scene.objects if res.has_role(o.type, "support") and o.id not in (obj.id, res.support(obj))]
+
+
+def _check_stow(groups, interps, scene: Scene, notes: list[str]) -> None:
+    """Say where objects are put down; refuse when more than one is asked for and none can be put down anywhere."""
+    steps = sum(len(g.objects) if g.count is None else g.count for g in groups)
+    if steps < 2:
+        return
+    places = sorted({i.target for i in interps if i.action == "place"})
+    if not places:
+        raise GroundingError("the robot holds one object at a time and the scene has no surface to put the others "
+                             "down on; declare one with 'stow: [<surface id>]'")
+    where = "the scene's stow: " if scene.stow else "no stow: in the scene, so any surface other than its own: "
+    notes.append(f"one gripper: every object but the last is put down first ({where}{', '.join(places)}); the last is held")
 
 
 def _count(q: Quantity) -> int | None:
@@ -310,16 +350,19 @@ def _count(q: Quantity) -> int | None:
 
 
 def _parts(c: Clause, res: Resolver, notes: list[str]):
-    """Per "and"-part: (phrase, candidate objects, count); and the target surfaces (the same for every part)."""
+    """Per "and"-part: (phrase, candidate objects, count); and the target surfaces (the same for every part;
+    None when the parts are picked up, not put somewhere)."""
     parts, targets = [], None
     for alts in c.objects:
         single = tuple(replace(a, quantity=Quantity()) for a in alts)
         action, obj, target = _frame(replace(c, objects=(single,)), res)
-        if action != "place":  # the robot holds one object at a time: _frame says so for the phrase as typed
-            _frame(replace(c, objects=(alts,)), res)
+        if action == "park":
+            _frame(replace(c, objects=(alts,)), res)  # says why for the phrase as typed
+            raise GroundingError(AND_REFUSED.format(c.conjunction or "and"))
+        if parts and (targets is None) != (action == "pick"):
             raise GroundingError(AND_REFUSED.format(c.conjunction or "and"))
         objs = res.choice(obj, "pick")
-        if targets is None:
+        if action == "place" and targets is None:
             targets = res.choice(target, "support")
             notes += _ambiguity(target, targets, "surfaces")
         q = alts[0].quantity

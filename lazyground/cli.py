@@ -135,6 +135,7 @@ def build_parser() -> argparse.ArgumentParser:
     gen.add_argument("--objects", type=int, help="rack: cans (default 16)")
     gen.add_argument("--reachable", type=int, help="how many are reachable (default: lot 2, rack 1)")
     gen.add_argument("--seed", type=int, default=0)
+    gen.add_argument("--slots", type=int, help="lot: a fixed layout of this many spots, the blocked ones not free parked")
     gen.add_argument("-o", "--output", metavar="FILE", help="write the scene YAML here (default: stdout)")
     gen.add_argument("--debug", action="store_true", help="show tracebacks")
 
@@ -317,6 +318,7 @@ def cmd_generate(args) -> int:
 
     if args.family == "lot":
         key = f"lot:{64 if args.free is None else args.free}:{2 if args.reachable is None else args.reachable}:{args.seed}"
+        key += f":{args.slots}" if args.slots else ""
     else:
         key = f"rack:{args.robot}:{16 if args.objects is None else args.objects}:{1 if args.reachable is None else args.reachable}:{args.seed}"
     try:

@@ -15,6 +15,7 @@ is imported (any ``DrakeWorld`` has imported it).
 
 from __future__ import annotations
 
+import bisect
 from typing import Callable, Iterator
 
 import numpy as np
@@ -27,6 +28,10 @@ from lazyground.settings import GoalSamplingSettings
 
 
 REACHED_FACTOR = 4  # a region whose goals are reached but collide gets this many times the attempts
+# A region none of whose goals were reached, HOPELESS_SHARE of its first HOPELESS_AFTER or more attempts failing for
+# a hopeless reason (an IK target beyond the arm's reach), is given up then (issue #33: cans behind a rack's inner
+# ring, 86-95 % out of reach, took 50 attempts each; the reachable can's regions fail so 35-40 % of the time).
+HOPELESS_AFTER, HOPELESS_SHARE = 20, 0.9
 
 
 class RoundRobinGoalSource:
@@ -36,10 +41,12 @@ class RoundRobinGoalSource:
     is exhausted and skipped from then on; one whose attempts failed for a reason in
     ``reached_reasons`` (the goal was reached, the configuration collided: other goals
     of the region may be free) keeps going for ``REACHED_FACTOR`` times as many
-    (issue 34: a can in an open box was given up on with grasps that exist).
+    (issue 34: a can in an open box was given up on with grasps that exist); one whose
+    attempts nearly all failed for a reason in ``hopeless_reasons`` stops sooner (:meth:`region_budget`).
     """
 
     reached_reasons: tuple[str, ...] = ()
+    hopeless_reasons: tuple[str, ...] = ()  # failures that say the region's goals lie where the robot never gets
 
     def __init__(self, regions: tuple[GoalRegion, ...], give_up_after: int | None = None,
                  attempts_per_sample: int | None = None, sampling: GoalSamplingSettings | None = None):
@@ -55,22 +62,51 @@ class RoundRobinGoalSource:
         self.attempts_per_sample = sampling.attempts_per_sample if attempts_per_sample is None else attempts_per_sample
         self.next_region = 0
         self._time = 0.0
+        # kept as attempts are made, so that no draw scans every region (issue #33: hundreds of regions)
+        self.total_attempts = self.total_valid = 0
+        self._open = sorted(j for j in range(len(self.regions)) if not self.region_exhausted(j))  # not given up yet
+
+    def seed_near(self) -> bool:
+        """Solve goals from the step's start from now on (the branch nearest it); False: this source cannot."""
+        return False
 
     @property
     def sample_time(self) -> float:
         return self._time
 
     def region_budget(self, j: int) -> int:
-        """Attempts region ``j`` may take without a valid sample before it is given up."""
-        reached = any(self.stats[j].failures.get(r, 0) for r in self.reached_reasons)
-        return self._give_up_after * (REACHED_FACTOR if reached else 1)
+        """Attempts region ``j`` may take without a valid sample before it is given up: fewer when nearly all
+        of at least HOPELESS_AFTER attempts failed for a ``hopeless_reasons`` reason (issue #33)."""
+        st = self.stats[j]
+        if any(st.failures.get(r, 0) for r in self.reached_reasons):
+            return self._give_up_after * REACHED_FACTOR
+        if self.hopeless_reasons and st.attempts >= HOPELESS_AFTER:
+            if sum(st.failures.get(r, 0) for r in self.hopeless_reasons) >= HOPELESS_SHARE * st.attempts:
+                return min(st.attempts, self._give_up_after)
+        return self._give_up_after
 
     def region_exhausted(self, j: int) -> bool:
         st = self.stats[j]
         return st.valid == 0 and st.attempts >= self.region_budget(j)
 
     def exhausted(self) -> bool:
-        return all(self.region_exhausted(j) for j in range(len(self.regions)))
+        return not self._open
+
+    def _record(self, j: int, sample: GoalSample | None, reason: str, seconds: float) -> None:
+        """Count one attempt on region j; a region it gives up leaves the open list."""
+        st = self.stats[j]
+        st.attempts += 1
+        st.time += seconds
+        self.total_attempts += 1
+        if sample is None:
+            st.fail(reason)
+            if self.region_exhausted(j):
+                k = bisect.bisect_left(self._open, j)
+                if k < len(self._open) and self._open[k] == j:
+                    del self._open[k]
+        else:
+            st.valid += 1
+            self.total_valid += 1
 
     def draw(self, n: int, rng: np.random.Generator, stop: StopCondition) -> list[GoalSample]:
         """Up to n new valid samples, round-robin over the regions; fewer if attempts run out or ``stop``
@@ -89,13 +125,8 @@ class RoundRobinGoalSource:
                         sample, reason, seconds = next(results)
                         self.next_region = after
                         budget -= 1
-                        st = self.stats[j]
-                        st.attempts += 1
-                        st.time += seconds
-                        if sample is None:
-                            st.fail(reason)
-                        else:
-                            st.valid += 1
+                        self._record(j, sample, reason, seconds)
+                        if sample is not None:
                             out.append(sample)
                 finally:
                     results.close()
@@ -110,13 +141,18 @@ class RoundRobinGoalSource:
         more planned attempts than it has left before it is given up (as if each
         planned attempt failed). Fewer than ``k`` when no region can take one.
         """
-        m = len(self.regions)
-        left = [self.region_budget(j) - st.attempts if st.valid == 0 else k for j, st in enumerate(self.stats)]
+        m, open_ = len(self.regions), self._open
+        left: dict[int, int] = {}  # attempts each visited region has left (only those visited: no scan)
         out: list[tuple[int, int]] = []
-        idle = 0  # regions passed in a row without a planned attempt
-        while len(out) < k and idle < m:
-            j = position % m
-            position += 1
+        idle = 0  # open regions passed in a row without a planned attempt
+        while len(out) < k and open_ and idle < len(open_):
+            # the next open region at or after the counter (given-up regions are passed over, as before)
+            i = bisect.bisect_left(open_, position % m)
+            j = open_[i] if i < len(open_) else open_[0]
+            position += (j - position % m) % m + 1
+            if j not in left:
+                st = self.stats[j]
+                left[j] = self.region_budget(j) - st.attempts if st.valid == 0 else k
             if left[j] > 0:
                 left[j] -= 1
                 out.append((j, position))

@@ -77,10 +77,19 @@ def report_to_json(report: PlanReport) -> dict:
     if report.motion is not None:
         out.update(motion_to_json(report.motion))
     if report.steps:
-        out["steps"] = [report_to_json(report.step_report(s)) for s in report.steps]
+        out["steps"] = [report_to_json(report.step_report(s)) | _step_json(s) for s in report.steps]
         out.update(_pick_and_place_json(report.outcome))
         joined = report_trajectory(report)  # the steps' trajectories with the gripper events between
         out["trajectory"] = trajectory_to_json(joined) if joined is not None else None
+    return out
+
+
+def _step_json(step) -> dict:
+    """What one step of a task did: its label, the object it carried, where it put it down (several objects, #30)."""
+    out = {"label": step.label, "carried": step.attached}
+    if step.placement is not None:
+        p = step.placement
+        out["placement"] = {"region": p.region, "target": p.target, "X_WO": p.X_WO.to_json()}
     return out
 
 

@@ -38,6 +38,7 @@ class Strategy(enum.StrEnum):
     CONSECUTIVE = "consecutive"
     RANDOM = "random"
     COVER = "cover"  # reward-penalty covering the regions as samples get stuck (planning/cover.py, issue #33)
+    COVER_CONNECT = "cover-connect"  # cover, and the strategy's goal tree connects to each new start node (#33)
 
 
 class Algorithm(enum.StrEnum):
@@ -265,6 +266,9 @@ class GoalSamplingSettings:
                                        low=0.0, low_open=True)
     ik_restarts: int = setting(3, "IK solves per attempt, each from another random start (workspace regions)",
                                _API, low=0.0, low_open=True)
+    goal_learning: float = setting(0.75, "share of a goal region's draws that follow where its earlier draws "
+                                   "worked (IK reached, collision-free); 0: uniform draws (lazyground/regions/learned.py)",
+                                   _API, low=0.0, high=1.0)
     ik_solver: IKSolver = setting(IKSolver.BATCH, "IK solver: `batch` (numpy damped least squares, many attempts "
                                   "at once), `snopt` or `ipopt` (a Drake program per restart)", _API)
 
@@ -292,7 +296,7 @@ class MotionSettings:
 
 @dataclass(frozen=True)
 class TaskSettings:
-    """How a task shares its run between steps (lazyground/place.py)."""
+    """How a task shares its run between steps (lazyground/tasks/place.py, several.py)."""
 
     place_share: float = setting(0.4, "pick and place: the share of the time limit one placement attempt may "
                                  "use before the planner goes back for another object", _API, low=0.0, high=1.0,
@@ -303,6 +307,12 @@ class TaskSettings:
                               _API, low=0.0, low_open=True)
     lift_step: float = setting(0.01, "pick and place: metres per IK step of the lift (each seeded by the last)", _API,
                                low=0.0, low_open=True)
+    backtracks: int = setting(2, "several objects: how many times a step that finds no feasible choice may send the "
+                              "planner back to re-plan the step before it with another placement "
+                              "(`lazyground/tasks/several.py`)", _EVERYWHERE, low=0.0)
+    placement_draws: int = setting(4, "several objects: candidate positions drawn per placement attempt while more "
+                                   "objects follow; the one farthest from the surface's free-area centre is tried, to "
+                                   "leave room (1: uniform; `lazyground/tasks/packing.py`)", _API, low=1.0)
 
     def __post_init__(self) -> None:
         _coerce_fields(self)

@@ -53,7 +53,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog="lazyground bench", description="Benchmark goal-selection strategies (and OMPL / sscbirrt peers).")
     p.add_argument("--table", type=int, choices=sorted(TABLES), help="the paper's Table I (parking) or II (Fetch)")
     p.add_argument("--dof-sweep", action="store_true", help=f"generated planar arms of {', '.join(map(str, arms.DOFS))} DOF")
-    p.add_argument("--family-sweep", metavar="NAMES", help="comma list of generated sweeps (issue #33): lot, rack-panda, rack-fetch, "
+    p.add_argument("--family-sweep", metavar="NAMES", help="comma list of generated sweeps (issue #33): lot, lot-fixed, rack-panda, rack-fetch, "
                    "lot-fraction; time to the first solution against N (family_sweep.png)")
     p.add_argument("--sizes", help="--family-sweep: the sizes (N, or k for lot-fraction) instead of the sweep's own")
     p.add_argument("--nn-scaling", action="store_true", help="time per iteration from 1,000 to 100,000 tree nodes")
@@ -362,11 +362,15 @@ def write_outputs(rows: list[dict], out: Path, title: str, notes: list[str], tot
         from lazyground.bench.compare import strategy_table
 
         md += ["## Strategies against consecutive (Mann-Whitney U, two-sided)\n", strategy_table(rows)]
-    from lazyground.bench.sweep import size_of, sweep_plot, sweep_table
+    from lazyground.bench.sweep import size_of, sweep_plot, sweep_table, sweep_tests
 
     family = [r for r in rows if size_of(r["scene"]) is not None]
     if family:
-        md += ["## Against the number of interpretations (generated families)\n", sweep_table(family)]
+        md += ["## Against the number of interpretations (generated families)\n", sweep_table(family),
+               "## Each method against round-robin per size (Mann-Whitney U, two-sided; layouts pooled)\n", sweep_tests(family)]
+    objectives = tables.objective_table(rows)
+    if objectives:
+        md += ["## Objectives: path length, joint sweep and time against first (#30)\n", objectives]
     motion = tables.motion_table(rows)
     if motion:
         md += ["## Shortening and timing after the solve (solved runs, medians)\n", motion]

@@ -17,7 +17,8 @@ from lazyground.settings import Strategy
 BASELINE = Strategy.CONSECUTIVE.value
 
 
-def _p(a, b) -> float:
+def mann_whitney_p(a, b) -> float:
+    """Two-sided Mann-Whitney U p-value of two samples (nan when either has fewer than two or all are equal)."""
     from scipy.stats import mannwhitneyu
 
     if len(a) < 2 or len(b) < 2 or (np.ptp(np.r_[a, b]) == 0):
@@ -44,8 +45,8 @@ def strategy_table(rows: list[dict]) -> str:
             it = np.array([float(r["iterations"] or 0) for r in rs])
             p_t = p_it = ""
             if base is not None and strategy != BASELINE:
-                p_t = f"{_p(t, [counted_time(r) for r in base]):.3g}"
-                p_it = f"{_p(it, [float(r['iterations'] or 0) for r in base]):.3g}"
+                p_t = f"{mann_whitney_p(t, [counted_time(r) for r in base]):.3g}"
+                p_it = f"{mann_whitney_p(it, [float(r['iterations'] or 0) for r in base]):.3g}"
             label = config_label(rs[0]).split(" (")[0]
             lines.append(f"| {scene} | {planner} | {float(bias) * 100:g} | {label} | {len(rs)} | "
                          f"{sum(r['status'] == 'solved' for r in rs)} | {t.mean():.3f} | {np.median(t):.3f} | "

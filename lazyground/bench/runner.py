@@ -39,6 +39,8 @@ FIELDS = (
     "collision_checks",  # the planner's own checks (#19)
     "goal_attempts",  # goal-sampling attempts over all regions, failed ones included (#19)
     "objective", "budget",  # first / shortest / fastest and the seconds after the first solution (#30)
+    "total_s",  # api.plan's wall time less world set-up: grounding, search, shortening and timing (#30)
+    "max_sweep",  # rad: the most any revolute joint turns away from its start along the final path (#30)
 )
 
 
@@ -186,7 +188,8 @@ def _run_lazyground(problem: Problem, spec: RunSpec) -> dict:
                       budget=spec.budget, **overrides)
     region = report.result.goal_region
     fields = result_fields(report.result, report.grounding_s, report.chosen.id if report.chosen else "", region.id if region else "")
-    return fields | motion_fields(report.motion)
+    fields["total_s"] = report.total_s
+    return fields | motion_fields(report.motion) | sweep_field(report.motion, problem.world)
 
 
 def _run_baseline(problem: Problem, spec: RunSpec) -> dict:
@@ -220,6 +223,16 @@ def motion_fields(motion) -> dict:
     return dict(raw_path_length=motion.raw_length, direct_path_length=motion.direct_length,
                 shortcut_s=motion.shortcut_s, timing_s=motion.timing_s,
                 duration_s=motion.trajectory.duration if motion.trajectory is not None else "")
+
+
+def sweep_field(motion, world) -> dict:
+    """``max_sweep``: the most a revolute joint turns from its start along the shortened path (empty without one)."""
+    turns = getattr(getattr(world, "coordinates", None), "turns", None)
+    if motion is None or motion.shortcut is None or turns is None or not np.any(turns):
+        return {}
+    from lazyground.planning.turns import sweeps
+
+    return dict(max_sweep=float(np.max(sweeps(motion.shortcut.path, world.space.wrap)[np.asarray(turns, bool)])))
 
 
 def result_fields(result, grounding_s: float, interpretation: str, region: str) -> dict:

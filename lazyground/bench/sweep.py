@@ -1,6 +1,8 @@
 """Time to the first solution against the number of interpretations (issue #33): presets, table, plot.
 
-``lazyground bench --family-sweep lot`` runs generated lots of 8-512 free spots with 2 reachable;
+``lazyground bench --family-sweep lot`` runs generated lots of 8-512 free spots with 2 reachable
+(the lot grows with N); ``lot-fixed`` one 576-spot layout of which N are free (the others hold parked
+cars), so that only the number of interpretations changes;
 ``rack-panda`` / ``rack-fetch`` cubby racks of 4-256 cans with 1 reachable; ``lot-fraction``
 64-spot lots with 1-32 reachable. Each method (our strategies on the chosen planners, the
 ``--baselines``) gets one curve: the median time (unsolved runs counted at the time limit) and
@@ -13,8 +15,12 @@ from pathlib import Path
 
 import numpy as np
 
+from lazyground.settings import Strategy
+
+FIXED_SLOTS = 576  # lot-fixed: one layout of this many spots for every N (512 free ones fit)
 SWEEPS = {
     "lot": ("lot:{n}:2", (8, 32, 128, 512)),
+    "lot-fixed": ("lot:{n}:2:0:" + str(FIXED_SLOTS), (8, 64, 256, 512)),
     "rack-panda": ("rack:panda:{n}:1", (4, 16, 64, 256)),
     "rack-fetch": ("rack:fetch:{n}:1", (4, 16, 64, 256)),
     "lot-fraction": ("lot:64:{n}", (1, 4, 16, 32)),
@@ -34,11 +40,13 @@ def sweep_keys(name: str, sizes: list[int] | None = None) -> list[str]:
 
 
 def size_of(scene: str) -> tuple[str, int, int] | None:
-    """(family, interpretations N, reachable k) of a bench scene name such as lot_256_2 or rack_panda_64_1."""
+    """(family, interpretations N, reachable k) of a bench scene name such as lot_256_2, lot_256_2_0_576
+    (a fixed layout: family lot-fixed) or rack_panda_64_1."""
     parts = scene.split("_")
     try:
         if parts[0] == "lot":
-            return "lot", int(parts[1]), int(parts[2])
+            fixed = len(parts) == 5 or parts[-1].startswith("of")  # lot:N:k:seed:slots, or its scene name
+            return "lot-fixed" if fixed else "lot", int(parts[1]), int(parts[2])
         if parts[0] == "rack":
             return f"rack-{parts[1]}", int(parts[2]), int(parts[3])
     except (IndexError, ValueError):
@@ -90,6 +98,30 @@ def sweep_table(rows: list[dict]) -> str:
             lines.append(f"| {method} | " + " | ".join(cells) + " |")
         lines.append("")
     return "\n".join(lines)
+
+
+def sweep_tests(rows: list[dict]) -> str:
+    """Markdown: in each (family, N, k) cell, every method's mean time against round-robin's (our planner with the
+    consecutive strategy; unsolved runs at the limit), with the two-sided Mann-Whitney p. The runs of a cell may be
+    different layouts of the family (keys with a layout seed), so a p per cell needs no repeated scene."""
+    from lazyground.bench.compare import mann_whitney_p
+    from lazyground.bench.tables import counted_time
+
+    cells: dict = {}
+    for r in rows:
+        size = size_of(r["scene"])
+        if size is not None and r["status"] not in ("interrupted", "error"):
+            cells.setdefault(size, {}).setdefault(_method(r), []).append(r)
+    lines = ["| family | N | k | method | runs | solved | mean s | median s | p vs round-robin |", "|---|---|---|---|---|---|---|---|---|"]
+    for (fam, n, k), by in sorted(cells.items()):
+        base = next((rs for rs in by.values() if rs[0]["planner"].startswith("lazyground") and rs[0]["strategy"] == Strategy.CONSECUTIVE), None)
+        bt = [counted_time(r) for r in base] if base else None
+        for method, rs in sorted(by.items()):
+            t = [counted_time(r) for r in rs]
+            p = "" if bt is None or rs is base else f"{mann_whitney_p(t, bt):.3g}"
+            lines.append(f"| {fam} | {n} | {k} | {method} | {len(rs)} | {sum(r['status'] == 'solved' for r in rs)} | "
+                         f"{np.mean(t):.2f} | {np.median(t):.2f} | {p} |")
+    return "\n".join(lines) + "\n"
 
 
 def sweep_plot(rows: list[dict], path: Path) -> None:

@@ -215,6 +215,46 @@ def motion_table(rows: list[dict]) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _total_time(row: dict) -> float:
+    """What the user waits for a solved run: ``total_s`` (shortening and timing included; ``time_s`` in older
+    CSVs); an unsolved run counts at its time limit."""
+    if row["status"] == "solved" and row.get("total_s") not in ("", None):
+        return float(row["total_s"])
+    return counted_time(row)
+
+
+def objective_table(rows: list[dict]) -> str:
+    """Objectives side by side (#30), per scene and configuration: solved runs, the median (shortened) path
+    length and the most any run's revolute joint turns from its start (max_sweep), the median total time
+    (``total_s``: shortening and timing included, which ``shortest`` does for every candidate), and each
+    objective's median path and time against ``first``'s of the same planner, strategy and bias (""
+    without first rows). Empty when every row is ``first``."""
+    rows = [r for r in rows if r["status"] != "interrupted" and r["planner"].startswith("lazyground")]
+    if all((r.get("objective") or "first") == "first" for r in rows):
+        return ""
+    head = ["Scene", "Strategy", "Bias %", "objective", "solved", "median path", "max sweep (rad)", "runs over 1.2 pi",
+            "median total s", "path / first", "total / first"]
+    body: list[tuple[int, str]] = []  # (scene's place, line): each scene's objectives together
+    order = scenes_of(rows)
+    medians: dict[tuple, tuple[float, float]] = {}
+    for label, b, scene, rs in _rows_by_config_and_scene(rows):
+        base, _, objective = label.partition(", ")
+        objective = objective or "first"
+        solved = [r for r in rs if r["status"] == "solved"]
+        path = float(np.median([float(r["path_length"]) for r in solved])) if solved else float("nan")
+        time_s = float(np.median([_total_time(r) for r in rs]))
+        swept = [float(r["max_sweep"]) for r in solved if r.get("max_sweep") not in ("", None)]
+        if objective == "first":
+            medians[(scene, base, b)] = (path, time_s)
+        ref = medians.get((scene, base, b))
+        ratios = f"{path / ref[0]:.2f} | {time_s / ref[1]:.2f}" if ref and objective != "first" else " | "
+        sweep = f"{max(swept):.2f} | {sum(w > 1.2 * np.pi for w in swept)}" if swept else "- | -"
+        body.append((order.index(scene), f"| {scene} | {base} | {b} | {objective} | {len(solved)} of {len(rs)} | "
+                                         f"{path:.2f} | {sweep} | {time_s:.3f} | {ratios} |"))
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)] + [line for _, line in sorted(body, key=lambda x: x[0])]
+    return "\n".join(lines) + "\n"
+
+
 # --- plots ----------------------------------------------------------------------------------
 
 def pyplot():

@@ -51,7 +51,9 @@ def report_trajectory(report) -> Trajectory | None:
     steps = [s.motion.trajectory for s in report.steps if s.motion is not None and s.motion.trajectory is not None]
     if not steps or len(steps) != len(report.steps):
         return None
-    return join(steps, ["close gripper"] * (len(steps) - 1) + ["open gripper"])
+    # a step that ends at a grasp closes the gripper, one that carries an object opens it where it puts it down
+    # (several objects, #30: close, open, close, open ...; picking up several ends closed on the held object)
+    return join(steps, ["open gripper" if s.grasp is not None else "close gripper" for s in report.steps])
 
 
 def pick_and_place_motions(world, carrying, pick, lift_path: np.ndarray, place, settings, rng):

@@ -48,6 +48,7 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
     rooted = 0
     start_turn = True
     closest: dict[int, float] = {}  # goal sample -> the smallest gap its subtree has left to the start tree
+    connects_selected = bool(getattr(s.selector, "connects_selected", False))
     while s.time_left():
         if not s.have_samples():
             if s.goals.exhausted():
@@ -63,6 +64,8 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
             a = _extend(s, ts, ts.nearest(q_rand), q_rand)
             if a >= 0:
                 b, reached = _connect(s, tg, ts.nodes[a])
+                if not reached and connects_selected:
+                    b, reached = _connect_selected(s, tg, ts.nodes[a], closest, b)
         else:
             # goal turn: the strategy's goal tree grows (with probability goal_bias; credited), else the forest
             gi = s.select() if rng.random() < s.settings.goal_bias else None
@@ -80,6 +83,25 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
                 return found
         start_turn = not start_turn
     return None
+
+
+def _connect_selected(s: Search, tg: Tree, q_target: np.ndarray, closest: dict[int, float], b: int) -> tuple[int, bool]:
+    """The strategy's goal tree steps greedily towards a new start-tree node (credited; issue #33).
+
+    The forest's nearest node to the new node mostly lies in a tree that is shut in (a spot behind a
+    barrier) when most interpretations are unreachable: asking the strategy's tree as well gives
+    every goal tree its turn at the start tree, and reward-penalty keeps the one that gets closer.
+    Returns (the node reached, True), else (``b``, False).
+    """
+    gi = s.select()
+    near = tg.nearest(q_target, label=gi) if gi is not None else -1
+    if near < 0:
+        return b, False
+    last, reached = _greedy(s, tg, near, q_target)
+    if last == near:
+        s.failed_from.append((1, near))
+    _credit(s, gi, closest, -1.0 if last == near else s.space.distance(tg.nodes[last], q_target))
+    return (last, True) if reached else (b, False)
 
 
 def _credit(s: Search, gi: int, closest: dict[int, float], gap: float) -> None:
@@ -184,7 +206,7 @@ def _join(s: Search, ts: Tree, a: int, tg: Tree, b: int) -> PlanResult | None:
         tg.prune(goal_side[bad - n_start])
     else:
         tg.prune(goal_side[-1])
-        s.dead.add(gi)
+        s.retire(gi)
     return None
 
 

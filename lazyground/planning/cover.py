@@ -17,6 +17,11 @@ penalty cost O(log N), not O(N). (3) It asks the search for one goal sample per 
 there are as many samples as goal regions (the goal source hands them out region by region):
 coverage paced by the search, one draw (at most ``attempts_per_sample`` attempts) per
 iteration, instead of all regions up front (eager) or one region per resampling round.
+(4) Goal sampling is rationed against the search: coverage draws and the draws a stuck sample asks
+for wait while the goal source's attempts exceed ``free_attempts`` plus ``attempts_per_iteration``
+per iteration (counted, not timed: a seed gives the same run anywhere). On arm racks an IK attempt
+costs about two iterations and 1-7 % of them are valid; unpaced, each iteration spent up to a whole
+draw (10 attempts) on cans that never yield, and IK was ~90 % of the time at N = 64.
 """
 
 from __future__ import annotations
@@ -34,6 +39,8 @@ class Cover:
     covers_regions = True  # the search draws one more sample per iteration until samples outnumber regions
     resample_alone = True  # a stuck sample asks for samples even while other samples progress
     growth = 0.5  # each request draws this fraction of the samples held: their number grows geometrically
+    attempts_per_iteration = 1.0  # coverage draws pause while goal-sampling attempts exceed this per iteration
+    free_attempts = 200  # ... plus this many (a few regions are covered at once, as before the pacing)
 
     def __init__(self, settings: StrategySettings = StrategySettings()):
         self._threshold = settings.resample_threshold
@@ -70,3 +77,10 @@ class Cover:
         w = penalty_weight(self._w[index])
         self._set(index, w)
         return w < self._threshold
+
+
+class CoverConnect(Cover):
+    """:class:`Cover`, and each new start-tree node is also a target for the strategy's goal tree
+    (the bidirectional planner's ``_connect_selected``)."""
+
+    connects_selected = True

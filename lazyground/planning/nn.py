@@ -75,7 +75,8 @@ class NearestNeighbors:
         idx = np.asarray(indices, int)
         self._points[idx] = FAR
         self._sq[idx] = np.einsum("ij,ij->i", self._points[idx], self._points[idx])
-        if self._size > self._brute_limit:
+        # only points in a k-d tree need a rebuild: the buffer is scanned as it is
+        if len(idx) and self._size > self._brute_limit and idx.min() < self._recent_end:
             self._rebuild_main()
 
     def nearest(self, x: np.ndarray) -> int:

@@ -143,7 +143,7 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
                 tree.prune(chain[bad + 1])
                 blocked.add((chain[bad], gi))  # and never step the same edge towards this sample again
             else:  # the sample's own approach segment
-                s.dead.add(gi)
+                s.retire(gi)
     return None
 
 

@@ -78,10 +78,12 @@ class Search:
         self._sampling_checks = 0.0  # collision checks made by the goal sampler count as goal sampling
         self._checks0, self._sampling_count = _checks(checker), 0
         self.samples: list[GoalSample] = []
-        self.dead: set[int] = set()  # samples whose approach segment failed the fine re-check
+        self.dead: set[int] = set()  # samples whose approach segment failed the fine re-check (retire())
+        self._below: set[int] = set()  # live samples whose weight is below the resampling threshold
         self._verified: set[bytes] = set()  # segments (endpoint bytes) that passed the fine re-check
         self.selector = make_strategy(settings.strategy, StrategySettings(resample_threshold=settings.resample_threshold))
         self._covers = bool(getattr(self.selector, "covers_regions", False))
+        self._attempts0: int | None = None  # the goal source's attempt count when coverage began
         self.trees: list[Tree] = []  # the planner's trees, start tree first (for the result)
         self.failed_from: list[tuple[int, int]] = []  # (tree, node) of failed goal-directed extensions
         self.iterations = self.resamplings = self.rejected = 0
@@ -99,6 +101,8 @@ class Search:
         first = len(self.samples)
         self.samples.extend(new)
         self.selector.add(list(range(first, len(self.samples))))
+        if self._below:  # (reward-penalty resets the old weights when it adds)
+            self._below = {i for i in self._below if self.selector.weight(i) < self.settings.resample_threshold}
 
     def have_samples(self) -> bool:
         """Whether any goal sample exists yet; draws a batch when none does.
@@ -107,9 +111,23 @@ class Search:
         until there are as many samples as goal regions (lazyground.planning.cover)."""
         if not self.samples:
             self.draw(self.settings.initial_goal_samples)
-        elif self._covers and len(self.samples) < len(self.goals.regions):
+        elif self._covers and len(self.samples) < len(self.goals.regions) and self._ik_in_budget():
             self.draw(1)
         return bool(self.samples)
+
+    def _ik_in_budget(self) -> bool:
+        """Whether goal sampling is within the strategy's budget: ``free_attempts`` plus ``attempts_per_iteration``
+        per search iteration (goal-sampling attempts counted since the first sample; a source that does not
+        count them: always).
+
+        Counted, not timed, so that a seed gives the same run on any machine."""
+        total = getattr(self.goals, "total_attempts", None)
+        ratio = getattr(self.selector, "attempts_per_iteration", None)
+        if total is None or ratio is None:
+            return True
+        if self._attempts0 is None:
+            self._attempts0 = total
+        return total - self._attempts0 <= ratio * self.iterations + getattr(self.selector, "free_attempts", 0)
 
     def select(self) -> int | None:
         """The strategy's goal sample (skipping dead ones), its attempt counted; None if all are dead."""
@@ -125,15 +143,25 @@ class Search:
     def reward(self, gi: int) -> None:
         self.samples[gi].rewards += 1
         self.selector.reward(gi)
+        if self.selector.weight(gi) >= self.settings.resample_threshold:
+            self._below.discard(gi)
+
+    def retire(self, gi: int) -> None:
+        """Goal sample gi's approach failed the fine re-check: never select it again."""
+        self.dead.add(gi)
+        self._below.discard(gi)
 
     def penalize(self, gi: int, only_if_all_stuck: bool = False) -> None:
         """Count a failure of goal sample gi; draw more samples when the strategy asks for them
         (with ``only_if_all_stuck``, only once every live sample's weight is below the threshold)."""
         self.samples[gi].penalties += 1
         wants_more = self.selector.penalize(gi)
+        if gi not in self.dead and self.selector.weight(gi) < self.settings.resample_threshold:
+            self._below.add(gi)
         if wants_more and only_if_all_stuck and not getattr(self.selector, "resample_alone", False):
-            threshold = self.settings.resample_threshold
-            wants_more = all(self.selector.weight(i) < threshold for i in range(len(self.samples)) if i not in self.dead)
+            wants_more = len(self._below) >= len(self.samples) - len(self.dead)  # every live sample is stuck (no scan)
+        if wants_more and self._covers:
+            wants_more = self._ik_in_budget()
         if wants_more:
             self.resamplings += 1
             self.draw(getattr(self.selector, "batch", self.settings.resample_count))

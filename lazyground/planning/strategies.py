@@ -12,7 +12,7 @@ from typing import Callable
 
 import numpy as np
 
-from lazyground.planning.cover import Cover
+from lazyground.planning.cover import Cover, CoverConnect
 from lazyground.planning.weights import GoalSelector, StrategySettings, penalty_weight, reward_weight
 from lazyground.settings import Strategy, coerce
 
@@ -106,6 +106,7 @@ STRATEGIES: dict[Strategy, Callable[[StrategySettings], GoalSelector]] = {
     Strategy.CONSECUTIVE: Consecutive,
     Strategy.RANDOM: Random,
     Strategy.COVER: Cover,
+    Strategy.COVER_CONNECT: CoverConnect,
 }
 
 

@@ -208,6 +208,9 @@ class Scene:
     planner: PlannerSpec = PlannerSpec()
     expect: tuple[Expectation, ...] = ()
     grasp_types: dict[str, dict] | None = None  # per-type overrides of lazyground/scene/types.yaml
+    # "pick up two cans" with one gripper (#30): the surfaces every object but the last is put down on
+    # (object ids); none: any surface other than the one the object came from (docs/requests.md)
+    stow: tuple[str, ...] = ()
     source: str = ""  # file the scene came from (set by the loader)
 
     def validate(self) -> str | None:
@@ -222,6 +225,9 @@ class Scene:
         for i, obj in enumerate(self.objects):
             if obj.geometry.mesh is not None:
                 return f"objects[{i}].geometry.mesh: {obj.id!r}: meshes can only be obstacles"
+        for i, name in enumerate(self.stow):
+            if seen.get(name) != "objects":
+                return f"stow[{i}]: {name!r} is no object of the scene (a surface to put things down on)"
         return None
 
     def object(self, object_id: str) -> SceneObject:

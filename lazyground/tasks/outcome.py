@@ -52,12 +52,17 @@ class ObjectStep:
     """What became of one object of a several-object request (issue #30)."""
 
     object: str | None  # None: no candidate was left to try
-    status: str  # "done", "already there", "not done"
+    status: str  # "done", "already there", "not done"; picking up several: "stowed" (put down), "held" (the last)
     target: str | None = None  # where it was put (or already is)
     why: str = ""  # not done: the planner's reason; done: which candidates were passed over
+    placement: Placement | None = None  # done / stowed: the region and the pose it was put down at
+    step: int | None = None  # done / stowed / held: the index of its pick step in Outcome.steps
 
     def to_json(self) -> dict:
-        return {"object": self.object, "status": self.status, "target": self.target, "why": self.why}
+        out = {"object": self.object, "status": self.status, "target": self.target, "why": self.why, "step": self.step}
+        if self.placement is not None:
+            out["placement"] = {"region": self.placement.region, "X_WO": self.placement.X_WO.to_json()}
+        return out
 
 
 @dataclass(frozen=True)
@@ -69,6 +74,8 @@ class Step:
     setup_s: float = 0.0  # building the world this step planned in
     grasp: Grasp | None = None  # the object carried during this step, and how; None: nothing carried
     motion: object | None = None  # the shortcut and its timing (lazyground.motion.pipeline.Motion; issue #16)
+    placement: Placement | None = None  # where the carried object was put down at the end of this step
+    lift: Lift | None = None  # the lift-off that leads into this (place) step
 
     @property
     def trajectory(self):
@@ -98,10 +105,13 @@ class Outcome:
     fallbacks: int = 0  # objects given up on before the one that was placed
     objects: tuple = ()  # several objects (#30): one ObjectStep per object asked for, in order (tasks.several)
     improvements: tuple = ()  # objective shortest/fastest: (time, cost, region) of each better solution (tasks.anytime)
+    held: Grasp | None = None  # picking up several (#30): the object in the hand at the end, and how
 
     @property
     def grasp(self) -> Grasp | None:
-        """The grasp of the (last) carried object, if a step carried one."""
+        """The grasp of the object held at the end, else of the (last) carried one, if any."""
+        if self.held is not None:
+            return self.held
         return next((s.grasp for s in reversed(self.steps) if s.grasp is not None), None)
 
     @property

@@ -29,9 +29,11 @@ from lazyground.regions import GoalRegion
 from lazyground.robots.end_effector import frame_of
 from lazyground.scene.schema import Scene
 from lazyground.settings import RunSettings, TaskSettings
+from lazyground.tasks.anytime import best_step, improvement_notes
 from lazyground.tasks.outcome import Grasp, Lift, Outcome, Placement, Step
 from lazyground.tasks.worlds import Worlds
 
+PICK_FAILED = "pick: "  # a failed outcome's message starts so when no candidate could be picked (no placement tried)
 
 
 def _regions_by_object(g: Grounding) -> tuple[list[GoalRegion], dict[str, list[GoalRegion]]]:
@@ -110,7 +112,7 @@ def combine(results: list[PlanResult], status: PlanStatus, path, goal, region, e
 
 def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Generator, worlds: Worlds, *,
         seed: int | None = None, keep_tree: bool = False, place_share: float | None = None,
-        clock: Clock | None = None) -> Outcome:
+        clock: Clock | None = None, prefer=None) -> Outcome:
     """Plan "put X on Y": a grasp of any X, then a placement on any Y, with fallback (the "place" task);
     then each step is shortened and timed (lazyground.motion.steps).
 
@@ -124,6 +126,8 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
         keep_tree: keep the search trees (for viewers).
         place_share: the share of the time limit one placement attempt may use (default: the task setting's).
         clock: the clock the time limit is read on (default: the stop condition's).
+        prefer: ``prefer(object_id, placement_regions)`` -> which placements to try first and which to rule out
+            (a :class:`lazyground.tasks.packing.Preference`, several objects); None: uniform placements.
 
     Returns:
         An Outcome: on success the pick and the place step (the place step carries the
@@ -159,11 +163,15 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
         candidates = [r for r in grasps if r.object not in excluded]
         if stop.remaining() <= 0 or not candidates:
             break
-        pick = solve(world.space, world, goal_source_for(tuple(candidates), world, settings.goal_sampling),
-                     world.start, planner, rng, seed=seed, keep_tree=keep_tree, stop=stop.share())
+        pick = best_step(lambda source, within: solve(world.space, world, source, world.start, planner, rng, seed=seed,
+                                                      keep_tree=keep_tree, stop=within),
+                         lambda rs: goal_source_for(rs, world, settings.goal_sampling), tuple(candidates), world.space,
+                         world, world.start, planner, stop.share(), rng)
+        notes += [f"pick: {n}" for n in improvement_notes(pick)]
+        pick = pick.result
         results.append(pick)
         if not pick.solved:
-            return finish(pick.status, f"pick: {pick.message}")
+            return finish(pick.status, f"{PICK_FAILED}{pick.message}")
         if stop.timed_out():  # grasped at the limit: no time to lift and place (timeout)
             break
         obj = scene.object(pick.goal_region.object)
@@ -179,9 +187,9 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
             excluded.append(obj.id)
             continue
         source = goal_source_for(targets, carrying, settings.goal_sampling)
+        if prefer is not None:
+            source.prefer = prefer(obj.id, targets)
         lift = lift_off(world, carrying, source, frame, q_grasp, planner.resolution, settings.task)
-        if lift is not None:
-            source.near = lift.q_lift  # placements prefer the full-turn equivalent nearest where the place step starts
         if lift is None:
             notes.append(f"picked {obj.id} ({pick.goal_region.label}) but could not lift it clear; trying another object")
             excluded.append(obj.id)
@@ -190,8 +198,22 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
         budget = share.budget
         if budget <= 0:  # the lift used up the time: a timeout, not a reason to try another object
             break
-        place = solve(carrying.space, carrying, source, lift.q_lift, planner, rng, seed=seed, keep_tree=keep_tree,
-                      stop=share)
+
+        def placements(rs, q_lift=lift.q_lift, spare=[source], obj_id=obj.id):
+            if spare and rs == targets:
+                made = spare.pop()
+            else:  # shortest / fastest: more searches and draws over some of the targets
+                made = goal_source_for(rs, carrying, settings.goal_sampling)
+                if prefer is not None:
+                    made.prefer = prefer(obj_id, rs)
+            made.near = q_lift  # placements prefer the configuration nearest where the place step starts
+            return made
+
+        place = best_step(lambda source, within: solve(carrying.space, carrying, source, lift.q_lift, planner, rng,
+                                                       seed=seed, keep_tree=keep_tree, stop=within),
+                          placements, targets, carrying.space, carrying, lift.q_lift, planner, share, rng)
+        notes += [f"place: {n}" for n in improvement_notes(place)]
+        place = place.result
         results.append(place)
         if place.status is PlanStatus.INTERRUPTED:  # Ctrl-C is not a reason to try another object
             return finish(place.status, f"place: {place.message}")
@@ -205,13 +227,13 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
         pick, pick_motion, place, place_motion = pick_and_place_motions(world, carrying, pick, lift.path, place, settings, rng)
         motion_s = stop.now() - t_motion
         results[-2:] = [pick, place]  # the shortened steps (the combined result sums their lengths)
+        placement = Placement(place.goal_region.id, place.goal_region.object, X_WO)
         steps = (Step(f"pick {obj.id}", pick, setup_before, motion=pick_motion),
-                 Step(f"place {obj.id}", place, setup, grasp, motion=place_motion))
+                 Step(f"place {obj.id}", place, setup, grasp, motion=place_motion, placement=placement, lift=lift))
         chosen = next(i for i in g.interpretations if i.objects == (obj.id,) and i.target == place.goal_region.object)
         region = replace(place.goal_region, interpretation=chosen.id)  # placement regions are shared by interpretations
         return finish(PlanStatus.SOLVED, "", steps=steps, lift=lift, region=region, goal=place.goal,
-                      path=np.vstack([pick.path, lift.path[1:], place.path[1:]]),
-                      placement=Placement(place.goal_region.id, place.goal_region.object, X_WO))
+                      path=np.vstack([pick.path, lift.path[1:], place.path[1:]]), placement=placement)
     if not results:
         return finish(PlanStatus.TIMEOUT, "no time left")
     tried = ", ".join(excluded) or "none"

@@ -2,16 +2,12 @@
 
 from __future__ import annotations
 
-from dataclasses import replace
-
-import numpy as np
-
 from lazyground.goals import goal_source_for
 from lazyground.motion.post import post_process
-from lazyground.planning.rrt import path_is_valid, solve
+from lazyground.planning.rrt import solve
 from lazyground.planning.stop import StopCondition
 from lazyground.planning.turns import sweep_note
-from lazyground.tasks.anytime import best_of, improvement_notes
+from lazyground.tasks.anytime import best_step, improvement_notes
 from lazyground.tasks.car_space import planning_space
 from lazyground.tasks.outcome import Outcome, Step
 
@@ -45,23 +41,11 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     space = planning_space(scene, world.space, planner.kinematics)  # a car's curves, or world.space
     stop = StopCondition.after(planner.time_limit, max_iterations=planner.max_iterations, clock=clock)
 
-    def attempt(regions, within):
-        source = make_goal_source(world, regions, settings.goal_sampling)
-        result = solve(space, world, source, world.start, planner, rng, seed=seed, keep_tree=keep_tree, stop=within)
-        return post_process(space, world, result, settings, rng)  # shortened and timed, as the space chose
-
-    def connect(template, sample):
-        """The straight line from the start to a drawn goal sample (and its checked approach), if free."""
-        path = np.array([world.start, sample.q])
-        if space.post_processing != "straight" or path_is_valid(
-                space, world, path, planner.resolution / planner.validation_factor) >= 0:
-            return None
-        path = path if sample.final is None else np.vstack([path, sample.final])
-        result = replace(template, path=path, goal=sample, goal_region=template.regions[sample.region],
-                         path_length=space.path_length(path))
-        return post_process(space, world, result, settings, rng)
-
-    best = best_of(attempt, tuple(grounding.goal_regions), space, world.start, planner, stop, connect)
+    best = best_step(lambda source, within: solve(space, world, source, world.start, planner, rng, seed=seed,
+                                                  keep_tree=keep_tree, stop=within),
+                     lambda regions: make_goal_source(world, regions, settings.goal_sampling),
+                     tuple(grounding.goal_regions), space, world, world.start, planner, stop, rng,
+                     finish=lambda result: post_process(space, world, result, settings, rng))  # shortened and timed
     result, motion = best.result, best.motion
     notes = world.model_notes + ((motion.note,) if motion is not None and motion.note else ())
     swept = sweep_note(motion.shortcut.path, world.space.names, world.space.wrap, world.coordinates.turns) \

@@ -35,6 +35,7 @@ from pydrake.perception import BaseField, Fields, PointCloud
 
 from lazyground.drake.world import Attachment, DrakeWorld, rigid_transform
 from lazyground.robots.end_effector import frame_of
+from lazyground.tasks.replay import scenes_per_step
 from lazyground.viz.replay_page import Layout, decorate
 from lazyground.viz.shapes import draw_tube
 from lazyground.viz.style import (
@@ -124,27 +125,29 @@ def draw_layout(report, scene, meshcat: Meshcat, hide_tree: bool = True) -> Layo
 
 @dataclass(frozen=True)
 class _Segment:
-    """One animated step: its report, the object its robot carries, and the motion to replay."""
+    """One animated step: its report, the object its robot carries, the motion to replay, the scene it plays in."""
 
     report: object
     attached: Attachment | None
     motion: np.ndarray | None
     trajectory: object = None  # the step's timed Trajectory (lazyground.motion): the replay's clock
+    scene: object = None  # objects placed by earlier steps where they were put (None: the request's scene)
 
 
 def _segments(report, scene) -> list[_Segment]:
-    """The steps to replay: one for a plain plan; pick, then lift and place (carrying) for pick and place."""
+    """The steps to replay: one for a plain plan; pick, then lift and place (carrying) for pick and place,
+    each in the scene as the steps before it left it (several objects: placed objects where they were put)."""
     if not report.steps:
         return [_Segment(report, None, report.result.path, _trajectory(report))]
     out = []
-    lift = report.outcome.lift
-    for k, step in enumerate(report.steps):
+    scenes = scenes_per_step(report.outcome, scene)
+    for step, before in zip(report.steps, scenes):
         g = step.grasp
-        carried = Attachment(scene.object(g.object_id), g.frame, g.X_GO) if g is not None else None
+        carried = Attachment(before.object(g.object_id), g.frame, g.X_GO) if g is not None else None
         motion = step.result.path
-        if k == 1 and motion is not None and lift is not None:  # the lift-off leads into the place step
-            motion = np.vstack([lift.path, motion[1:]])
-        out.append(_Segment(step, carried, motion, _trajectory(step)))  # the place step's trajectory starts with the lift
+        if motion is not None and step.lift is not None:  # the lift-off leads into the place step
+            motion = np.vstack([step.lift.path, motion[1:]])
+        out.append(_Segment(step, carried, motion, _trajectory(step), before))  # the place step's trajectory starts with the lift
     return out
 
 
@@ -166,6 +169,7 @@ class _StepView:
 
     def __init__(self, segment: _Segment, scene, meshcat: Meshcat, prefix: str):
         report = segment.report
+        scene = segment.scene if segment.scene is not None else scene
         self.report, self.motion, self.scene, self.meshcat, self.prefix = report, segment.motion, scene, meshcat, prefix
         self.trajectory = segment.trajectory
         params = MeshcatVisualizerParams(prefix=prefix, delete_on_initialization_event=False)
@@ -308,10 +312,11 @@ class _StepView:
 
 
 def step_label(report, k: int, n: int) -> str:
-    """What step ``k`` of ``n`` does, for the page: "1. pick Can3", "2. place Can3 on table", or the chosen goal."""
+    """What step ``k`` of ``n`` does, for the page: "1. pick Can3", "2. place Can3 on table", or the chosen goal
+    (several objects: every place step names its surface)."""
     if n == 1:
         return report.chosen.id if report.chosen is not None else report.request
-    placement = report.outcome.placement if k == n - 1 else None
+    placement = report.steps[k].placement
     return f"{k + 1}. {report.steps[k].label}" + (f" on {placement.target}" if placement is not None else "")
 
 

@@ -84,8 +84,14 @@ def _legend(layout: Layout) -> str:
 
 
 def _object_item(o) -> str:
-    """One object of a several-object request (#30): done / already there / not done, where, why."""
+    """One object of a several-object request (#30): done / stowed / held / already there / not done, where
+    (the surface, the position it was put down at, the step), why."""
     where = f" -> {o.target}" if o.target else ""
+    if getattr(o, "placement", None) is not None:
+        x, y, z = o.placement.X_WO.xyz
+        where += f" at ({x:.2f}, {y:.2f}, {z:.2f})"
+    if getattr(o, "step", None) is not None:
+        where += f", step {o.step + 1}"
     why = f' <span class="dim">({html.escape(o.why)})</span>' if o.why else ""
     return f"<li>{html.escape((o.object or '-') + ': ' + o.status + where)}{why}</li>"
 

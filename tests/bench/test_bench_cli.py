@@ -279,6 +279,26 @@ def test_strategy_table_compares_with_consecutive_by_mann_whitney():
     assert float(rp[-2]) == pytest.approx(2 / 924, rel=3e-3) and float(rp[-1].rstrip(" |")) == pytest.approx(2 / 924, rel=3e-3)
 
 
+def test_objective_table_gives_path_sweep_time_and_ratios_against_first():
+    from lazyground.bench.tables import objective_table
+
+    def row(scene, objective, path, sweep, time_s, status="solved", total=""):
+        return {"scene": scene, "planner": "lazyground-bidirectional", "strategy": "reward-penalty", "bias": "0.05",
+                "status": status, "time_s": time_s, "time_limit": 10.0, "path_length": path, "max_sweep": sweep,
+                "objective": objective, "total_s": total}
+
+    rows = [row("a", "first", 2.0, 1.0, 1.0), row("a", "first", 4.0, 4.0, 3.0), row("a", "first", 9.0, 1.0, 2.0),
+            row("a", "shortest", 1.0, 0.5, 2.0), row("a", "shortest", 2.0, 0.9, 5.0, total=6.0), row("a", "shortest", 0.0, "", 10.0, "timeout"),
+            row("b", "first", 1.0, 0.2, 1.0)]
+    assert objective_table([r for r in rows if r["objective"] == "first"]) == ""  # nothing to compare
+    lines = [l.split(" | ") for l in objective_table(rows).splitlines() if l.startswith("| a")]
+    assert [l[3] for l in lines] == ["first", "shortest"]
+    first, shortest = lines
+    assert first[4:8] == ["3 of 3", "4.00", "4.00", "1"]  # median path; the largest sweep; one run over 1.2 pi
+    assert shortest[4:8] == ["2 of 3", "1.50", "0.90", "0"]  # solved runs only; the timeout counts at its limit
+    assert shortest[8:] == ["6.000", "0.38", "3.00 |"]  # median of 2, 6 (total_s over time_s) and 10; path 1.5 / 4
+
+
 def test_iteration_profile_splits_a_search_iteration(tmp_path, capsys):
     # #31: where an iteration's time goes; the shares split the plain pass's time per iteration, and the
     # timers are gone afterwards

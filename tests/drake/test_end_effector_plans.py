@@ -3,7 +3,8 @@
 Before the end effector was explicit, grasp regions assumed the tool frame's x axis approached,
 and a UR tool frame "solved" pick requests with the gripper horizontal over the cup. Here every
 solved plan's final configuration is checked: the tool's approach axis (z) points straight down
-for a top grasp and horizontally at the cup's axis for a side grasp, the TCP is at the grasp.
+for a top grasp, horizontally at the cup's axis for a side grasp and slanted through the top face for an
+angled one (issue 34), the TCP is at the grasp.
 """
 
 from pathlib import Path
@@ -46,6 +47,14 @@ def test_solved_grasps_point_the_tool_z_axis_along_the_approach(scene_name, requ
         if label == "top":
             assert z @ [0, 0, -1] > np.cos(ANGLE)  # straight down, not horizontal
             assert np.hypot(*(p - p_WC)[:2]) < POSITION and p[2] > p_WC[2]  # above the axis
+        elif label == "angled":  # issue 34: z slants 20-50 deg from straight down, its line through the top face centre
+            tilt = np.arccos(-z[2])
+            assert np.radians(20) - ANGLE < tilt < np.radians(50) + ANGLE, np.degrees(tilt)
+            top = p_WC[2] + cup.geometry.half_extents()[2]
+            entry = p + z * (top - p[2]) / z[2]
+            # the drawn line is shifted up to 6.4 mm along the axis, which moves its entry by that x tan(tilt)
+            assert np.hypot(*(entry - p_WC)[:2]) < POSITION + ANGLE * 0.05 + 0.0064 * np.tan(tilt)
+            assert abs(X_WT.rotation()[2, 1]) < np.sin(ANGLE)  # the fingers close horizontally
         else:
             assert label.startswith("side") and abs(z[2]) < np.sin(ANGLE)  # horizontal approach
             # pointing at the cup's axis: the axis lies within POSITION (plus the angle's share) of the

@@ -26,7 +26,7 @@ objects:
 - {id: can_1, type: can, geometry: {cylinder: {radius: 0.033, length: 0.12}}, pose: {xyz: [0.6, 0.0, 0.06]}}
 - {id: box_1, type: box, geometry: {box: [0.05, 0.06, 0.1]}, pose: {xyz: [0.6, 0.3, 0.05], rpy: [0, 0, 0.3]}}
 """
-TEMPLATE_OF = {"top": "top", "face": "side_faces", "side": "side_around"}
+TEMPLATE_OF = {"top": "top", "face": "side_faces", "side": "side_around", "angled": "angled"}
 STEP = 0.0005  # m: the overlap's resolution along the approach axis
 
 
@@ -57,11 +57,13 @@ def _finger_corners_T(world, frame: str) -> np.ndarray:
     return np.array(corners)
 
 
-def _overlap(region, v, obj, corners_N, X_TN) -> float:
-    """How far (m, along the approach axis) the box the pads sweep when closing overlaps the object."""
+def _overlap(region, v, obj, corners_N, X_TN, centre_line=False) -> float:
+    """How far (m, along the approach axis) the box the pads sweep when closing overlaps the object
+    (``centre_line``: the sweep's middle plane across the closing axis, where a tilted approach's line runs)."""
     lo, hi = corners_N.min(axis=0), corners_N.max(axis=0)
     xs = np.arange(lo[0], hi[0] + STEP / 2, STEP)
-    grid = np.array(np.meshgrid(xs, np.linspace(lo[1], hi[1], 15), np.linspace(lo[2], hi[2], 5), indexing="ij"))
+    zs = [(lo[2] + hi[2]) / 2] if centre_line else np.linspace(lo[2], hi[2], 5)
+    grid = np.array(np.meshgrid(xs, np.linspace(lo[1], hi[1], 15), zs, indexing="ij"))
     p_N = grid.reshape(3, -1).T
     X_WT = region.pose_in_world(v).matrix()
     X_OW = np.linalg.inv(obj.pose.pose().matrix())
@@ -80,15 +82,26 @@ def test_closing_fingers_overlap_the_object_by_the_stated_depth(robot):
     corners_N = (np.linalg.inv(X_TN) @ np.c_[corners_T, np.ones(len(corners_T))].T)[:3].T
     kinds = set()
     for obj in scene.objects:
-        specs = {s["template"]: s for s in type_definitions(scene)[obj.type]["pick"]}
+        specs = {"angled" if "tilt" in s else s["template"]: s for s in type_definitions(scene)[obj.type]["pick"]}
         for region in regions_for(obj, "pick", f"pick:{obj.id}", scene):
             template = TEMPLATE_OF[region.label.split()[0]]
             d0, d1 = specs[template]["depth"]
             mid = (np.asarray(region.lower) + np.asarray(region.upper)) / 2
-            for end, want in ((region.lower[0], d0), (region.upper[0], d1)):
-                v = mid.copy()
-                v[0] = end
-                got = _overlap(region, v, obj, corners_N, X_TN)
-                assert abs(got - want) <= 0.002, f"{robot} {region.id}: the fingers overlap {got:.4f} m, want {want}"
+            if template == "angled":  # the depth axis is the line's vertical shift (v[2]); at every tilt within the range
+                for tilt in (region.lower[4], 0.0, region.upper[4]):
+                    for end, sign in ((region.lower[2], -1), (region.upper[2], 1)):
+                        v = mid.copy()
+                        v[2], v[4] = end, tilt
+                        got = _overlap(region, v, obj, corners_N, X_TN, centre_line=True)
+                        assert d0 - 0.002 <= got <= d1 + 0.002, f"{robot} {region.id} tilt {tilt:.2f}: the fingers overlap {got:.4f} m"
+                        # the line shifted u = half the range x cos t1 enters u / cos(tilt) earlier or later: the range's end at t1
+                        want = (d0 + d1) / 2 + sign * (d1 - d0) / 2 * np.cos(region.upper[4]) / np.cos(tilt)
+                        assert abs(got - want) <= 0.002, f"{robot} {region.id} tilt {tilt:.2f}: the fingers overlap {got:.4f} m, want {want:.4f}"
+            else:
+                for end, want in ((region.lower[0], d0), (region.upper[0], d1)):
+                    v = mid.copy()
+                    v[0] = end
+                    got = _overlap(region, v, obj, corners_N, X_TN)
+                    assert abs(got - want) <= 0.002, f"{robot} {region.id}: the fingers overlap {got:.4f} m, want {want}"
             kinds.add((obj.type, template))
-    assert kinds == {("can", "top"), ("can", "side_around"), ("box", "side_faces"), ("box", "top")}
+    assert kinds == {("can", "top"), ("can", "side_around"), ("can", "angled"), ("box", "side_faces"), ("box", "top"), ("box", "angled")}

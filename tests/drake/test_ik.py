@@ -67,8 +67,9 @@ def _check_samples(source, world, samples, settings):
         assert dp <= 1.1 * np.sqrt(3) * settings.position_tolerance and angle <= 1.1 * settings.orientation_tolerance
         v = region_coordinates(region, X)  # the solved pose lies in the region, within the IK tolerance
         # the IK's contract: orientation within 1.1 x its tolerance (the 10 % solver slack); 0.01 flat failed a
-        # legitimate 0.0101 rad yaw once cans got side grasps (#15) and the draws changed
-        assert region.contains(v, tol=1.1 * settings.orientation_tolerance), (region.id, v)
+        # legitimate 0.0101 rad yaw once cans got side grasps (#15) and the draws changed; a rotation that small
+        # moves roll and yaw by up to 1 / cos(pitch) times its angle (an angled grasp's pitch is its tilt, issue 34)
+        assert region.contains(v, tol=1.1 * settings.orientation_tolerance / np.cos(v[4])), (region.id, v)
         assert world.space.within_bounds(s.end) and world.config_free(s.end)
 
 

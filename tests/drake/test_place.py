@@ -100,8 +100,9 @@ def test_fallback_when_the_picked_cup_cannot_be_placed():
         assert report.outcome.picked == "cup_green"
         assert validate_pick_and_place(report, scene, settings.planner.resolution / 10) == []
         if report.outcome.fallbacks:
-            fell_back += 1
-            assert any("picked cup_red but could not place it" in n for n in report.notes)
+            assert any(n.startswith("picked cup_red") for n in report.notes), report.notes
+            # a cup held at a slant (issue 34's angled grasps) may also fail its lift first: another fallback
+            fell_back += any("picked cup_red but could not place it" in n for n in report.notes)
     assert fell_back >= 1
 
 

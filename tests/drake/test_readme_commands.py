@@ -16,10 +16,10 @@ from lazyground import api
 from lazyground.bundled import bundled_scene
 from lazyground.cli import build_parser
 from lazyground.cli_options import cli_values
+from tests.counts import BY_COUNTS
 
 ROOT = Path(__file__).resolve().parents[2]
 BUDGET = 20_000  # iterations; the README's lines need at most a few thousand
-NO_CLOCK = 1e6  # s: never reached
 
 
 def _plan_lines() -> list[str]:
@@ -48,7 +48,7 @@ def test_the_readme_has_plan_lines():
 @pytest.mark.parametrize("line", LINES, ids=[f"line{i}" for i in range(len(LINES))])
 def test_readme_plan_line_solves(line):
     args = build_parser().parse_args(shlex.split(line, comments=True)[1:])
-    overrides = {k: v for k, v in cli_values(args).items() if v is not None and k != "time_limit"}
+    overrides = {k: v for k, v in cli_values(args).items() if v is not None and k not in BY_COUNTS}
     scene = ROOT / args.scene if (ROOT / args.scene).is_file() else args.scene
-    report = api.plan(scene, args.request, time_limit=NO_CLOCK, max_iterations=BUDGET, **overrides)
+    report = api.plan(scene, args.request, **{**BY_COUNTS, "max_iterations": BUDGET, **overrides})
     assert report.result.solved, f"{line}: {report.result.status.value}: {report.result.message}"

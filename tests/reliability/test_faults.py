@@ -59,7 +59,7 @@ def test_fetch_no_valid_goal_gives_the_reason_per_region():
     assert res.status is PlanStatus.NO_VALID_GOAL, res.message
     assert res.message.startswith("no valid goal configuration in any goal region: ")
     per_region = dict(part.split(": ", 1) for part in res.message.split(": ", 1)[1].split("; "))
-    grasps = ("top", "side 35%", "side 65%")  # a can's grasp set (lazyground/scene/types.yaml)
+    grasps = ("top", "side 35%", "side 65%", "angled")  # a can's grasp set (lazyground/scene/types.yaml)
     assert set(per_region) == {f"Can{i}/{g}" for i in (1, 2) for g in grasps}
 
     def reasons(text):

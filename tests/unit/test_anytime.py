@@ -107,3 +107,44 @@ def test_straight_lines_to_drawn_goal_samples_come_first_nearest_first_while_the
     assert tried[0] == tuple(NEAR.lower)  # the nearest sample first
     assert best.result.path_length == 2.5 and best.result.goal_region.id == "near"
     assert [i.cost for i in best.improvements] == [12.0, 2.5]
+
+
+@pytest.mark.parametrize("first_region, first_cost", [("far", 12.0), ("near", 5.0)])
+def test_goals_solved_from_the_start_are_asked_of_every_sampled_region_and_tried_in_a_straight_line(
+        first_region, first_cost):
+    from lazyground.tasks.anytime import NEAR_SAMPLES
+
+    calls = []
+
+    def near(regions, n, stop):  # one goal near the start in region "near", indexed into the regions asked
+        calls.append((tuple(r.id for r in regions), n))
+        return [GoalSample(np.array([1.5, 2.0]), [r.id for r in regions].index("near"), extra={"near": True})]
+
+    def connect(template, sample):  # only the goals solved from the start are in a straight line
+        if not sample.extra.get("near"):
+            return None
+        region = template.regions[sample.region]
+        return replace(template, goal=sample, goal_region=region, path_length=SPACE.distance(START, sample.q)), None
+
+    settings = replace(SETTINGS, objective="shortest", budget=100.0, improve_rounds=1)
+    best = best_of(Scripted([(first_region, first_cost), (None, 0.0)]), REGIONS, SPACE, START, settings, StopCondition(),
+                   connect, near)
+    # mid's and far's samples (7.9, 10.2 away) do not beat 5 in a line, but their branches nearest the start might
+    assert calls == [(("near", "mid", "far"), max(NEAR_SAMPLES, 3))]
+    assert best.result.goal_region.id == "near" and best.result.path_length == pytest.approx(np.hypot(0.5, 1.0))
+    assert [i.cost for i in best.improvements] == [first_cost, pytest.approx(np.hypot(0.5, 1.0))]
+
+
+def test_a_goal_behind_the_wall_is_joined_to_the_waypoint_past_the_gap():
+    from lazyground.tasks.anytime import joined_path
+
+    world = BoxWorld(WALLS)
+    path = np.array([START, [3.5, 8.5], [5.5, 8.5], [6.0, 9.5]])  # through the wall's gap, then on
+    sample = GoalSample(np.array([6.0, 5.0]), 0)  # beyond the wall: blocked from the start and from (3.5, 8.5)
+    joined = joined_path(SPACE, world, path, sample, 0.01, bound=100.0)
+    assert joined is not None and np.allclose(joined, [START, [3.5, 8.5], [5.5, 8.5], [6.0, 5.0]])
+    assert path_is_valid(SPACE, world, joined, 0.01) < 0
+    length = SPACE.path_length(joined)
+    assert joined_path(SPACE, world, path, sample, 0.01, bound=length) is None  # cannot beat the bound: not tried
+    final = replace(sample, final=np.array([6.5, 5.0]))  # an approach segment is kept after the join
+    assert np.allclose(joined_path(SPACE, world, path, final, 0.01, bound=100.0)[-1], [6.5, 5.0])

@@ -49,3 +49,18 @@ def test_bad_keys_are_one_line_errors(key):
 
 def test_other_names_are_not_family_keys():
     assert parse_key("parking_1") is None and parse_key("arm:8") is None
+
+
+def test_fixed_layout_changes_only_the_free_spots():
+    """lot:N:k:seed:slots: one layout for every N (same limits, gates, reachable spots); the free
+    spots of a smaller N are among those of a larger one, the rest hold parked cars."""
+    scenes = {n: generate(parse_key(f"lot:{n}:2:0:576")) for n in (8, 64, 512)}
+    kinds = {n: spot_kinds(s) for n, s in scenes.items()}
+    assert {str(s["robot"]["limits"]) for s in scenes.values()} == {str(scenes[8]["robot"]["limits"])}
+    assert {tuple(s["expect"][0]["reachable"]) for s in scenes.values()} == {tuple(scenes[8]["expect"][0]["reachable"])}
+    assert all(len(kinds[n]) == n for n in kinds)
+    assert set(kinds[8]) < set(kinds[64]) < set(kinds[512])
+    gates = [{o["id"] for o in s["obstacles"] if o["id"].startswith("gate")} for s in scenes.values()]
+    assert gates[0] == gates[1] == gates[2] and gates[0]
+    assert len(grounding.ground("park", load_family_scene("lot:64:2:0:576")).interpretations) == 64
+    assert scenes[8]["name"] == "lot_8_2_s0_of576"

@@ -47,9 +47,9 @@ def _tool_axes(region, v):
 
 def test_cylinder_gets_top_and_side_grasps_all_around():
     (i,) = ground("pick up can1", _scene(FETCH, OBJECTS)).interpretations
-    assert [r.label for r in i.goal_regions] == ["top", "side 35%", "side 65%"]
+    assert [r.label for r in i.goal_regions] == ["top", "side 35%", "side 65%", "angled"]
     rng = np.random.default_rng(0)
-    top, low, high = i.goal_regions
+    top, low, high, _ = i.goal_regions
     for _ in range(20):
         R = _tool_axes(top, top.sample(rng))
         np.testing.assert_allclose(R[:, 0], [0, 0, -1], atol=1e-9)  # Fetch: x approaches, straight down
@@ -66,7 +66,41 @@ def test_box_gets_top_grasps_besides_faces_only_where_it_fits():
     g = ground("pick up slab", _scene(FETCH, OBJECTS))
     labels = [r.label for r in g.interpretations[0].goal_regions]
     # 0.06 across y fits the 0.10 opening: the +-x faces and the top closing along y; 0.3 along x does not
-    assert labels == ["face +x", "face -x", "top y"]
+    assert labels == ["face +x", "face -x", "top y", "angled y"]
+
+
+@pytest.mark.parametrize("robot", [FETCH, UR5E])
+def test_angled_grasps_slant_from_the_vertical_through_the_top_face_centre(robot):
+    """Issue 34: the approach tilts 20-50 degrees from straight down about a horizontal closing axis, its line
+    through the top face's centre, the grasp point depth - fingertip past it; a can: any yaw; a box: either side."""
+    scene = _scene(robot, OBJECTS)
+    ee = end_effector_of(scene.robot)
+    approach_col, closing_col = (0, 1) if ee.approach_axis == "x" else (2, 1)
+    rng = np.random.default_rng(2)
+    for name, top_z in (("can1", 0.12), ("slab", 0.1)):
+        (angled,) = [r for r in ground(f"pick up {name}", scene).interpretations[0].goal_regions if r.label.startswith("angled")]
+        centre = np.array([0.5, 0.0 if name == "can1" else -0.4, top_z])
+        tilts, yaws = [], []
+        for _ in range(200):
+            X = angled.pose_in_world(angled.sample(rng))
+            R = X.rotation()
+            a, c = R[:, approach_col], R[:, closing_col]
+            assert abs(c[2]) < 1e-9  # the fingers close horizontally
+            tilt = math.acos(-a[2])
+            tilts.append(tilt)
+            yaws.append(math.atan2(a[1], a[0]))
+            # the grasp point lies on a line along the approach that enters the top face near its centre
+            p = np.asarray(X.xyz) + (ee.offset_xyz[2] if ee.approach_axis == "z" else 0.0) * a
+            entry = p - a * (p[2] - top_z) / a[2]
+            assert np.linalg.norm(entry[:2] - centre[:2]) < 0.01
+            depth = (p - entry) @ a + ee.fingertip  # how far the fingertips reach past the face (the grasp point may be short of it)
+            assert 0.01 - 1e-9 <= depth <= 0.03 + 1e-9
+        assert max(tilts) <= math.radians(50) + 1e-9 and max(tilts) > math.radians(45)
+        if name == "can1":
+            assert min(yaws) < -2.5 and max(yaws) > 2.5  # from every side
+            assert min(tilts) >= math.radians(20) - 1e-9
+        else:  # the slab closes across its 0.06 m y: tilted over its +x and -x ends (upright included)
+            assert {round(abs(y), 3) for y in yaws if abs(math.sin(y)) < 1e-6} == {0.0, round(math.pi, 3)}
 
 
 def test_object_wider_than_the_gripper_is_dropped_with_a_note():
@@ -85,7 +119,7 @@ def test_ros_tool_frame_points_its_z_axis_where_the_grasp_approaches():
     assert (ee.frame, ee.approach_axis, ee.closing_axis, ee.opening) == ("tool_tcp", "z", "y", 0.085)
     (i,) = ground("pick up can1", scene).interpretations
     assert all(r.frame == "tool_tcp" for r in i.goal_regions)
-    top, side, _ = i.goal_regions
+    top, side, *_ = i.goal_regions
     rng = np.random.default_rng(1)
     for _ in range(20):
         R = _tool_axes(top, top.sample(rng))

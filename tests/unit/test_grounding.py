@@ -238,8 +238,8 @@ def test_interpretations_carry_goal_regions():
     g = ground("put the blue can on the table", scene("kitchen"))
     (i,) = g.interpretations
     assert (i.action, i.objects, i.target) == ("place", ("can_blue",), "table_1")
-    # a can: the top grasp and side grasps at two heights (lazyground/scene/types.yaml)
-    assert [r.label for r in i.goal_regions] == ["top", "side 35%", "side 65%"]
+    # a can: the top grasp, side grasps at two heights and the angled grasp (lazyground/scene/types.yaml)
+    assert [r.label for r in i.goal_regions] == ["top", "side 35%", "side 65%", "angled"]
     assert all(r.kind == "workspace" and r.object == "can_blue" for r in i.goal_regions)
     assert [r.kind for r in i.place_regions] == ["placement"] and i.place_regions[0].object == "table_1"
     assert all(r.interpretation == i.id for r in i.goal_regions + i.place_regions)

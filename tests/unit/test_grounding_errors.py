@@ -9,6 +9,8 @@ from tests.unit.test_grounding import scene
 
 ERRORS = [
     # no match: name the word and list what the scene has
+    # several objects: more than the scene holds (picking up two cans is planned: one is put down, #30)
+    ("kitchen", "pick up 9 cans", "'9 cans' asks for 9; the scene has 5 that fit"),
     ("kitchen", "fetch a bottle", "no 'bottle' in this scene; it has: table x1, can x5, box x3, shelf x5"),
     ("cafe", "grab a can", "no 'can' in this scene; it has: counter x1, cup x3, bottle x2, table x1"),
     ("lot", "pick up a cup", "no 'cup' in this scene; it has: parking_spot x4"),
@@ -32,12 +34,6 @@ ERRORS = [
     ("kitchen", "pick up the widget", "unknown word 'widget'; objects here: table x1, can x5, box x3, shelf x5; verbs:"),
     ("kitchen", "pick up the can quietly", "unknown word 'quietly'; objects here:"),
     # unsupported forms
-    ("kitchen", "pick up two cans", "not supported: 'two cans' asks for several objects; the robot handles one at a time (try 'one of the cans')"),
-    ("kitchen", "pick up 3 boxes", "not supported: '3 boxes' asks for several objects"),
-    ("kitchen", "pick up all cans", "not supported: 'all cans' asks for several objects"),
-    ("kitchen", "grab every box", "not supported: 'every box' asks for several objects; the robot handles one at a time (try 'one of the boxes')"),
-    ("kitchen", "pick up the cans", "not supported: 'the cans' asks for several objects; the robot handles one at a time (try 'one of the cans')"),
-    ("kitchen", "pick up the can and the box", "not supported: 'and' joins two objects or actions"),
     ("kitchen", "do not pick up the red can", "not supported: a negated action ('pick up' after 'not')"),
     ("kitchen", "pick it up", "not supported: 'it' (nothing to refer back to)"),
     ("kitchen", "pick up the can put the box", "not supported: a second verb 'put'"),

@@ -88,9 +88,9 @@ def test_location_breakdown_names_words_that_ground():
         assert len(got) == int(count), part
 
 
-def test_still_refuses_counts():
-    with pytest.raises(GroundingError, match="asks for several objects"):
-        ground("pick up 2 cans", _scene(CANS_1))
+def test_refuses_counts_above_what_the_scene_holds():
+    with pytest.raises(GroundingError, match="'5 cans' asks for 5; the scene has 4"):
+        ground("pick up 5 cans", _scene(CANS_1))
 
 
 TYPO = textwrap.dedent("""\

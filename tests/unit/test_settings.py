@@ -67,7 +67,7 @@ def test_settings_hold_enum_members_and_compare_as_names():
     ("step_size", -1, "step_size: must be > 0, got -1"),
     ("goal_bias", 1.5, "goal_bias: must be in [0, 1], got 1.5"),
     ("algorithm", "foo", "algorithm: unknown algorithm 'foo' (known: rrt, bidirectional)"),
-    ("strategy", "greedy", "strategy: unknown strategy 'greedy' (known: reward-penalty, consecutive, random, cover)"),
+    ("strategy", "greedy", "strategy: unknown strategy 'greedy' (known: reward-penalty, consecutive, random, cover, cover-connect)"),
     ("goal_extension", "jump", "goal_extension: unknown goal extension 'jump' (known: partial, extend, connect)"),
     ("max_iterations", 2.5, "max_iterations: expected an integer, got 2.5"),
     ("time_limit", float("inf"), "time_limit: must be finite, got inf"),

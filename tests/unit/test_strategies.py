@@ -105,7 +105,7 @@ def test_random_is_uniform_and_seeded():
 
 
 def test_registry_by_name():
-    assert set(STRATEGIES) == {"reward-penalty", "consecutive", "random", "cover"}
+    assert set(STRATEGIES) == {"reward-penalty", "consecutive", "random", "cover", "cover-connect"}
     assert isinstance(make_strategy("random"), Random)
     with pytest.raises(ValueError, match="unknown strategy 'greedy'"):
         make_strategy("greedy")

@@ -119,7 +119,7 @@ def test_pick_and_place_steps_replay_in_turn_with_the_carried_object(tmp_path):
     from lazyground.tasks import Grasp, Lift, Outcome, Step
 
     grasp = Grasp("can1", regions[0].id, regions[0].label, "gripper_link", Pose(), Pose())
-    steps = (Step("pick can1", pick.result), Step("place can1", place.result, grasp=grasp))
+    steps = (Step("pick can1", pick.result), Step("place can1", place.result, grasp=grasp, lift=Lift(lift, 0.05)))
     report = replace(pick, outcome=Outcome(pick.result, steps, world.space.names, lift=Lift(lift, 0.05)))
     segments = meshcat_view._segments(report, scene)
     assert [s.attached.object.id if s.attached else None for s in segments] == [None, "can1"]
@@ -136,3 +136,25 @@ def test_pick_and_place_steps_replay_in_turn_with_the_carried_object(tmp_path):
         assert meshcat.HasPath(f"/lazyground/step{k}/tree/failed_goal_biased_from")
     out = tmp_path / "pp.html"
     assert meshcat_view.write_html(report, scene, out) > 500_000
+
+
+def test_several_objects_replay_each_step_in_the_scene_the_earlier_steps_left(tmp_path):
+    """An object placed in step 2 stands where it was put in steps 3 and 4 (#30), not where it started."""
+    from dataclasses import replace
+
+    from lazyground.geometry import Pose
+    from lazyground.tasks import Grasp, Outcome, Placement, Step
+
+    scene, world, g, (q0, q1, q2) = fetch_can_set_up(tmp_path)
+    regions = g.goal_regions
+    pick, place = _step(world, g, q0, q1, regions), _step(world, g, q1, q2, regions)
+    X_WO = Pose((0.3, 0.1, 0.8))
+    grasp = Grasp("can1", regions[0].id, regions[0].label, "gripper_link", Pose(), Pose())
+    steps = (Step("pick can1", pick.result), Step("place can1", place.result, grasp=grasp,
+                                                   placement=Placement("table/surface", "table", X_WO)),
+             Step("pick can1", pick.result), Step("place can1", place.result, grasp=grasp))
+    report = replace(pick, outcome=Outcome(pick.result, steps, world.space.names))
+    segments = meshcat_view._segments(report, scene)
+    original = scene.object("can1").pose.xyz
+    assert [s.scene.object("can1").pose.xyz for s in segments] == [original, original, X_WO.xyz, X_WO.xyz]
+    assert np.allclose([segments[2].scene.robot.start[n] for n in world.space.names], q2)  # where step 2 ended

@@ -62,8 +62,9 @@ def test_pick_and_place_steps_are_labelled(tmp_path):
     pick, place = _step(world, g, q0, q1, g.goal_regions), _step(world, g, q1, q2, g.goal_regions)
     r0 = g.goal_regions[0]
     grasp = Grasp("can1", r0.id, r0.label, "gripper_link", Pose(), Pose())
-    steps = (Step("pick can1", pick.result), Step("place can1", place.result, grasp=grasp))
-    outcome = Outcome(pick.result, steps, world.space.names, placement=Placement("table/top", "table", Pose()))
+    placement = Placement("table/top", "table", Pose())  # each place step names its surface (place.run sets it)
+    steps = (Step("pick can1", pick.result), Step("place can1", place.result, grasp=grasp, placement=placement))
+    outcome = Outcome(pick.result, steps, world.space.names, placement=placement)
     report = replace(pick, outcome=outcome)
     out = tmp_path / "pp.html"
     meshcat_view.write_html(report, scene, out)
@@ -81,3 +82,15 @@ def test_a_one_node_tree_is_one_node(parking):
     layout = meshcat_view.draw_layout(report, scene, Meshcat())
     text = " ".join(_panel(f'{panel_html(report, replace(layout, tree_nodes=1))}<style>').split())
     assert "search tree (1 node)" in text
+
+
+def test_object_items_say_where_each_object_went_and_in_which_step():
+    from lazyground.geometry import Pose
+    from lazyground.tasks import ObjectStep, Placement
+    from lazyground.viz.replay_page import _object_item
+
+    stowed = ObjectStep("can_r1", "stowed", "side_counter", "chosen among can_r1, can_r2",
+                        Placement("side_counter/surface", "side_counter", Pose((0.3, 0.55, 0.23))), 0)
+    item = html_lib.unescape(re.sub(r"<[^>]+>", " ", _object_item(stowed)))
+    assert "can_r1: stowed -> side_counter at (0.30, 0.55, 0.23), step 1" in item and "chosen among" in item
+    assert "can_r2: held, step 3" in _object_item(ObjectStep("can_r2", "held", None, "", None, 2))

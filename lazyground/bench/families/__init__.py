@@ -1,7 +1,7 @@
 """Generated scene families for the many-interpretations benchmark (issue #33).
 
-A family key names one generated scene: ``lot:<free>:<reachable>[:<seed>]`` (a parking lot,
-:mod:`.lot`), ``rack:<robot>:<objects>:<reachable>[:<seed>]`` (cubbies around an arm,
+A family key names one generated scene: ``lot:<free>:<reachable>[:<seed>[:<slots>]]`` (a parking lot,
+:mod:`.lot`; with ``slots`` its layout is fixed and only the number of free spots changes), ``rack:<robot>:<objects>:<reachable>[:<seed>]`` (cubbies around an arm,
 :mod:`.rack`). ``lazyground generate`` writes them as scene YAML; ``lazyground bench --scenes``
 takes the keys directly.
 """
@@ -29,9 +29,9 @@ def parse_key(key: str):
             from lazyground.bench.families.lot import LotSpec
 
             nums = [int(p) for p in parts[1:]]
-            if not 1 <= len(nums) <= 3:
+            if not 1 <= len(nums) <= 4:
                 raise ValueError
-            return LotSpec(*nums)
+            return LotSpec(**dict(zip(("free", "reachable", "seed", "slots"), nums)))
         from lazyground.bench.families.rack import RackSpec
 
         nums = [int(p) for p in parts[2:]]
@@ -40,7 +40,7 @@ def parse_key(key: str):
         return RackSpec(parts[1], *nums)
     except (TypeError, ValueError) as exc:
         detail = f": {exc}" if str(exc) else ""
-        raise ValueError(f"bad family key {key!r} (lot:<free>:<reachable>[:<seed>] or "
+        raise ValueError(f"bad family key {key!r} (lot:<free>:<reachable>[:<seed>[:<slots>]] or "
                          f"rack:<panda|fetch>:<objects>:<reachable>[:<seed>]){detail}") from None
 
 

@@ -5,7 +5,10 @@ front half its shoulder pans over), a few levels high, one can in each. In the
 inner ring the ``reachable`` cubbies are open; the others are glazed, either
 with a window that admits the wrist but not the hand (the can's side grasps are
 collision-free but no path reaches them: the hand cannot pass the glass) or
-closed (caged: no grasp is free). Outer rings stand behind the inner ring's back
+closed (caged: no grasp is free). The Panda's pane is set back ``pane_back``
+inside the cubby, where only link 7 crosses it at a side grasp (its wrist joint
+and link 6 stay in front, the hand behind); at the front plane link 6 stood in
+the window and no grasp was free. Outer rings stand behind the inner ring's back
 wall (blocked behind others). The layout is seeded.
 """
 
@@ -32,6 +35,8 @@ class ArmLayout:
     floors: tuple[float, ...]  # each level's board top
     sweep: float  # the azimuth range (rad) the rack covers, centred ahead
     window: float  # the window's side: the wrist passes, the hand does not
+    window_z: float  # the window's centre above the cubby floor (the side grasps' height)
+    pane_back: float  # the pane's depth behind the cubby's front plane (between the wrist joint and the hand)
     can_back: float  # the can's centre behind the front plane: the hand inside at the pre-grasp, the wrist in the window
     robot: dict
 
@@ -41,10 +46,10 @@ PANDA_START = {"panda_joint1": 0.0, "panda_joint2": -0.785398, "panda_joint3": 0
 FETCH_START = {"torso_lift_joint": 0.05, "shoulder_pan_joint": 1.32, "shoulder_lift_joint": 1.4, "upperarm_roll_joint": -0.2,
                "elbow_flex_joint": 1.72, "forearm_roll_joint": 0.0, "wrist_flex_joint": 1.66, "wrist_roll_joint": 0.0}
 LAYOUTS = {
-    "panda": ArmLayout(0.40, (0.05, 0.37, 0.69), 2 * math.pi * 0.9, 0.16, 0.20, {
+    "panda": ArmLayout(0.40, (0.05, 0.37, 0.69), 2 * math.pi * 0.9, 0.14, 0.085, 0.06, 0.20, {
         "model": "panda", "base": {"xyz": [0.0, 0.0, 0.0]}, "base_link": "panda_link0",
         "planned_joints": list(PANDA_START), "end_effector": "panda_hand_tcp", "start": PANDA_START}),
-    "fetch": ArmLayout(0.55, (0.40, 0.72, 1.04), 2.8, 0.12, 0.19, {
+    "fetch": ArmLayout(0.55, (0.40, 0.72, 1.04), 2.8, 0.12, 0.06, -0.005, 0.19, {
         "model": "fetch", "base": {"xyz": [0.0, 0.0, 0.0]}, "base_link": "base_link",
         "planned_joints": list(FETCH_START), "end_effector": "gripper_link", "start": FETCH_START}),
 }
@@ -94,7 +99,7 @@ def _cells(layout: ArmLayout, n: int) -> list[tuple[int, float, float, float]]:
     return out[:n]
 
 
-def _cubby(cid: str, radius: float, az: float, floor: float, kind: str, window: float) -> list[dict]:
+def _cubby(cid: str, radius: float, az: float, floor: float, kind: str, layout: ArmLayout) -> list[dict]:
     """The boards of one cubby, and its glazing (none when open)."""
     u, t = np.array([math.cos(az), math.sin(az)]), np.array([-math.sin(az), math.cos(az)])
     mid = radius + CUBBY_D / 2
@@ -113,11 +118,15 @@ def _cubby(cid: str, radius: float, az: float, floor: float, kind: str, window: 
     glass, front = "blue", radius - 0.005
     if kind == CAGED or kind == BEHIND:
         boxes.append(_box(f"{cid}_glass", at(front, 0, floor + CUBBY_H / 2), az, (0.01, CUBBY_W, CUBBY_H), glass))
-    elif kind == WINDOW:  # a pane with a square hole at the can's grasp height, the floor its lower edge
-        side = (CUBBY_W - window) / 2
-        boxes.append(_box(f"{cid}_pane_top", at(front, 0, floor + (window + CUBBY_H) / 2), az, (0.01, CUBBY_W, CUBBY_H - window), glass))
+    elif kind == WINDOW:  # a pane set back inside, with a square hole round the wrist at the grasp height
+        w, plane = layout.window, radius + layout.pane_back
+        lo, hi = layout.window_z - w / 2, layout.window_z + w / 2  # the hole's edges above the floor
+        side = (CUBBY_W - w) / 2
+        boxes.append(_box(f"{cid}_pane_top", at(plane, 0, floor + (hi + CUBBY_H) / 2), az, (0.01, CUBBY_W, CUBBY_H - hi), glass))
+        if lo > 0:
+            boxes.append(_box(f"{cid}_pane_low", at(plane, 0, floor + lo / 2), az, (0.01, CUBBY_W, lo), glass))
         for k, s in enumerate((-1, 1)):
-            boxes.append(_box(f"{cid}_pane{k}", at(front, s * (window + side) / 2, floor + window / 2), az, (0.01, side, window), glass))
+            boxes.append(_box(f"{cid}_pane{k}", at(plane, s * (w + side) / 2, floor + (lo + hi) / 2), az, (0.01, side, w), glass))
     return boxes
 
 
@@ -136,7 +145,7 @@ def generate_rack(spec: RackSpec) -> dict:
     obstacles, objects = [], []
     for i, ((ring, radius, az, floor), kind) in enumerate(zip(cells, kinds)):
         cid = f"c{i}"
-        obstacles += _cubby(cid, radius, az, floor, kind, layout.window)
+        obstacles += _cubby(cid, radius, az, floor, kind, layout)
         r = radius + layout.can_back
         objects.append({"id": f"can_{i}", "type": "can", "color": "red" if kind == REACHABLE else "yellow",
                         "geometry": {"cylinder": {"radius": CAN_R, "length": CAN_L}},

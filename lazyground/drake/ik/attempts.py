@@ -25,6 +25,7 @@ from lazyground.drake.ik.reach import reach_map
 from lazyground.drake.ik.solvers import IKSolver
 
 APPROACH_SCALES = (1.0, 0.5, 0.25)  # fractions of a region's approach distance tried in turn
+KEPT_CLEAR = "kept clear"  # a draw the task's preference rules out (where an earlier choice blocked a later step)
 PRE_POSE_ITERATIONS = 8  # batch solves of a pre-pose from its goal: 94-98 % converge within 5 (fetch_cans_1), none after 10
 
 
@@ -70,8 +71,7 @@ class BatchAttempts:
         """The prepared attempt on region ``j`` at round-robin counter ``before`` (``after`` once made).
 
         From the queue when it holds that attempt for this generator; otherwise the queue is
-        dropped and the next ``look_ahead()`` attempts from ``before`` are prepared (asked only then:
-        it sums every region's statistics).
+        dropped and the next ``look_ahead()`` attempts from ``before`` are prepared (asked only then).
         """
         if rng is not self.rng:  # answers drawn from another generator are not this draw's
             self.queue.clear()
@@ -96,11 +96,14 @@ class BatchAttempts:
         s = self.source.settings
         t0 = time.perf_counter()
         items = [Prepared(j, after, v, self.source.frames[j], X)
-                 for (j, after), v, X in zip(plan, *self.source.draw_targets([j for j, _ in plan], rng))]
+                 for (j, after), v, X in zip(plan, *self.source.draw_preferred([j for j, _ in plan], rng))]
         for frame in dict.fromkeys(it.frame for it in items):
             group = [it for it in items if it.frame == frame]
             for it, reason in zip(group, self.source.screen(frame, np.array([it.X_WT for it in group]))):
                 it.reason = reason
+        for it, avoided in zip(items, self.source.avoided([it.j for it in items], np.array([it.v for it in items]))):
+            if avoided:
+                it.reason = KEPT_CLEAR  # the task's preference rules this target out (IKGoalSource.prefer)
         t1 = time.perf_counter()
         for it in items:
             it.seconds = (t1 - t0) / len(items)
@@ -113,11 +116,20 @@ class BatchAttempts:
     def _solve_group(self, frame: str, group: list[Prepared], rng: np.random.Generator) -> None:
         s = self.source.settings
         t0 = time.perf_counter()
-        starts = self._starts(frame, group, rng)
-        if s.warm_start:
-            for g, it in enumerate(group):
-                if self.source.last[it.j] is not None:
-                    starts[g * s.restarts] = self.source.last[it.j]
+        near = self.source.near_full() if s.seed_near else None
+        if near is not None and s.restarts == 1:  # every solve from near: no other start to draw
+            starts = np.tile(near, (len(group), 1))
+        else:
+            starts = self._starts(frame, group, rng)
+            if s.warm_start:
+                for g, it in enumerate(group):
+                    if self.source.last[it.j] is not None:
+                        starts[g * s.restarts] = self.source.last[it.j]
+            if near is not None:
+                starts[::s.restarts] = near
+            elif s.near_first and self.source.near is not None:
+                first = [g for g, it in enumerate(group) if self.source.stats[it.j].valid == 0]
+                starts[[g * s.restarts for g in first]] = self.source.near_full()
         answers, ok = self.solver.solve(frame, np.repeat([it.X_WT for it in group], s.restarts, axis=0), np.array(starts))
         t1 = time.perf_counter()
         share = (t1 - t0) / len(group)

@@ -40,6 +40,17 @@ class IKSettings:
     reach_margin: float = 0.08  # m, distance to the nearest sampled wrist point that still counts
     hand_check: bool = True  # reject targets where the hand alone collides, whatever the arm (drake/ik/hand_probe.py)
     warm_start: bool = False  # first restart from the region's last valid solution (one IK branch)
+    seed_near: bool = False  # first restart from the source's ``near`` configuration (the step's start): the IK
+    # branch nearest it wins when it is free, other restarts as before (#30). Off by default: on, first's median path
+    # fell 10.31 -> 5.04 rad on fetch_boxes_3 and 2.92 -> 1.62 on panda_tabletop (bench, 10 seeds), but a region's
+    # samples then sit on one branch (fetch_boxes_3: median distance to the nearest other sample 0.04 rad, as
+    # warm_start's 0.02), the spread the one-tree planner's resampling needs (test_ik); IKGoalSource.seed_near
+    # turns it on for shortest / fastest's draws after the first solution
+    near_first: bool = True  # while a region has no valid sample, its first restart starts from ``near`` (the step's
+    # start): the first goal of each region sits on the IK branch nearest the start (no full-turn sweep to reach a
+    # nearby object, #30 Deliver 4); later samples spread over branches as before
+    near_targets: bool = False  # targets drawn asking the least joint motion from ``near`` (IKGoalSource.seed_near:
+    # what shortest / fastest draw after the first solution)
     reach_starts: int = 256  # batch solver: starts drawn among about this many reach-map arms nearest the target (0: uniform)
 
 

@@ -1,0 +1,98 @@
+"""Draws within goal regions that learn where earlier draws worked (issue 34).
+
+A can in an open box: of a top grasp's yaws only a few let the fingers pass the walls, and a
+uniform draw found one in ~1 of 100 tries, so seeds that drew none gave the region up. Here
+each free axis of a region (a yaw, a tilt, a height, a depth) is cut into bins, and every
+attempt scores the bins its draw fell in: 1 for a valid goal (IK reached it, collision-free),
+``REACHED_SCORE`` when IK reached it but the arm collided, 0 otherwise (out of reach, the hand
+alone in collision, IK failed). A bin's weight is its mean score under a Beta(1, 1) prior (an
+untried bin weighs 1/2), and later draws follow, per axis, the density that puts the share
+``learning`` of the axis in proportion to the weights and the rest uniformly over the whole
+range: no part of a region is ever ruled out.
+
+A draw is the inverse CDF of that density applied to the caller's uniform numbers, so it takes
+exactly the Generator's draws a uniform one takes, and until a region has outcomes (or with
+``learning`` 0) it is the uniform draw itself.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+REACHED_SCORE = 0.25  # IK reached the pose, the arm collided: the pose is reachable, another arm may be free
+BIN_ANGLE = math.pi / 6  # rad: bin width on an angle axis (roll, pitch, yaw)
+BIN_LENGTH = 0.01  # m: bin width on a length axis
+MAX_BINS = 12
+ANGLES = (3, 4, 5)  # a pose region's angle axes
+
+
+class RegionLearner:
+    """Per region and free axis, the binned scores of past draws and the warp of new ones.
+
+    Args:
+        bounds: per region, ``(lower, span, wrapped)`` as :meth:`GoalRegion.unit_map` gives them.
+        learning: the share of each axis's density that follows the scores, in [0, 1].
+        angles: the axes measured in radians (binned by BIN_ANGLE, the others by BIN_LENGTH).
+    """
+
+    def __init__(self, bounds, learning: float, angles=ANGLES):
+        if not 0.0 <= learning <= 1.0:
+            raise ValueError(f"learning must be in [0, 1], got {learning}")
+        self.learning = float(learning)
+        self._bounds = [tuple(np.asarray(b, float) for b in bound) for bound in bounds]
+        self._bins = []  # per region: {axis: number of bins}, the axes wide enough for two bins
+        for lo, span, _ in self._bounds:
+            n = [min(MAX_BINS, math.ceil(s / (BIN_ANGLE if i in angles else BIN_LENGTH) - 1e-9)) for i, s in enumerate(span)]
+            self._bins.append({i: k for i, k in enumerate(n) if k > 1})
+        self.score = [{i: np.zeros(n) for i, n in bins.items()} for bins in self._bins]
+        self.count = [{i: np.zeros(n) for i, n in bins.items()} for bins in self._bins]
+
+    def weights(self, j: int, axis: int) -> np.ndarray:
+        """The density of region ``j``'s ``axis`` over its bins (sums to 1)."""
+        w = (self.score[j][axis] + 1.0) / (self.count[j][axis] + 2.0)
+        n = len(w)
+        return (1.0 - self.learning) / n + self.learning * w / w.sum()
+
+    def warp(self, regions, u: np.ndarray) -> np.ndarray:
+        """Unit draws ``u`` (N, dim) for regions ``regions`` (N,) moved to each region's learned density."""
+        u = np.array(u, float)
+        if self.learning == 0.0:
+            return u
+        regions = np.asarray(regions, int)
+        for j in np.unique(regions):
+            rows = regions == j
+            for axis in self._bins[j]:
+                if not self.count[j][axis].any():
+                    continue
+                w = self.weights(j, axis)
+                cdf = np.concatenate([[0.0], np.cumsum(w)])
+                cdf[-1] = 1.0
+                edges = np.linspace(0.0, 1.0, len(w) + 1)
+                u[rows, axis] = np.interp(u[rows, axis], cdf, edges)
+        return np.minimum(u, np.nextafter(1.0, 0.0))
+
+    def unit(self, j: int, v: np.ndarray) -> np.ndarray:
+        """A region point ``v`` back in unit coordinates (angles unwrapped onto the range)."""
+        lo, span, wrapped = self._bounds[j]
+        d = np.asarray(v, float) - lo
+        d = np.where(wrapped, np.mod(d, 2 * np.pi), d)
+        return np.clip(np.divide(d, span, out=np.zeros_like(d), where=span > 0), 0.0, 1.0 - 1e-12)
+
+    def record(self, j: int, v: np.ndarray, score: float) -> None:
+        """Score ``score`` (0..1) for the draw ``v`` of region ``j`` on every free axis's bin."""
+        u = self.unit(j, v)
+        for axis, n in self._bins[j].items():
+            b = min(int(u[axis] * n), n - 1)
+            self.score[j][axis][b] += score
+            self.count[j][axis][b] += 1.0
+
+
+def outcome_score(reason: str, reached_reasons=("in collision",)) -> float | None:
+    """An attempt's score from its failure reason ("" for a valid goal); None for no evidence (ran out of time)."""
+    if reason == "":
+        return 1.0
+    if reason == "time":
+        return None
+    return REACHED_SCORE if reason in reached_reasons else 0.0

@@ -1,0 +1,21 @@
+#!/bin/sh
+# Issue #33, arm racks: time to the first solution against N for the Panda and the Fetch (1 reachable can among N),
+# our strategies on the two-tree planner against ground-then-plan nearest-first (10 s a candidate, CALL_BUDGET in
+# lazyground/bench/baselines.py) and eager all-goal IK. Each size runs RUNS rack layouts (layout seeds 0..RUNS-1, so
+# the reachable can's rank in the nearest-first order varies), one planner seed each. Writes OUT/table.md (the sweep
+# table, and the Mann-Whitney tests against consecutive = round-robin, per layout), OUT/family_sweep.png, results.csv.
+# Usage: tools/rack_sweep.sh [OUT] [RUNS] [SIZES]   (from the repository root; 40-60 min on a quiet 2-core machine by estimate: 400 runs, ~50 at the limit)
+set -e
+OUT=${1:-bench_output/racks}
+RUNS=${2:-10}
+SIZES=${3:-1 4 16 64}
+SCENES=""
+for robot in panda fetch; do
+  for n in $SIZES; do
+    s=0
+    while [ "$s" -lt "$RUNS" ]; do SCENES="$SCENES,rack:$robot:$n:1:$s"; s=$((s + 1)); done
+  done
+done
+python3 -m lazyground bench --scenes "${SCENES#,}" --algorithms bidirectional \
+    --strategies cover,reward-penalty,consecutive --baselines nearest-first,eager \
+    --runs 1 --time-limit 60 --jobs 2 --out "$OUT"
