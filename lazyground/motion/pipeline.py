@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -10,6 +9,7 @@ import numpy as np
 from lazyground.motion.shortcut import ShortcutResult, ShortcutSettings, ShortcutStatus, shortcut_path
 from lazyground.motion.trajectory import Limits, MotionError, TimingSettings, Trajectory, time_path
 from lazyground.planning.car import CarSpace
+from lazyground.planning.stop import default_clock  # the split's clock (tests drive it)
 from lazyground.planning.problem import PlanResult, ValidityChecker
 from lazyground.settings import MotionSettings, RunSettings
 from lazyground.planning.space import ConfigSpace
@@ -88,7 +88,7 @@ def make_motion(
                           replace(cut, enabled=False) if stops is not None else cut, rng, keep_last_segment=approach)
     if limits is None:
         return Motion(short, None, short.time_s, 0.0, "no limits for timing")
-    t0 = time.perf_counter()
+    t0 = default_clock()
     fine = planner.resolution / planner.validation_factor
     for attempt in (short, _reverted(short)):
         rests = tuple(stops or ()) + ((len(attempt.path) - 2,) if approach else ())
@@ -100,9 +100,9 @@ def make_motion(
             traj = time_path(space, checker, attempt.path, limits, fine, timing, stops=rests, car=car)
         except MotionError as exc:
             if attempt.path is attempt.raw_path:
-                return Motion(short, None, short.time_s, time.perf_counter() - t0, f"no trajectory: {exc}")
+                return Motion(short, None, short.time_s, default_clock() - t0, f"no trajectory: {exc}")
             continue  # a shortcut segment grazes an obstacle between its fine checks: time the raw path instead
-        return Motion(attempt, traj, short.time_s, time.perf_counter() - t0)
+        return Motion(attempt, traj, short.time_s, default_clock() - t0)
     raise AssertionError("unreachable")
 
 

@@ -18,7 +18,6 @@ from __future__ import annotations
 import contextlib
 import functools
 import logging
-import time
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -27,6 +26,7 @@ from lazyground.motion.car_timing import car_piece_timer
 from lazyground.motion.curve import Curve, blended_curve, unwrap_path
 from lazyground.motion.limits import Limits  # noqa: F401  (re-exported: callers time paths under Limits)
 from lazyground.motion.validate import first_colliding_join
+from lazyground.planning.stop import default_clock  # the split's clock (tests drive it)
 from lazyground.planning.problem import ValidityChecker
 from lazyground.planning.space import ConfigSpace
 
@@ -117,7 +117,7 @@ def time_path(
     Raises:
         MotionError: every way of timing a piece collides (the path grazes an obstacle).
     """
-    t0 = time.perf_counter()
+    t0 = default_clock()
     q = unwrap_path(space, path)
     scaled = Limits(limits.velocity * settings.speed, limits.acceleration * settings.speed**2)
     pieces = split_at_stops(q, stops)
@@ -181,7 +181,7 @@ def assemble(space: ConfigSpace, checker: ValidityChecker, q0: np.ndarray, n_pie
         timed[k] = time_piece(k, level[k])
     labels = " + ".join(piece[1] for piece in timed)
     return Trajectory(space.names, tuple(bool(w) for w in space.wrap), t, qs, qd, qdd, limits, labels,
-                      time.perf_counter() - t0)
+                      default_clock() - t0)
 
 
 MAX_SLOWDOWNS = 3  # uniform slow-downs of a timed path whose output samples still exceed a limit

@@ -72,19 +72,22 @@ READY = (
     "import lazyground.api, lazyground.drake.world, lazyground.report\n"
     "from lazyground.cli import main\n"
     "from lazyground.planning import search\n"
-    "start = search.Search.__init__\n"
-    "def announce(self, *args, **kwargs):\n"
-    "    start(self, *args, **kwargs)\n"
-    "    print('planning', file=sys.stderr, flush=True)\n"
-    "search.Search.__init__ = announce\n"
+    "left = search.Search.time_left\n"
+    "def announce(self):\n"
+    "    if self.iterations >= 20 and not getattr(self, 'announced', False):\n"
+    "        self.announced = True\n"
+    "        print('planning', file=sys.stderr, flush=True)\n"
+    "    return left(self)\n"
+    "search.Search.time_left = announce\n"
     "sys.exit(main(sys.argv[1:]))\n"
 )
-"""Runs the CLI like ``python -m lazyground``, and says on stderr when the planner starts, so the
-signal lands inside the planner however long imports and world building take on a loaded machine."""
+"""Runs the CLI like ``python -m lazyground``, and says on stderr once the planner has done 20 iterations, so the
+signal lands inside the planner, after some work, however long imports, world building and the iterations take
+on a loaded machine (no outcome waits on the clock)."""
 
 
 def _popen_planning(argv):
-    """The CLI with ``argv``, once its planner has started (the "planning" line read off stderr)."""
+    """The CLI with ``argv``, once its planner has done 20 iterations (the "planning" line read off stderr)."""
     proc = _popen([sys.executable, "-c", READY] + argv)
     assert proc.stderr.readline().strip() == "planning", proc.communicate()
     return proc
@@ -93,8 +96,8 @@ def _popen_planning(argv):
 @needs_drake
 def test_cli_ctrl_c_exits_130_with_one_line(tmp_path):
     scene = walled_lot(tmp_path)
-    proc = _popen_planning(["plan", str(scene), "park", "--time-limit", "30"])
-    out, err = _interrupt(proc, after=0.5)
+    proc = _popen_planning(["plan", str(scene), "park", "--time-limit", "1000"])  # the walled lot: never solved
+    out, err = _interrupt(proc, after=0.1)
     assert proc.returncode == 130, (out, err)
     lines = err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("interrupted"), err
@@ -105,12 +108,13 @@ def test_cli_ctrl_c_exits_130_with_one_line(tmp_path):
 def test_cli_ctrl_c_during_planning_prints_partial_statistics(tmp_path):
     """The signal lands inside the planner (a line on stderr says it started), which reports what it did."""
     scene = walled_lot(tmp_path)
-    proc = _popen_planning(["plan", str(scene), "park", "--time-limit", "30", "--json"])
-    out, err = _interrupt(proc, after=1.0)
+    proc = _popen_planning(["plan", str(scene), "park", "--time-limit", "1000", "--json"])
+    out, err = _interrupt(proc, after=0.1)
     assert proc.returncode == 130, (out, err)
     lines = err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("interrupted after "), err
     doc = json.loads(out)
     assert doc["status"] == "interrupted" and doc["path"] is None
     assert doc["iterations"] > 0 and doc["tree_size"] > 1 and doc["goal_samples"] > 0
-    assert doc["time_s"] > 0  # status 'interrupted', not 'timeout': stopped by the signal, before the 30 s limit
+    assert doc["iterations"] >= 20  # the signal came after the announced iterations
+    assert doc["time_s"] > 0  # status 'interrupted', not 'timeout': stopped by the signal, before the 1000 s limit

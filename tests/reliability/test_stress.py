@@ -67,7 +67,7 @@ def test_the_check_finds_a_trajectory_too_fast_or_through_obstacles():
         assert any(expected in p for p in stress.check_report(worse, scene, world))
 
 
-def test_stress(cpu_clock):  # time limits and overshoots in CPU time: other processes' load does not count
+def test_stress(work_clock):  # time limits and overshoots in work done (checks, IK, iterations), not seconds
     runs, notes = stress.plan_runs(RUNS, seed=0)
     rows = stress.run_all(runs, jobs=1)
     summary = stress.summarize(rows)
