@@ -4,7 +4,8 @@ IK goal sampling bounds each attempt by a time budget (``IKSettings.attempt_budg
 as well as by restarts and solver iterations; under load (a shared CI machine) the
 budget would cut attempts short and change which samples a seed yields. The suite
 runs every IK goal source built without explicit settings with no time budget, so an
-attempt is bounded by ``restarts`` x ``major_iterations`` alone.
+attempt is bounded by ``restarts`` x ``major_iterations`` alone. Shortcutting likewise stops on
+``shortcut_iterations`` alone: its default 1 s budget is out of reach unless a test sets one.
 """
 
 from __future__ import annotations
@@ -33,14 +34,36 @@ def bound_ik_by_counts(patch: pytest.MonkeyPatch | None = None) -> None:
         patch.setattr(ik_settings, "DEFAULT_IK_SETTINGS", bound)
 
 
+def bound_shortcut_by_counts(patch: pytest.MonkeyPatch | None = None) -> None:
+    """Make shortcutting stop on its attempt count (``shortcut_iterations``) alone: the default clock budget
+    (``MotionSettings.shortcut_time``, 1 s) becomes out of reach unless a test or scene sets one (idempotent).
+
+    A loaded machine otherwise cut shortcutting short and the real-clock guard failed the test.
+
+    Args:
+        patch: records the change so it can be undone; None sets it for the process.
+    """
+    import inspect
+
+    from lazyground.settings import MotionSettings
+
+    names = [n for n, p in inspect.signature(MotionSettings.__init__).parameters.items() if p.default is not p.empty]
+    defaults = list(MotionSettings.__init__.__defaults__)
+    defaults[names.index("shortcut_time")] = 1e9
+    if patch is None:
+        MotionSettings.__init__.__defaults__ = tuple(defaults)
+    else:
+        patch.setattr(MotionSettings.__init__, "__defaults__", tuple(defaults))
+
+
 @pytest.fixture(autouse=True, scope="session")
 def iteration_bound_ik():
-    """IK attempts bounded by counts only (see the module docstring); a no-op without pydrake."""
-    if importlib.util.find_spec("pydrake") is None:
-        yield
-        return
+    """IK attempts and shortcutting bounded by counts only (see the module docstring); IK's a no-op without
+    pydrake."""
     patch = pytest.MonkeyPatch()
-    bound_ik_by_counts(patch)
+    bound_shortcut_by_counts(patch)
+    if importlib.util.find_spec("pydrake") is not None:
+        bound_ik_by_counts(patch)
     yield
     patch.undo()
 

@@ -36,6 +36,7 @@ if str(REPO) not in sys.path:
     sys.path.insert(0, str(REPO))
 
 from lazyground.settings import Algorithm, Strategy  # noqa: E402
+from lazyground.tolerance import accepted_error  # noqa: E402
 
 STRATEGIES = tuple(Strategy)
 BIASES = (0.05, 0.1, 0.2, 0.5)
@@ -43,7 +44,7 @@ ALGORITHMS = tuple(Algorithm)  # both planners on every scene, each with the sce
 PARKING_LIMIT = 5.0  # s: parking solves in 1-2 s; the cap keeps a rare slow run short
 FETCH_LIMITS = {"pick": 2.0, "place": 3.0}  # s: short on purpose; timeouts are fine, invalid paths are not
 PARKING_SHARE = 0.85
-GOAL_TOLERANCE = 0.01  # m / rad: IK meets a pose within 2 mm and 0.01 rad; a path's end must lie in its region within this
+GOAL_TOLERANCE = max(0.01, *accepted_error())  # m / rad: at least what IK accepts (0.011 rad); a path's end must lie in its region within this
 FALLBACK_REQUESTS = {"fetch_cans_1": "pick up a can", "fetch_cans_2": "pick up a can", "fetch_boxes_3": "pick up a box"}
 DEFAULT_RUNS = int(os.environ.get("LAZYGROUND_STRESS_RUNS", "40"))
 

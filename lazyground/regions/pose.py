@@ -15,7 +15,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lazyground.geometry import Pose
+from scipy.optimize import least_squares
+from scipy.spatial.transform import Rotation
+
+from lazyground.geometry import Pose, rpy_to_matrix, wrap_angle
 from lazyground.regions.base import GoalRegion, RegionDrawing, register_region
 
 MIN_DRAWN_SIZE = 0.03  # m: a point-like region (a top grasp) stays visible
@@ -71,8 +74,42 @@ class PoseRegion(GoalRegion):
         raise NotImplementedError
 
     def reached(self, q: np.ndarray, world, tol: float = 1e-6) -> bool:
-        """Whether the pose bounded by the region, at ``q`` (forward kinematics in ``world``), is in the bounds within ``tol``."""
-        return self.contains(self.coordinates_of(self.constrained_pose(q, world).matrix()), tol)
+        """Whether the pose bounded by the region, at ``q`` (forward kinematics in ``world``), lies within ``tol``
+        metres and ``tol`` radians of a pose of the region (:meth:`pose_error`)."""
+        return max(self.pose_error(self.constrained_pose(q, world).matrix())) <= tol
+
+    def pose_error(self, X_WE: np.ndarray) -> tuple[float, float]:
+        """(metres, radians) from a world pose ``X_WE`` (4x4) to the nearest pose of the region found.
+
+        Measured on the poses, not on the bounds' coordinates: roll-pitch-yaw is not a metric, so a rotation
+        of e about the sampled frame's z, at pitch p, moves roll by e tan p and yaw by e / cos p (an angled
+        grasp tilted 42 degrees and met by IK within 0.010 rad lay 0.0128 outside its roll bound). The nearest
+        pose: a bounded least-squares fit of (position, rotation vector) residuals over the region's free
+        axes, from the pose's coordinates clipped to the bounds.
+        """
+        lo, span, wrapped = self.unit_map()
+        mid = lo + span / 2
+        circle = wrapped & (span >= 2 * np.pi - 1e-12)
+        low = np.where(circle, -np.inf, mid - span / 2)
+        high = np.where(circle, np.inf, mid + span / 2)
+        v = self.coordinates_of(X_WE)
+        v = np.clip(np.where(wrapped, mid + wrap_angle(v - mid), v), low, high)  # angles on the arc's side of its middle
+        free = span > 0
+        X_WR, X_SE = self.X_WR.matrix(), self.X_SE.matrix()
+        R_EW = X_WE[:3, :3].T
+
+        def residual(x: np.ndarray) -> np.ndarray:
+            w = v.copy()
+            w[free] = x
+            X_RS = np.eye(4)
+            X_RS[:3, :3], X_RS[:3, 3] = rpy_to_matrix(w[3:6]), w[:3]
+            X = X_WR @ X_RS @ X_SE
+            return np.concatenate([X[:3, 3] - X_WE[:3, 3], Rotation.from_matrix(R_EW @ X[:3, :3]).as_rotvec()])
+
+        if free.any():
+            v[free] = least_squares(residual, v[free], bounds=(low[free], high[free]), xtol=1e-12, ftol=1e-12, gtol=1e-12).x
+        r = residual(v[free])
+        return float(np.linalg.norm(r[:3])), float(np.linalg.norm(r[3:]))
 
     def _json_fields(self) -> dict:
         return {"frame": self.frame, "X_WR": self.X_WR.to_json(), "X_SE": self.X_SE.to_json(), "approach": list(self.approach)}

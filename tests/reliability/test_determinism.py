@@ -30,9 +30,10 @@ CASES = [
 def plan_path(case) -> tuple[str, np.ndarray | None, str | None]:
     """(status, path, chosen object) of one plan; a fresh scene and world every call."""
     from lazyground import api
-    from tests.conftest import bound_ik_by_counts
+    from tests.conftest import bound_ik_by_counts, bound_shortcut_by_counts
 
     bound_ik_by_counts()  # in worker processes too, whatever their start method
+    bound_shortcut_by_counts()
 
     name, request, seed, budget = case
     report = api.plan(scene_path(name), request, seed=seed, time_limit=NO_CLOCK, max_iterations=budget)

@@ -5,6 +5,7 @@ from textwrap import dedent
 
 import numpy as np
 import pytest
+from scipy.spatial.transform import Rotation
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -314,3 +315,37 @@ def test_pose_regions_are_reached_by_the_frame_they_bound():
     for carries_nothing in (_FrameWorld(), SimpleNamespace(frame_pose=_FrameWorld().frame_pose)):  # no attribute
         with pytest.raises(ValueError, match="needs a world with an attached object"):
             p.reached(np.array([0.8, 0.0, 0.0]), carries_nothing)
+
+
+def _angled_region():
+    """An angled grasp's region (grounding/grasps.py angled): roll fixed, tilt 20-50 deg, any yaw, a small depth shift."""
+    return WorkspaceRegion(id="can/angled", interpretation="pick:can", object="can", frame="ee", wrap=(5,),
+                           lower=(0, 0, -0.006, 0, np.radians(20), -np.pi), upper=(0, 0, 0.006, 0, np.radians(50), np.pi),
+                           X_WR=Pose((0.4, 0.5, 0.79), (np.pi, 0.0, 0.0)), X_SE=Pose((0.0, 0.0, -0.01), (0.0, -np.pi / 2, 0.0)))
+
+
+def test_a_tilted_pose_is_reached_within_its_rotation_error_not_its_roll_pitch_yaw_error():
+    """Regression (stress run 38, fetch_cans_1 "pick up a can", Can3/angled): IK met a 42-degree tilted grasp within
+    0.010 rad, and reached(tol=0.01) said no: a rotation of e about the sampled frame's (cos p, 0, sin p) axis moves
+    roll by e / cos p. reached now measures the rotation to the nearest pose of the region."""
+    w = _angled_region()
+    rng = np.random.default_rng(0)
+    for _ in range(40):
+        v = w.sample(rng)
+        p = v[4]
+        e = 0.009  # within tol = 0.01 of the drawn pose, in the direction roll-pitch-yaw stretches most
+        X_WS = w.X_WR.compose(Pose(tuple(v[:3]), tuple(v[3:6])))
+        turned = X_WS.compose(Pose(rpy=tuple(Rotation.from_rotvec(e * np.array([np.cos(p), 0.0, np.sin(p)])).as_euler("xyz"))))
+        X_WE = turned.compose(w.X_SE)
+        assert w.reached(None, _StubWorld({"ee": X_WE}), tol=0.01), v
+        dp, angle = w.pose_error(X_WE.matrix())
+        assert dp <= 1e-4 and angle <= e + 1e-9  # the fit may trade a little position (X_SE lever, 1 cm) for rotation
+    # a turn about the fixed roll axis the free tilt and yaw cannot absorb stays out: 0.03 rad leaves 0.03 cos p
+    v = np.array([0.0, 0.0, 0.0, 0.0, np.radians(45), 1.0])
+    X_WE = w.X_WR.compose(Pose(tuple(v[:3]), tuple(v[3:6]))).compose(Pose(rpy=(0.03, 0.0, 0.0))).compose(w.X_SE)
+    assert w.pose_error(X_WE.matrix())[1] == pytest.approx(0.03 * np.cos(np.radians(45)), rel=1e-3)
+    assert not w.reached(None, _StubWorld({"ee": X_WE}), tol=0.01)
+    # and a shift 5 mm beyond the depth range is 5 mm out (less a trade of rotation for position under 0.1 mm)
+    X_WE = w.pose_in_world(np.array([0.0, 0.0, 0.011, 0.0, np.radians(30), 0.2]))
+    assert w.pose_error(X_WE.matrix()) == pytest.approx((0.005, 0.0), abs=1e-4)
+    assert not w.reached(None, _StubWorld({"ee": X_WE}), tol=0.004)
