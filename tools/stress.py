@@ -6,7 +6,7 @@
 Every run varies the scene, seed, planner, goal-selection strategy and goal bias
 (drawn from ``--seed``, so the list of runs is reproducible). Every solved
 path is re-checked at a tenth of the planner's edge resolution
-(``path_is_valid``); pick-and-place reports are re-checked with
+(``path_is_valid`` in the space it was planned in: a car's along its curves); pick-and-place reports are re-checked with
 ``validate_pick_and_place`` (the carried object included). Every solved plan's
 timed trajectory (issue #16) is re-checked too: its ends, the curve between
 its samples at the same resolution, and its velocity and acceleration limits
@@ -129,10 +129,18 @@ def check_report(report, scene, world) -> list[str]:
         problems.append("path leaves the joint limits")
     if not res.goal_region.reached(res.path[-1], world, tol=GOAL_TOLERANCE):
         problems.append(f"path ends outside goal region {res.goal_region.id}")
-    bad = path_is_valid(world.space, world, res.path, fine)
+    bad = path_is_valid(planned_space(report, scene, world), world, res.path, fine)
     if bad >= 0:
         problems.append(f"segment {bad} collides at resolution {fine:g}")
     return problems
+
+
+def planned_space(report, scene, world):
+    """The space the report's path was planned in: a car's path is re-checked along its curves (what it drives),
+    not along straight lines in (x, y, heading) between its samples, which the planner never checked."""
+    from lazyground.tasks.car_space import planning_space
+
+    return planning_space(scene, world.space, report.settings.planner.kinematics)
 
 
 def _trajectory_problems(report, world, start, fine: float, from_first_free: bool = False) -> list[str]:

@@ -22,7 +22,10 @@ import math
 PI = math.pi
 TWO_PI = 2.0 * math.pi
 HALF_PI = 0.5 * math.pi
-ZERO = 10 * 2.220446049250313e-16  # as OMPL: a length this close to 0 still counts as having its sign
+# A length this close to 0 still counts as having its sign. OMPL's 10 ulp of a unit is too tight for poses tens of
+# radii from the origin: a 0.1 m straight piece of a dense path, re-solved, came out a 0.23 m L-R-L-R wiggle
+# (its start and end rounded ~1e-14 off the line turned every straight word's first arc negative).
+ZERO = 1e-10
 
 Segment = tuple[str, float]
 Word = tuple[Segment, ...]

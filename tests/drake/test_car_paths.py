@@ -66,9 +66,10 @@ def test_returned_car_paths_are_drivable_and_free(name, kinematics, seeds):
         # the shortened one in (x, y, heading) units: "33.016 -> 33.908 (shortened)")
         short = report.motion.shortcut
         assert short.length == pytest.approx(res.path_length) and short.length <= short.raw_length
-        # the independent re-check: straight lines between the dense samples, at 1/10 of the edge resolution
+        # the re-check of the dense samples, along the curves between them (what the car drives), at 1/10 of the
+        # edge resolution: the configurations the planner's fine check took (CarSpace.discretize)
         fine = report.settings.planner.resolution / 10
-        assert path_is_valid(world.space, world, path, fine) == -1, f"seed {seed}: collides between samples"
+        assert path_is_valid(space, world, path, fine) == -1, f"seed {seed}: collides between samples"
     assert solved == len(seeds)
 
 
