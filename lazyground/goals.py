@@ -119,9 +119,11 @@ class RoundRobinGoalSource:
                 plan = self.plan(self.next_region, min(budget, self.batch_size(n - len(out))))
                 results = self.attempts(plan, rng, stop)
                 try:
-                    for j, after in plan:  # the attempts in round-robin order, as if made one by one
+                    for index, (j, after) in enumerate(plan):  # the attempts in round-robin order, as if made one by one
                         if len(out) >= n or budget <= 0 or stop.should_stop():
                             break
+                        if index and self.region_exhausted(j):  # given up since the plan was made (the early
+                            break  # give-up rule): plan afresh from here, as the batch's queue would
                         sample, reason, seconds = next(results)
                         self.next_region = after
                         budget -= 1

@@ -51,7 +51,7 @@ class _Reference:
         self.order += indices
 
     def select(self, rng):
-        if self.name in ("reward-penalty", "cover"):  # the heaviest; ties to the first added
+        if self.name in ("reward-penalty", "cover", "cover-connect"):  # the heaviest; ties to the first added
             return max(self.order, key=lambda i: (self.w[i], -self.order.index(i)))
         if self.name == "random":
             return self.order[int(rng.integers(len(self.order)))]
@@ -59,11 +59,11 @@ class _Reference:
         return i
 
     def reward(self, i):
-        if self.name in ("reward-penalty", "cover"):
+        if self.name in ("reward-penalty", "cover", "cover-connect"):
             self.w[i] = 1.0 if self.w[i] >= 0.5 else self.w[i] / (1.0 - self.w[i])
 
     def penalize(self, i):
-        if self.name in ("reward-penalty", "cover"):  # cover: the same weights, no reset when samples are added
+        if self.name in ("reward-penalty", "cover", "cover-connect"):  # cover (and cover-connect): the same weights, no reset when samples are added
             self.w[i] = self.w[i] / (self.w[i] + 1.0)
             return self.w[i] < 0.2
         return False
