@@ -116,8 +116,8 @@ class BatchAttempts:
     def _solve_group(self, frame: str, group: list[Prepared], rng: np.random.Generator) -> None:
         s = self.source.settings
         t0 = time.perf_counter()
-        near = self.source.near_full() if s.seed_near else None
-        if near is not None and s.restarts == 1:  # every solve from near: no other start to draw
+        near = self.source.near_full()
+        if near is not None and s.seed_near and s.restarts == 1:  # every solve from near: no other start to draw
             starts = np.tile(near, (len(group), 1))
         else:
             starts = self._starts(frame, group, rng)
@@ -126,10 +126,7 @@ class BatchAttempts:
                     if self.source.last[it.j] is not None:
                         starts[g * s.restarts] = self.source.last[it.j]
             if near is not None:
-                starts[::s.restarts] = near
-            elif s.near_first and self.source.near is not None:
-                first = [g for g, it in enumerate(group) if self.source.stats[it.j].valid == 0]
-                starts[[g * s.restarts for g in first]] = self.source.near_full()
+                starts[[g * s.restarts for g, it in enumerate(group) if self.source.starts_near(it.j)]] = near
         answers, ok = self.solver.solve(frame, np.repeat([it.X_WT for it in group], s.restarts, axis=0), np.array(starts))
         t1 = time.perf_counter()
         share = (t1 - t0) / len(group)

@@ -288,9 +288,7 @@ class IKGoalSource(RoundRobinGoalSource):
         if reason:
             return self.learn(j, v, None, reason)
         seeds = [self.last[j]] if self.last[j] is not None and self.settings.warm_start else []
-        near = self.near_full() if self.settings.seed_near else None
-        seeds = seeds if near is None else [near]
-        if near is None and self.settings.near_first and self.near is not None and self.stats[j].valid == 0:
+        if self.near is not None and self.starts_near(j):
             seeds = [self.near_full()]
         item = Prepared(j, -1, v, frame, X_WT.matrix())
         return self.learn(j, v, *self._first_valid(
@@ -371,6 +369,11 @@ class IKGoalSource(RoundRobinGoalSource):
         problem = self.batch.solver.problems[frame]
         _, J = problem.chain.forward(q_full[problem.chain.index][None], jacobian=True)
         return np.linalg.pinv(J[0] * problem.free)
+
+    def starts_near(self, j: int) -> bool:
+        """Whether region ``j``'s first restart starts from ``near`` (given one): always under ``seed_near``;
+        under ``near_first`` while the region has no valid sample (its first goal on the branch nearest the start)."""
+        return self.settings.seed_near or (self.settings.near_first and self.stats[j].valid == 0)
 
     def near_full(self) -> np.ndarray | None:
         """Full plant positions at ``near`` (the step's start), or None without one."""
