@@ -22,7 +22,7 @@ from lazyground.tasks.car_space import planning_space  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 
 SCENES = Path(__file__).resolve().parents[2] / "yaml_scenes"
-UNBOUNDED = dict(time_limit=1e6, max_iterations=20_000, shortcut_time=1e9)  # tests/counts.BY_COUNTS: shortcutting by its count
+UNBOUNDED = dict(time_limit=1e6, max_iterations=20_000)
 
 
 def assert_drivable(space: CarSpace, path: np.ndarray) -> None:

@@ -22,7 +22,6 @@ from lazyground.motion.validate import trajectory_problems  # noqa: E402
 from lazyground.tasks.place import validate_pick_and_place  # noqa: E402
 from lazyground.planning import path_is_valid  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
-from tests.counts import BY_COUNTS  # noqa: E402
 
 SCENES = sorted((Path(__file__).resolve().parents[2] / "yaml_scenes").glob("*.yaml"))
 CASES = [
@@ -52,8 +51,7 @@ def test_scene_expectation(path, k):
         assert {i.id for i in g.interpretations} == set(expect.interpretations)
     world = DrakeWorld(scene)
     overrides = {"time_limit": expect.time_limit, "max_iterations": expect.max_iterations, "strategy": expect.strategy,
-                 "algorithm": expect.algorithm, "goal_bias": expect.goal_bias,
-                 "shortcut_time": BY_COUNTS["shortcut_time"]}  # shortcutting by its iteration count, not the clock
+                 "algorithm": expect.algorithm, "goal_bias": expect.goal_bias}
     solved = 0
     for seed in range(expect.seeds):
         report = api.plan(scene, expect.request, seed=seed, world=world, **overrides)
