@@ -281,28 +281,59 @@ def _merge_close(space: ConfigSpace, piece: np.ndarray, resolution: float) -> np
 
 
 @dataclass(frozen=True)
+class _Quadratics:
+    """Drake's s(t) from TOPP-RA (quadratic pieces: constant s'' between grid points) as arrays, so that
+    s, s', s'' at many times take a few numpy calls, not new PiecewisePolynomial derivatives per
+    evaluation; the same values as the PiecewisePolynomial's (to rounding)."""
+
+    breaks: np.ndarray  # (n + 1,) segment times
+    s: np.ndarray  # (n,) at each segment's start
+    sd: np.ndarray
+    sdd: np.ndarray  # constant on each segment
+
+    @classmethod
+    def of(cls, pp) -> "_Quadratics":
+        n = pp.get_number_of_segments()
+        if any(pp.getSegmentPolynomialDegree(k) > 2 for k in range(n)):
+            raise ValueError("s(t) has a piece of degree > 2")
+        breaks = np.asarray(pp.get_segment_times(), float)
+        start, mid = breaks[:-1], 0.5 * (breaks[:-1] + breaks[1:])
+        sdd = pp.derivative(2).vector_values(mid)[0]
+        return cls(breaks, pp.vector_values(start)[0], pp.derivative(1).vector_values(mid)[0] - sdd * (mid - start), sdd)
+
+    @property
+    def end_time(self) -> float:
+        return float(self.breaks[-1])
+
+    def __call__(self, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """s, s', s'' at times tau in [0, end_time]."""
+        k = np.clip(np.searchsorted(self.breaks, tau, side="right") - 1, 0, len(self.sdd) - 1)
+        h = tau - self.breaks[k]
+        sd, sdd = self.sd[k], self.sdd[k]
+        return self.s[k] + h * (sd + 0.5 * h * sdd), sd + h * sdd, sdd
+
+
+@dataclass(frozen=True)
 class _Timed:
     """One curve q(u) timed by u(t) on [0, duration]; ``stretch`` >= 1 slows u(t) uniformly."""
 
     curve: Curve
-    s_of_t: object  # pydrake PiecewisePolynomial u(t)
+    s_of_t: _Quadratics  # u(t): Drake's TOPP-RA solution
     stretch: float
 
     @property
     def duration(self) -> float:
-        return self.s_of_t.end_time() * self.stretch
+        return self.s_of_t.end_time * self.stretch
 
-    def _u(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        tau = np.clip(np.asarray(t, float) / self.stretch, 0.0, self.s_of_t.end_time())
-        return tau, np.clip(self.s_of_t.vector_values(tau)[0], 0.0, 1.0)
-
-    def evaluate(self, t: np.ndarray):
-        """q, qd, qdd at times t in [0, duration]."""
-        tau, u = self._u(t)
-        ud = self.s_of_t.derivative(1).vector_values(tau)[0] / self.stretch
-        udd = self.s_of_t.derivative(2).vector_values(tau)[0] / self.stretch**2
+    def evaluate(self, t: np.ndarray, positions: bool = True):
+        """q, qd, qdd at times t in [0, duration] (q None when not ``positions``)."""
+        tau = np.clip(np.asarray(t, float) / self.stretch, 0.0, self.s_of_t.end_time)
+        u, ud, udd = self.s_of_t(tau)
+        u = np.clip(u, 0.0, 1.0)
+        ud, udd = ud / self.stretch, udd / self.stretch**2
         d1, d2 = self.curve.spline(1)(u), self.curve.spline(2)(u)
-        return self.curve.spline()(u), d1 * ud[:, None], d2 * (ud**2)[:, None] + d1 * udd[:, None]
+        q = self.curve.spline()(u) if positions else None
+        return q, d1 * ud[:, None], d2 * (ud**2)[:, None] + d1 * udd[:, None]
 
 
 # TOPP-RA's grid: ``TimingSettings.grid_per_span`` points in every knot span of the B-spline
@@ -351,16 +382,16 @@ def _time_curve(curve: Curve, limits: Limits, dt: float, grid: int) -> _Timed:
             break
     else:
         raise RuntimeError("TOPP-RA found no time parameterisation")
-    timed = _Timed(curve, s_of_t, 1.0)
+    timed = _Timed(curve, _Quadratics.of(s_of_t), 1.0)
     # probed twice as finely as the output samples, so that those mostly respect the limits too (assemble slows
     # down what still exceeds them). Against four times, seeds 0-19 on the three Fetch scenes: 3 more slow-downs
     # in 60 trajectories (74 samplings against 71), durations within 4e-5, peaks within the limits, half the probing CPU.
     probe = np.linspace(0.0, timed.duration, max(400, int(2 * timed.duration / dt)))
-    _, qd, qdd = timed.evaluate(probe)
+    _, qd, qdd = timed.evaluate(probe, positions=False)
     over_v = np.max(np.abs(qd) / limits.velocity)
     over_a = np.max(np.abs(qdd) / limits.acceleration)
     stretch = max(1.0, over_v, np.sqrt(over_a)) * (1.0 + 1e-6)
-    return _Timed(curve, s_of_t, stretch)
+    return replace(timed, stretch=stretch)
 
 
 @contextlib.contextmanager
