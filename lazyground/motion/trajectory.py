@@ -38,7 +38,8 @@ class TimingSettings:
     speed: float = 1.0
     sample_rate: float = 100.0  # Hz
     blends: tuple[float, ...] = (0.3, 0.1, 0.03)  # tried in order; then stops at waypoints
-    grid_per_span: int = 4  # TOPP-RA grid points per knot span of the curve (retried with twice as many)
+    grid_per_span: int = 4  # TOPP-RA grid points per knot span of the curve (retried with twice as many) ...
+    corner_grid: int | None = None  # ... and per span that bends (None: as many)
 
     def for_shortened(self) -> "TimingSettings":
         """For a shortened path (few long segments, not a car's dense curve samples).
@@ -46,9 +47,14 @@ class TimingSettings:
         On the Fetch scenes, blends of 0.2 / 0.07 / 0.02 and 3 grid points per span gave 6 %
         shorter trajectories than 0.3 / 0.1 / 0.03 and 4, with 30 % fewer corner configurations to
         check and 2/3 of the TOPP-RA time; on a car's paths (hundreds of short segments) they gave
-        trajectories 1.3-2x longer, which keep the defaults.
+        trajectories 1.3-2x longer, which keep the defaults. Then (#31) 4 grid points on the straight
+        spans and 2 (their ends) on the spans that bend: the largest overshoot between grid points, which
+        slows a whole curve down, lay on straight spans (the robot speeding up or cruising). On the 30
+        curves of the three Fetch scenes, seeds 0-9, against 3 per span: 11-13 % fewer grid points (Toppra's
+        solve is ~0.15 ms a point), durations 7.6 / 4.6 / 9.0 % shorter in sum on cans_1 / cans_2 / boxes_3
+        (one curve in 30 6 % longer); 4 and 3 gave 1-2 % shorter durations for 25 % more points.
         """
-        return replace(self, blends=(0.2, 0.07, 0.02), grid_per_span=3)
+        return replace(self, blends=(0.2, 0.07, 0.02), grid_per_span=4, corner_grid=2)
 
     def __post_init__(self):
         if not 0 < self.speed <= 1:
@@ -129,7 +135,7 @@ def time_path(
 
         def time_piece(k: int, level: int):
             return _time_piece(space, pieces[k], options[level], fine_resolution, scaled, 1.0 / settings.sample_rate,
-                               settings.grid_per_span)
+                               (settings.grid_per_span, settings.corner_grid or settings.grid_per_span))
 
     return assemble(space, checker, q[0], len(pieces), levels, time_piece, scaled, fine_resolution,
                     settings.sample_rate, t0)
@@ -251,7 +257,8 @@ def _time_line(a: np.ndarray, b: np.ndarray, limits: Limits) -> _TimedLine:
     return _TimedLine(a, d, V, A)
 
 
-def _time_piece(space, piece: np.ndarray, blend: float | None, resolution: float, limits: Limits, dt: float, grid: int):
+def _time_piece(space, piece: np.ndarray, blend: float | None, resolution: float, limits: Limits, dt: float,
+                grid: tuple[int, int]):
     """([timed curves], label) for a piece between two stops: one blended curve, or (``blend`` None,
     or TOPP-RA failing on the curve) straight segments with a stop at every waypoint."""
     if len(piece) == 2 or blend is None:
@@ -336,9 +343,9 @@ class _Timed:
         return q, d1 * ud[:, None], d2 * (ud**2)[:, None] + d1 * udd[:, None]
 
 
-# TOPP-RA's grid: ``TimingSettings.grid_per_span`` points in every knot span of the B-spline
-# (curvature changes within a span; the uniform slow-down below absorbs the overshoot between grid
-# points). Its solve costs ~0.3 ms per grid point. A grid that leaves TOPP-RA no finite solution (a
+# TOPP-RA's grid: ``TimingSettings.grid_per_span`` points in every straight knot span of the B-spline,
+# ``corner_grid`` in every span that bends (the uniform slow-down below absorbs the overshoot between grid
+# points). Its solve costs ~0.15 ms per grid point. A grid that leaves TOPP-RA no finite solution (a
 # single straight span with 2 points does) is refined.
 MIN_GRID = 9
 # At most this many grid points per curve: a car's curve through its dense samples has thousands of
@@ -348,9 +355,13 @@ MAX_GRID = 400
 SANE = 4.0
 
 
-def _toppra_grid(curve: Curve, per_span: int) -> np.ndarray:
-    """``per_span`` points in every span (at least MIN_GRID in all), thinned evenly to MAX_GRID."""
-    grid = curve.grid(max(per_span, -(-MIN_GRID // (len(curve.breaks) - 1)) + 1))
+def _toppra_grid(curve: Curve, per_span: tuple[int, int]) -> np.ndarray:
+    """(straight, bending) points per span (at least MIN_GRID in all), thinned evenly to MAX_GRID."""
+    counts = np.where(curve.straight_spans, *per_span)
+    spans = len(counts)
+    if counts.sum() - spans + 1 < MIN_GRID:
+        counts = np.maximum(counts, -(-MIN_GRID // spans) + 1)
+    grid = curve.grid(counts)
     if len(grid) <= MAX_GRID:
         return grid
     return grid[np.unique(np.linspace(0, len(grid) - 1, MAX_GRID).round().astype(int))]
@@ -365,12 +376,12 @@ def _resting_time(points: np.ndarray, limits: Limits) -> float:
     return float(per.max(axis=1).sum()) if len(per) else 0.0
 
 
-def _time_curve(curve: Curve, limits: Limits, dt: float, grid: int) -> _Timed:
+def _time_curve(curve: Curve, limits: Limits, dt: float, grid: tuple[int, int]) -> _Timed:
     """TOPP-RA on the curve, then the uniform slow-down that makes dense samples respect the limits."""
     from pydrake.multibody.optimization import Toppra
 
     path = _drake_bspline(curve)
-    for per_span in (grid, 2 * grid):
+    for per_span in (grid, (2 * grid[0], 2 * grid[1])):
         toppra = Toppra(path, _point_plant(len(limits.velocity)), _toppra_grid(curve, per_span))
         toppra.AddJointVelocityLimit(-limits.velocity, limits.velocity)
         toppra.AddJointAccelerationLimit(-limits.acceleration, limits.acceleration)

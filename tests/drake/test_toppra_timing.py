@@ -18,7 +18,7 @@ def _solved(seed):
     curve = blended_curve(path, 0.2)
     limits = Limits(rng.uniform(0.5, 2.0, 3), rng.uniform(0.5, 3.0, 3))
     path = _drake_bspline(curve)  # Toppra keeps a reference to it, not the object: it must outlive the solve
-    toppra = Toppra(path, _point_plant(3), _toppra_grid(curve, 3))
+    toppra = Toppra(path, _point_plant(3), _toppra_grid(curve, (4, 2)))
     toppra.AddJointVelocityLimit(-limits.velocity, limits.velocity)
     toppra.AddJointAccelerationLimit(-limits.acceleration, limits.acceleration)
     s_of_t = toppra.SolvePathParameterization()
@@ -40,3 +40,13 @@ def test_the_arrays_give_drakes_s_and_its_derivatives(seed):
     inner = inner[np.min(np.abs(inner[:, None] - fast.breaks[None, :]), axis=1) > 1e-9]
     assert np.allclose(fast(inner)[2], s_of_t.derivative(2).vector_values(inner)[0], rtol=0, atol=1e-9 * scale)
     assert fast.end_time == s_of_t.end_time()
+
+
+def test_a_blended_paths_curve_runs_straight_in_the_middle_of_every_segment():
+    curve = blended_curve(np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 2.0], [3.0, 2.5]]), 0.2)
+    straight = curve.straight_spans
+    assert len(straight) == len(curve.breaks) - 1 == 7
+    assert straight.tolist() == [True, False, False, True, False, False, True]
+    grid = _toppra_grid(curve, (4, 2))  # 3 straight spans of 3 intervals, 4 bending ones of 1
+    assert len(grid) == 3 * 3 + 4 + 1 and np.all(np.diff(grid) > 0) and grid[0] == 0.0 and grid[-1] == 1.0
+    assert len(_toppra_grid(curve, (4, 4))) == 7 * 3 + 1
