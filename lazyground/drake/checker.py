@@ -108,8 +108,8 @@ class DrakeChecker:
         q_full = self.coordinates.full(q)
         if self.compiled is None:
             free = not self._penetrates(q_full)
-        else:  # the certifier's test for penetration (thresholds less the padding; COLLIDES: a penetration), then
-            # the open pairs' penetration (every other pair is proven apart)
+        else:  # the certifier's test for penetration (thresholds less the padding; COLLIDES: a padded collision,
+            # False here as before), then the open pairs' penetration (every other pair is proven apart)
             code, pairs = self.compiled.certify_one(q_full, self._unpadded_shift)
             free = code == 0 or code != COLLIDES and (
                 self._open_free(q_full, pairs, unpadded=True) if code > 0 else not self._penetrates(q_full))

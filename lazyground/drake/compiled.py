@@ -62,8 +62,8 @@ class CompiledCertifier:
 
     def certify_one(self, q_full: np.ndarray, shift: float = 0.0) -> tuple[int, np.ndarray | None]:
         """(the code of one configuration (:meth:`certify`), its open pairs when it has some). ``shift``: the
-        padding, to ask whether any pair penetrates instead (every pair's threshold less it; COLLIDES: a
-        penetration), where every checked pair has that one padding."""
+        padding, to ask whether any pair penetrates instead (0 and the open pairs: against every pair's threshold
+        less it; COLLIDES is still a padded collision), where every checked pair has that one padding."""
         code = kernels.certify_one(q_full, self.fd, self.idata, self._work, self._open, shift)
         return code, (self._open[:code].copy() if code > 0 else None)
 

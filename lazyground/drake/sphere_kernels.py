@@ -162,14 +162,15 @@ def _centres(node, go, Rb, pb, centre):
 @njit(cache=True)
 def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap, shift):
     """Open pairs of one configuration into ``pairs``; returns their count (0: certified; -1: more than ``cap``;
-    COLLIDES: a pair proven closer than Drake's padding less ``shift``, by a sphere inside a moving geometry reaching
-    into the exact solid of the other side, or by both exact solids' distance (:func:`_solids`)). ``shift``: 0, or
-    the padding for the question whether any pair penetrates (thresholds less the padding).
+    COLLIDES: a pair proven closer than Drake's padding, by a sphere inside a moving geometry reaching into the
+    exact solid of the other side). ``shift``: 0, or the padding for the tentative question whether any pair
+    penetrates (config_unpadded_free): the solids' distance then only needs to clear the threshold less the
+    padding; COLLIDES stays a padded collision (that check's False, as before #31).
 
     Per pair, coarse to fine: the moving geometry's bounding sphere against the other solid; its inner spheres
     reaching into it (a proof of collision); its cover spheres, and at the first one within reach, the boxes around
-    both solids, then both solids' distance (the sphere and box tests stay at the threshold: clear there is clear
-    for less). The robot-vs-obstacle and robot-vs-robot loops are written out twice: one inline pair test for both
+    both solids, then both solids' distance (:func:`_solids`; the sphere and box tests stay at the threshold: clear
+    there is clear for less). The robot-vs-obstacle and robot-vs-robot loops are written out twice: one inline pair test for both
     measured ~15 % slower per row (#31)."""
     _forward(q, fd, idata, Rs, ps, Rb, pb)
     G, O, P = idata[_G], idata[_O], idata[_P]
@@ -195,7 +196,7 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap,
             if _offset_distance(vx, vy, vz, oR[o], ohalf[o], oround[o], ocyl[o]) - rg - thr > 0.0:
                 continue
             if oexact[o] and _inner_reach(node[g], Rb, pb, ic, ir, istart[g], istart[g + 1], oR[o], oo[o], ohalf[o],
-                                          oround[o], ocyl[o], thr - below - shift):
+                                          oround[o], ocyl[o], thr - below):
                 return COLLIDES
             if done[g] == 0.0:
                 _spheres(g, node[g], Rb, pb, sc, start, sph)
@@ -206,12 +207,9 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap,
                     _solid_axes(Rb, node[g], gR, g, A)
                     if _box_gap(A, centre[g], ghalf[g], oR[o], oo[o], ohalf[o]) - ground[g] - oround[o] - thr > 0.0:
                         break  # the two boxes around the solids are apart: clear
-                    verdict = _solids(A, centre[g], ghalf[g], ground[g], gcyl[g], oR[o], oo[o], ohalf[o], oround[o],
-                                      ocyl[o], oexact[o] and gexact[g], thr, below, shift)
-                    if verdict > 0:
+                    if _solids(A, centre[g], ghalf[g], ground[g], gcyl[g], oR[o], oo[o], ohalf[o], oround[o], ocyl[o],
+                               thr, shift):
                         break
-                    if verdict < 0:
-                        return COLLIDES
                     if count >= cap:
                         return -1
                     pairs[count] = g * O + o
@@ -231,7 +229,7 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap,
         if _offset_distance(vx, vy, vz, W, ghalf[h], ground[h], gcyl[h]) - grad[g] - thr > 0.0:
             continue
         if gexact[h] and _inner_reach(node[g], Rb, pb, ic, ir, istart[g], istart[g + 1], W, centre[h], ghalf[h],
-                                      ground[h], gcyl[h], thr - below - shift):
+                                      ground[h], gcyl[h], thr - below):
             return COLLIDES
         if done[g] == 0.0:
             _spheres(g, node[g], Rb, pb, sc, start, sph)
@@ -242,12 +240,9 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap,
                 _solid_axes(Rb, node[g], gR, g, A)
                 if _box_gap(A, centre[g], ghalf[g], W, centre[h], ghalf[h]) - ground[g] - ground[h] - thr > 0.0:
                     break
-                verdict = _solids(A, centre[g], ghalf[g], ground[g], gcyl[g], W, centre[h], ghalf[h], ground[h], gcyl[h],
-                                  gexact[h] and gexact[g], thr, below, shift)
-                if verdict > 0:
+                if _solids(A, centre[g], ghalf[g], ground[g], gcyl[g], W, centre[h], ghalf[h], ground[h], gcyl[h], thr,
+                           shift):
                     break
-                if verdict < 0:
-                    return COLLIDES
                 if count >= cap:
                     return -1
                 pairs[count] = G * O + k
@@ -257,14 +252,13 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap,
 
 
 @njit(cache=True, inline="always")
-def _solids(A, ca, ha, ra, cyla, B, cb, hb, rb, cylb, exact, thr, below, shift):
-    """The last test of a pair whose cover leaves it open: both solids' distance (:func:`_gjk`). 1: clear
-    (farther than ``thr - shift``), -1: proven within ``thr - below - shift`` (only where both solids are exact;
-    CURVED less where one is curved), 0: open."""
-    near = thr - below - shift
-    if cyla or cylb or ra > 0.0 or rb > 0.0:
-        near -= CURVED
-    return _gjk(A, ca, ha, ra, cyla, B, cb, hb, rb, cylb, thr - shift, near if exact else -np.inf)
+def _solids(A, ca, ha, ra, cyla, B, cb, hb, rb, cylb, thr, shift):
+    """The last test of a pair whose cover leaves it open: whether both solids' distance provably exceeds
+    ``thr - shift`` (:func:`_gjk`'s lower bound). Never a proof of collision: Drake's distance of a separated pair
+    is that of two points on the shapes, so at least the true one (a free claim stays Drake's), but it can be far
+    above it (FCL's GJK stopping early: 12.4 mm for a true 4.8 mm, box against box, on fetch_cans_2), so a
+    collision claim from the true distance would not be Drake's answer."""
+    return _gjk(A, ca, ha, ra, cyla, B, cb, hb, rb, cylb, thr - shift, -np.inf) > 0
 
 
 @njit(cache=True)
@@ -336,15 +330,11 @@ def _spheres(g, b, Rb, pb, sc, start, sph):
 #   point), so the distance is at least that (a separating axis); GJK only picks a good n. A solid encloses its
 #   shape, so this bounds the shapes' distance too.
 # * upper: a convex combination of support points of A - B lies in A - B, so its norm bounds the distance from
-#   above; an origin inside a (non-flat) simplex of them: the solids intersect. Used as a proof of collision only
-#   where both solids are their shapes (``exact``), as the inner spheres are.
+#   above; an origin inside a (non-flat) simplex of them: the solids intersect. Not used by the kernel as a proof
+#   of collision: Drake's own distance can be far above the true one (see _solids).
 
 GJK_ITERATIONS = 32
 GJK_SAFETY = 1e-9  # metres: a lower bound must clear its threshold by this much (the arithmetic's rounding)
-# metres: Drake's distance of a pair with a curved solid (cylinder, capsule, sphere) can exceed the true one (its GJK
-# stops within a tolerance: up to 1.5 mm above ours on 1,400 near Fetch box-cylinder pairs; never below it for
-# separated pairs), so a collision is claimed there only this far inside the padding (a free claim needs no slack)
-CURVED = 3e-3
 
 
 @njit(cache=True, inline="always")
@@ -523,6 +513,8 @@ def _gjk(RA, cA, hA, rA, cylA, RB, cB, hB, rB, cylB, free_above, collide_at):
         vv = vx * vx + vy * vy + vz * vz
         if np.sqrt(vv) <= collide_at:
             return -1
+        if vv <= (free_above + GJK_SAFETY) ** 2:  # a point of A - B this near: never provable farther (stop early)
+            return 0
         if vv <= 1e-30:
             return 0
         ax, ay, az = _support(-vx, -vy, -vz, RA, cA, hA, rA, cylA)
