@@ -65,6 +65,22 @@ def _terminal(toks: list[Token], i: int) -> str:
     return cat.upper()
 
 
+def _row_name(t: Token) -> bool:
+    """A row's name after "row": one letter ("row c") or a number ("row 2")."""
+    return (len(t.text) == 1 and t.text.isalpha()) or t.cat == "number"
+
+
+def _row_per_name(toks: list[Token]) -> list[Token]:
+    """ "row t or b" -> "row t or row b": each name joined by "or" to a row's name names a row too."""
+    out: list[Token] = []
+    for i, t in enumerate(toks):
+        if (i >= 2 and toks[i - 1].cat == "disjunction" and _row_name(t) and _row_name(toks[i - 2])
+                and any(o.cat == "row" for o in out[-3:-2])):
+            out.append(out[-3])
+        out.append(t)
+    return out
+
+
 @lru_cache(maxsize=1)
 def _parser() -> Lark:
     return Lark(GRAMMAR.read_text(), parser="lalr", lexer=_Tokens, maybe_placeholders=False, propagate_positions=True)
@@ -85,7 +101,7 @@ def parse(tokens: list[Token], lexicon: Lexicon, things: str) -> Request:
     Raises:
         GroundingError: one line naming the unknown word or where the sentence stopped making sense.
     """
-    toks = [t for t in tokens if t.cat not in DROPPED]
+    toks = _row_per_name([t for t in tokens if t.cat not in DROPPED])
     if not toks:
         raise GroundingError("empty request: say what to do, e.g. 'pick up a can', 'put a cup on the table' or 'park'")
     first = toks[1] if toks[0].cat == "negation" and len(toks) > 1 else toks[0]
