@@ -15,7 +15,6 @@ A noun-less phrase that only holds positions ("the can on the left") joins the p
 from __future__ import annotations
 
 import hashlib
-import os
 import sys
 from dataclasses import replace
 from functools import lru_cache
@@ -28,6 +27,7 @@ from lark.lexer import Lexer
 from grounding.lexicon import Entry, Lexicon, Token
 from grounding.model import GroundingError
 from grounding.phrases import Clause, Location, Modifier, NounPhrase, PrepPhrase, Quantity, Request
+from lazyground.user_cache import cache_dir
 
 DROPPED = {"polite", "filler", "particle"}
 GRAMMAR = Path(__file__).with_name("grammar.lark")
@@ -87,13 +87,13 @@ def _row_per_name(toks: list[Token]) -> list[Token]:
 
 def _cache_file(grammar: str) -> str | bool:
     """Where the built parser is kept between processes: one file per grammar, lark and Python version in the
-    user's cache directory ($XDG_CACHE_HOME or ~/.cache, then lazyground/); False (no cache) if it cannot be made.
+    user's cache folder (``lazyground.user_cache``: $LAZYGROUND_CACHE/grammar); False (no cache) if it cannot be made.
 
     Building the LALR tables takes ~0.1-0.2 s of CPU, the first request of every process; loading them ~0.01 s.
     lark checks the file's grammar hash before using it and rebuilds on any unreadable or stale file.
     """
     try:
-        root = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "lazyground"
+        root = cache_dir("grammar")
         root.mkdir(parents=True, exist_ok=True)
     except (OSError, RuntimeError):  # RuntimeError: no home directory
         return False

@@ -105,7 +105,7 @@ def test_api_and_place_do_not_import_each_other():
 LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("scene", ("lazyground.scene", "lazyground.robots", "lazyground.typed_yaml", "lazyground.geometry",
                "lazyground.settings", "lazyground.planner_spec", "lazyground.bundled", "lazyground.mesh_files",
-               "lazyground.tolerance", "lazyground.interrupt")),
+               "lazyground.tolerance", "lazyground.interrupt", "lazyground.user_cache")),
     ("regions", ("lazyground.regions",)),
     ("grounding", ("grounding",)),
     ("planning", ("lazyground.planning",)),
