@@ -35,6 +35,7 @@ from lazyground.drake.world import DrakeWorld
 from lazyground.planning import birrt, search
 from lazyground.planning.nn import NearestNeighbors
 from lazyground.planning.tree import Tree
+from lazyground.settings import Algorithm, Strategy
 
 MODES = ("none", "forest", "select", "forest+select")
 STATE: dict = {"mode": "none", "reach": set(), "search": None, "counts": collections.Counter()}
@@ -93,9 +94,10 @@ def main(argv=None) -> int:
     p.add_argument("--seeds", default="0-4", help="a-b or a comma list")
     p.add_argument("--cap", type=int, default=2000, help="iteration cap")
     p.add_argument("--time-limit", type=float, default=60.0)
-    p.add_argument("--strategy", default="cover-connect")
-    p.add_argument("--algorithm", default="bidirectional", help="rrt: the one-tree planner (no goal forest: "
-                   "the forest columns stay empty, the oracles change only its strategy's choice)")
+    p.add_argument("--strategy", default=Strategy.COVER_CONNECT.value)
+    p.add_argument("--algorithm", default=Algorithm.BIDIRECTIONAL.value,
+                   help=f"{Algorithm.RRT}: the one-tree planner (no goal forest: the forest columns stay empty, "
+                   "the oracles change only its strategy's choice)")
     p.add_argument("--goal-bias", type=float, default=None, help="default: the scene's (0.05)")
     p.add_argument("--oracle", action="store_true", help="also run the oracles")
     a = p.parse_args(argv)
