@@ -17,7 +17,8 @@ them). Example (about 6 min on a quiet machine)::
 
 The paper's one-tree planner on the same lots (no goal forest; 4,000-iteration cap)::
 
-    PYTHONPATH=. python3 tools/lot_growth.py --sizes 8,64 --seeds 0-5 --cap 4000 --algorithm rrt --strategy cover --goal-bias 0.2
+    PYTHONPATH=. python3 tools/lot_growth.py --sizes 8,64 --seeds 0-5 --cap 4000 \\
+        --algorithm rrt --strategy reward-penalty --goal-bias 0.05
 """
 
 from __future__ import annotations
