@@ -7,7 +7,7 @@ import pytest
 
 from lazyground.planning import PlannerSettings, PlanStatus, path_is_valid, solve
 from lazyground.planning.stop import FakeClock, StopCondition, StopReason
-from tests.unit.toy import INVALID, REACHABLE, SPACE, START, UNREACHABLE, WALLS, BoxWorld, goal_source
+from tests.unit.toy import INVALID, REACHABLE, SPACE, START, UNREACHABLE, WALLS, BoxWorld, goal_source, region
 from tests.unit.toy import NO_CLOCK, SOLVE_BUDGET, TIMEOUT_BUDGET
 
 SETTINGS = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=SOLVE_BUDGET, goal_bias=0.1)
@@ -96,7 +96,7 @@ def test_start_outside_limits():
 def test_no_valid_goal_names_each_region():
     world, res = run([INVALID], 0)
     assert res.status is PlanStatus.NO_VALID_GOAL
-    assert "block: 50 configurations tried, 0 valid (in collision x50)" in res.message
+    assert res.message == "no valid goal configuration in any goal region: block: 50 configurations tried, 0 valid (in collision x50)"
 
 
 def fake_stop(settings: PlannerSettings) -> StopCondition:
@@ -115,6 +115,19 @@ def test_a_limit_reached_before_every_region_was_tried_is_a_timeout(algorithm):
     settings = PlannerSettings(time_limit=1.0, algorithm=algorithm)  # time to give up on the region
     world, res = run([INVALID], 0, settings, stop=fake_stop(settings))
     assert res.status is PlanStatus.NO_VALID_GOAL, res.message
+
+
+def test_regions_a_limit_came_before_are_named_not_tried():
+    # 1 ms on a clock that advances 1 ms per reading: over before the first goal-sampling attempt
+    settings = PlannerSettings(time_limit=0.001)
+    world, res = run([INVALID, region("block2", 8.0, 6.75, half=0.5)], 0, settings, stop=fake_stop(settings))
+    assert res.status is PlanStatus.TIMEOUT
+    assert res.message.endswith(": block: not tried; block2: not tried"), res.message
+
+
+def test_a_solved_result_has_an_empty_message():
+    world, res = run([REACHABLE], 0)
+    assert res.status is PlanStatus.SOLVED and res.message == ""
 
 
 def test_timeout_respects_the_limit():
