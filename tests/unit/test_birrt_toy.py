@@ -1,5 +1,7 @@
 """The bidirectional variant (start tree + goal forest) on the 2-D toy world."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -161,3 +163,25 @@ def test_only_paths_that_pass_at_the_planner_resolution_reach_the_fine_recheck(m
             world, res = run([REACHABLE], seed, walls=walls)
             assert res.solved and seen
             assert all(path_is_valid(SPACE, world, path, BI.resolution) == -1 for path in seen), (x, seed)
+
+
+def test_a_goal_turn_credits_the_selected_tree_by_its_own_step(monkeypatch):
+    # each credit follows, in the same iteration, the selected goal tree's step: blocked (-1) is a penalty
+    # (gap -1), a free step is judged by its gap to the start tree (>= 0)
+    import lazyground.planning.birrt as birrt
+
+    events = []
+    extend, credit = birrt._extend, birrt._credit
+    monkeypatch.setattr(birrt, "_extend", lambda s, tree, near, q: events.append(
+        ("extend", s.iterations, tree is s.trees[1], extend(s, tree, near, q))) or events[-1][3])
+    monkeypatch.setattr(birrt, "_credit", lambda s, gi, closest, gap: events.append(
+        ("credit", s.iterations, gap)) or credit(s, gi, closest, gap))
+    for seed in range(3):
+        events.clear()
+        run([UNREACHABLE, REACHABLE], seed, replace(BI, goal_bias=0.5))
+        credits = [i for i, e in enumerate(events) if e[0] == "credit"]
+        assert credits and any(events[i][2] < 0 for i in credits) and any(events[i][2] >= 0 for i in credits)
+        for i in credits:
+            kind, iteration, goal_tree, b = events[i - 1]
+            assert kind == "extend" and iteration == events[i][1] and goal_tree, (seed, events[i - 1], events[i])
+            assert (events[i][2] < 0) == (b < 0)
