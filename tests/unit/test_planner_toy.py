@@ -50,6 +50,27 @@ def test_result_records_counts_and_time_split():
     assert pocket and all(s.rewards == 0 or s.penalties > 0 for s in pocket)
 
 
+class CountingWorld(BoxWorld):
+    """The toy world on a check clock: each configuration checked costs one 'second'."""
+
+    @property
+    def check_time(self) -> float:
+        return float(self.checks)
+
+
+def test_collision_time_and_count_leave_out_every_goal_draws_checks():
+    # on the check clock, the search's collision seconds are its collision checks, one for one, however many draws
+    settings = replace(SETTINGS, initial_goal_samples=1, resample_count=1)  # one sample per draw: many draws
+    resamplings = 0
+    for seed in range(3):
+        world = CountingWorld(WALLS)
+        res = solve(SPACE, world, goal_source(world, [UNREACHABLE, REACHABLE]), START, settings, np.random.default_rng(seed))
+        assert 0 < res.collision_checks < world.checks  # the draws' checks are left out
+        assert res.collision_s == res.collision_checks
+        resamplings += res.resamplings
+    assert resamplings >= 2
+
+
 def test_reward_penalty_penalises_unreachable_samples_and_resamples():
     settings = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=SOLVE_BUDGET, goal_bias=0.5, initial_goal_samples=4, resample_count=4)
     world, res = run([UNREACHABLE], 0, replace(settings, max_iterations=TIMEOUT_BUDGET))
