@@ -69,6 +69,13 @@ def test_collision_time_and_count_leave_out_every_goal_draws_checks():
         assert res.collision_s == res.collision_checks
         resamplings += res.resamplings
     assert resamplings >= 2
+    # a second plan on the same world and goal source counts only its own checks and goal-sampling time
+    goals = goal_source(world, [UNREACHABLE, REACHABLE])
+    solve(SPACE, world, goals, START, settings, np.random.default_rng(0))
+    checks, sampling = world.checks, goals.sample_time
+    res = solve(SPACE, world, goals, START, settings, np.random.default_rng(1))
+    assert 0 < res.collision_checks < world.checks - checks and res.collision_s == res.collision_checks
+    assert 0 <= res.goal_sampling_s <= goals.sample_time - sampling
 
 
 def test_reward_penalty_penalises_unreachable_samples_and_resamples():
@@ -91,7 +98,7 @@ def test_a_one_tree_timeout_says_what_to_try():
     _, res = run([UNREACHABLE], 0, settings)
     assert res.status is PlanStatus.TIMEOUT and res.message.endswith("try --algorithm bidirectional")
     _, res = run([UNREACHABLE], 0, replace(settings, algorithm="bidirectional"))
-    assert res.status is PlanStatus.TIMEOUT and "try --algorithm" not in res.message
+    assert res.status is PlanStatus.TIMEOUT and res.message == "no path within 5 iterations (max_iterations)"
 
 
 def test_same_seed_same_path():
