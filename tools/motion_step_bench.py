@@ -200,8 +200,12 @@ def main(argv=None) -> int:
             ratio = _median([a["wall"] / b["wall"] for a, b in zip(base, other)])
             cpu = _median([a["cpu"] / b["cpu"] for a, b in zip(base, other)])
             mean_len = sum(b["length"] / a["length"] for a, b in zip(base, other)) / max(1, len(base))
+            durations = [b["duration"] / a["duration"] for a, b in zip(base, other)
+                         if a["duration"] > 0 and b["duration"] == b["duration"]]  # nan: no trajectory
+            mean_dur = sum(durations) / max(1, len(durations))
             print(f"|  | {labels[0]} / {labels[-1]}, median per request | {ratio:.2f}x | {cpu:.2f}x | length "
-                  f"{labels[-1]} / {labels[0]}, mean {mean_len:.4f} |", flush=True)
+                  f"{labels[-1]} / {labels[0]}, mean {mean_len:.4f} | duration, mean {mean_dur:.4f} "
+                  f"(max {max(durations, default=float('nan')):.4f}) |", flush=True)
     print(f"# load {os.getloadavg()[0]:.1f} at end; phases nest (fine may run inside greedy; dense inside timing); "
           "bad, bad/2 = failed re-checks of path and trajectory at the fine resolution (the tests'), and at half of it")
     return 0

@@ -64,11 +64,27 @@ class Curve:
     def knots(self) -> np.ndarray:
         return np.concatenate([np.zeros(DEGREE), self.breaks, np.ones(DEGREE)])
 
-    def grid(self, per_span: int) -> np.ndarray:
-        """``per_span`` points in every knot span, both ends included, increasing."""
+    def grid(self, per_span) -> np.ndarray:
+        """``per_span`` points in every knot span (an int, or one per span), both ends included, increasing."""
         b = self.breaks
-        inner = (b[:-1, None] + np.diff(b)[:, None] * (np.arange(per_span - 1) / (per_span - 1))).ravel()
-        return np.append(inner, 1.0)
+        counts = np.broadcast_to(np.asarray(per_span, int), (len(b) - 1,))
+        inner = [b[j] + (b[j + 1] - b[j]) * np.arange(m - 1) / (m - 1) for j, m in enumerate(counts)]
+        return np.append(np.concatenate(inner), 1.0)
+
+    @functools.cached_property
+    def straight_spans(self) -> np.ndarray:
+        """Per knot span, whether the curve runs straight there (its four control points on one line):
+        on a blended path, the middle of every segment."""
+        c = self.control
+        if len(c) < DEGREE + 1:
+            return np.zeros(len(self.breaks) - 1, bool)
+        four = np.stack([c[k : len(c) - DEGREE + k] for k in range(DEGREE + 1)], axis=1)  # (spans, 4, dim)
+        d = four[:, -1] - four[:, 0]
+        length = np.linalg.norm(d, axis=1)
+        unit = d / np.where(length > 0, length, 1.0)[:, None]
+        off = four - four[:, :1]
+        across = off - np.einsum("skd,sd->sk", off, unit)[:, :, None] * unit[:, None, :]
+        return (length > 0) & (np.max(np.linalg.norm(across, axis=2), axis=1) <= 1e-9 * np.maximum(1.0, length))
 
     def spline(self, derivative: int = 0) -> BSpline:
         return self._splines[derivative]

@@ -288,17 +288,13 @@ class _FineCheck:
         """The version that made the first segment failing the check (0: a piece of the input path), or None
         if all pass.
 
-        The segments not checked yet go to the checker in one batch (one call into Drake).
+        The segments are checked in path order up to the first that fails: the ones after it may never be
+        needed (the version goes), and when they are (an earlier version keeps them) they are checked then.
         """
-        segments = [(_segment_key(a, b), a, b, born) for a, b, born in zip(p.q[:-1], p.q[1:], p.new)]
-        todo = {key: (a, b) for key, a, b, _ in segments if key not in self.known}
-        if todo:
-            chunks = [self.space.discretize(a, b, self.resolution) for a, b in todo.values()]
-            free = np.asarray(sequence_free(self.checker, np.vstack(chunks)), bool)
-            ends = np.cumsum([len(c) for c in chunks])
-            for key, end, n in zip(todo, ends, (len(c) for c in chunks)):
-                self.known[key] = bool(free[end - n : end].all())
-        return next((born for key, _, _, born in segments if not self.known[key]), None)
+        for a, b, born in zip(p.q[:-1], p.q[1:], p.new):
+            if not self.segment_free(a, b):
+                return born
+        return None
 
     def segment_free(self, a: np.ndarray, b: np.ndarray) -> bool:
         """Whether a -> b passes the check (remembered)."""

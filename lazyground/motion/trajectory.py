@@ -38,7 +38,8 @@ class TimingSettings:
     speed: float = 1.0
     sample_rate: float = 100.0  # Hz
     blends: tuple[float, ...] = (0.3, 0.1, 0.03)  # tried in order; then stops at waypoints
-    grid_per_span: int = 4  # TOPP-RA grid points per knot span of the curve (retried with twice as many)
+    grid_per_span: int = 4  # TOPP-RA grid points per knot span of the curve (retried with twice as many) ...
+    corner_grid: int | None = None  # ... and per span that bends (None: as many)
 
     def for_shortened(self) -> "TimingSettings":
         """For a shortened path (few long segments, not a car's dense curve samples).
@@ -46,9 +47,14 @@ class TimingSettings:
         On the Fetch scenes, blends of 0.2 / 0.07 / 0.02 and 3 grid points per span gave 6 %
         shorter trajectories than 0.3 / 0.1 / 0.03 and 4, with 30 % fewer corner configurations to
         check and 2/3 of the TOPP-RA time; on a car's paths (hundreds of short segments) they gave
-        trajectories 1.3-2x longer, which keep the defaults.
+        trajectories 1.3-2x longer, which keep the defaults. Then (#31) 4 grid points on the straight
+        spans and 2 (their ends) on the spans that bend: the largest overshoot between grid points, which
+        slows a whole curve down, lay on straight spans (the robot speeding up or cruising). On the 30
+        curves of the three Fetch scenes, seeds 0-9, against 3 per span: 11-13 % fewer grid points (Toppra's
+        solve is ~0.15 ms a point), durations 7.6 / 4.6 / 9.0 % shorter in sum on cans_1 / cans_2 / boxes_3
+        (one curve in 30 6 % longer); 4 and 3 gave 1-2 % shorter durations for 25 % more points.
         """
-        return replace(self, blends=(0.2, 0.07, 0.02), grid_per_span=3)
+        return replace(self, blends=(0.2, 0.07, 0.02), grid_per_span=4, corner_grid=2)
 
     def __post_init__(self):
         if not 0 < self.speed <= 1:
@@ -129,7 +135,7 @@ def time_path(
 
         def time_piece(k: int, level: int):
             return _time_piece(space, pieces[k], options[level], fine_resolution, scaled, 1.0 / settings.sample_rate,
-                               settings.grid_per_span)
+                               (settings.grid_per_span, settings.corner_grid or settings.grid_per_span))
 
     return assemble(space, checker, q[0], len(pieces), levels, time_piece, scaled, fine_resolution,
                     settings.sample_rate, t0)
@@ -251,7 +257,8 @@ def _time_line(a: np.ndarray, b: np.ndarray, limits: Limits) -> _TimedLine:
     return _TimedLine(a, d, V, A)
 
 
-def _time_piece(space, piece: np.ndarray, blend: float | None, resolution: float, limits: Limits, dt: float, grid: int):
+def _time_piece(space, piece: np.ndarray, blend: float | None, resolution: float, limits: Limits, dt: float,
+                grid: tuple[int, int]):
     """([timed curves], label) for a piece between two stops: one blended curve, or (``blend`` None,
     or TOPP-RA failing on the curve) straight segments with a stop at every waypoint."""
     if len(piece) == 2 or blend is None:
@@ -281,33 +288,64 @@ def _merge_close(space: ConfigSpace, piece: np.ndarray, resolution: float) -> np
 
 
 @dataclass(frozen=True)
+class _Quadratics:
+    """Drake's s(t) from TOPP-RA (quadratic pieces: constant s'' between grid points) as arrays, so that
+    s, s', s'' at many times take a few numpy calls, not new PiecewisePolynomial derivatives per
+    evaluation; the same values as the PiecewisePolynomial's (to rounding)."""
+
+    breaks: np.ndarray  # (n + 1,) segment times
+    s: np.ndarray  # (n,) at each segment's start
+    sd: np.ndarray
+    sdd: np.ndarray  # constant on each segment
+
+    @classmethod
+    def of(cls, pp) -> "_Quadratics":
+        n = pp.get_number_of_segments()
+        if any(pp.getSegmentPolynomialDegree(k) > 2 for k in range(n)):
+            raise ValueError("s(t) has a piece of degree > 2")
+        breaks = np.asarray(pp.get_segment_times(), float)
+        start, mid = breaks[:-1], 0.5 * (breaks[:-1] + breaks[1:])
+        sdd = pp.derivative(2).vector_values(mid)[0]
+        return cls(breaks, pp.vector_values(start)[0], pp.derivative(1).vector_values(mid)[0] - sdd * (mid - start), sdd)
+
+    @property
+    def end_time(self) -> float:
+        return float(self.breaks[-1])
+
+    def __call__(self, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """s, s', s'' at times tau in [0, end_time]."""
+        k = np.clip(np.searchsorted(self.breaks, tau, side="right") - 1, 0, len(self.sdd) - 1)
+        h = tau - self.breaks[k]
+        sd, sdd = self.sd[k], self.sdd[k]
+        return self.s[k] + h * (sd + 0.5 * h * sdd), sd + h * sdd, sdd
+
+
+@dataclass(frozen=True)
 class _Timed:
     """One curve q(u) timed by u(t) on [0, duration]; ``stretch`` >= 1 slows u(t) uniformly."""
 
     curve: Curve
-    s_of_t: object  # pydrake PiecewisePolynomial u(t)
+    s_of_t: _Quadratics  # u(t): Drake's TOPP-RA solution
     stretch: float
 
     @property
     def duration(self) -> float:
-        return self.s_of_t.end_time() * self.stretch
+        return self.s_of_t.end_time * self.stretch
 
-    def _u(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        tau = np.clip(np.asarray(t, float) / self.stretch, 0.0, self.s_of_t.end_time())
-        return tau, np.clip(self.s_of_t.vector_values(tau)[0], 0.0, 1.0)
-
-    def evaluate(self, t: np.ndarray):
-        """q, qd, qdd at times t in [0, duration]."""
-        tau, u = self._u(t)
-        ud = self.s_of_t.derivative(1).vector_values(tau)[0] / self.stretch
-        udd = self.s_of_t.derivative(2).vector_values(tau)[0] / self.stretch**2
+    def evaluate(self, t: np.ndarray, positions: bool = True):
+        """q, qd, qdd at times t in [0, duration] (q None when not ``positions``)."""
+        tau = np.clip(np.asarray(t, float) / self.stretch, 0.0, self.s_of_t.end_time)
+        u, ud, udd = self.s_of_t(tau)
+        u = np.clip(u, 0.0, 1.0)
+        ud, udd = ud / self.stretch, udd / self.stretch**2
         d1, d2 = self.curve.spline(1)(u), self.curve.spline(2)(u)
-        return self.curve.spline()(u), d1 * ud[:, None], d2 * (ud**2)[:, None] + d1 * udd[:, None]
+        q = self.curve.spline()(u) if positions else None
+        return q, d1 * ud[:, None], d2 * (ud**2)[:, None] + d1 * udd[:, None]
 
 
-# TOPP-RA's grid: ``TimingSettings.grid_per_span`` points in every knot span of the B-spline
-# (curvature changes within a span; the uniform slow-down below absorbs the overshoot between grid
-# points). Its solve costs ~0.3 ms per grid point. A grid that leaves TOPP-RA no finite solution (a
+# TOPP-RA's grid: ``TimingSettings.grid_per_span`` points in every straight knot span of the B-spline,
+# ``corner_grid`` in every span that bends (the uniform slow-down below absorbs the overshoot between grid
+# points). Its solve costs ~0.15 ms per grid point. A grid that leaves TOPP-RA no finite solution (a
 # single straight span with 2 points does) is refined.
 MIN_GRID = 9
 # At most this many grid points per curve: a car's curve through its dense samples has thousands of
@@ -317,9 +355,13 @@ MAX_GRID = 400
 SANE = 4.0
 
 
-def _toppra_grid(curve: Curve, per_span: int) -> np.ndarray:
-    """``per_span`` points in every span (at least MIN_GRID in all), thinned evenly to MAX_GRID."""
-    grid = curve.grid(max(per_span, -(-MIN_GRID // (len(curve.breaks) - 1)) + 1))
+def _toppra_grid(curve: Curve, per_span: tuple[int, int]) -> np.ndarray:
+    """(straight, bending) points per span (at least MIN_GRID in all), thinned evenly to MAX_GRID."""
+    counts = np.where(curve.straight_spans, *per_span)
+    spans = len(counts)
+    if counts.sum() - spans + 1 < MIN_GRID:
+        counts = np.maximum(counts, -(-MIN_GRID // spans) + 1)
+    grid = curve.grid(counts)
     if len(grid) <= MAX_GRID:
         return grid
     return grid[np.unique(np.linspace(0, len(grid) - 1, MAX_GRID).round().astype(int))]
@@ -334,12 +376,12 @@ def _resting_time(points: np.ndarray, limits: Limits) -> float:
     return float(per.max(axis=1).sum()) if len(per) else 0.0
 
 
-def _time_curve(curve: Curve, limits: Limits, dt: float, grid: int) -> _Timed:
+def _time_curve(curve: Curve, limits: Limits, dt: float, grid: tuple[int, int]) -> _Timed:
     """TOPP-RA on the curve, then the uniform slow-down that makes dense samples respect the limits."""
     from pydrake.multibody.optimization import Toppra
 
     path = _drake_bspline(curve)
-    for per_span in (grid, 2 * grid):
+    for per_span in (grid, (2 * grid[0], 2 * grid[1])):
         toppra = Toppra(path, _point_plant(len(limits.velocity)), _toppra_grid(curve, per_span))
         toppra.AddJointVelocityLimit(-limits.velocity, limits.velocity)
         toppra.AddJointAccelerationLimit(-limits.acceleration, limits.acceleration)
@@ -351,16 +393,16 @@ def _time_curve(curve: Curve, limits: Limits, dt: float, grid: int) -> _Timed:
             break
     else:
         raise RuntimeError("TOPP-RA found no time parameterisation")
-    timed = _Timed(curve, s_of_t, 1.0)
+    timed = _Timed(curve, _Quadratics.of(s_of_t), 1.0)
     # probed twice as finely as the output samples, so that those mostly respect the limits too (assemble slows
     # down what still exceeds them). Against four times, seeds 0-19 on the three Fetch scenes: 3 more slow-downs
     # in 60 trajectories (74 samplings against 71), durations within 4e-5, peaks within the limits, half the probing CPU.
     probe = np.linspace(0.0, timed.duration, max(400, int(2 * timed.duration / dt)))
-    _, qd, qdd = timed.evaluate(probe)
+    _, qd, qdd = timed.evaluate(probe, positions=False)
     over_v = np.max(np.abs(qd) / limits.velocity)
     over_a = np.max(np.abs(qdd) / limits.acceleration)
     stretch = max(1.0, over_v, np.sqrt(over_a)) * (1.0 + 1e-6)
-    return _Timed(curve, s_of_t, stretch)
+    return replace(timed, stretch=stretch)
 
 
 @contextlib.contextmanager

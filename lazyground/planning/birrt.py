@@ -144,10 +144,13 @@ def _step(s: Search, tree: Tree, parent: int, q_new: np.ndarray) -> int:
     """
     q_parent = tree.nodes[parent]
     if tree is not s.trees[0]:
-        return tree.add(q_new, parent) if s.motion.edge_free(q_parent, q_new, s.settings.resolution) else -1
-    free = getattr(s.checker, "config_unpadded_free", s.checker.config_free)
-    if not free(q_new) or not all(free(s.space.interpolate(q_parent, q_new, t)) for t in LAZY_PROBES):
+        return tree.add(q_new, parent) if s.motion.edge_free(q_parent, q_new, s.resolution) else -1
+    free = s.probe_free
+    if not free(q_new):
         return -1  # (most steps end blocked: the probes are computed only past a free end)
+    for t in LAZY_PROBES:
+        if not free(s.space.interpolate(q_parent, q_new, t)):
+            return -1
     return tree.add(q_new, parent, checked=False)
 
 
@@ -216,7 +219,7 @@ def _check_start_edges(s: Search, ts: Tree, start_side: list[int], path: np.ndar
     Segment k of the path ends at start-tree node start_side[k + 1]; those before a bad one count as checked.
     """
     todo = [k for k in range(len(start_side) - 1) if not ts.checked[start_side[k + 1]]]
-    bad = path_is_valid(s.space, s.checker, path, s.settings.resolution, todo) if todo else -1
+    bad = path_is_valid(s.space, s.checker, path, s.resolution, todo) if todo else -1
     for k in todo:
         if 0 <= bad <= k:
             break

@@ -73,6 +73,10 @@ class Search:
             stop = StopCondition.after(settings.time_limit, max_iterations=settings.max_iterations)
         self.seed, self.keep_tree, self.stop = seed, keep_tree, stop
         self.motion = space.motion_validator(checker)  # edges as the space moves along them (OMPL's MotionValidator)
+        # read once, not per step (#31): the edge spacing and the probe a lazy step asks (penetration only where
+        # the checker has it)
+        self.resolution = settings.resolution
+        self.probe_free = getattr(checker, "config_unpadded_free", checker.config_free)
         self.t0 = stop.now()
         self._check_t0, self._sample_t0 = checker.check_time, goals.sample_time
         self._sampling_checks = 0.0  # collision checks made by the goal sampler count as goal sampling

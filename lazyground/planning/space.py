@@ -23,6 +23,8 @@ import numpy as np
 from lazyground.geometry import wrap_angle
 from lazyground.planning.motion_validator import MotionValidator
 
+FLOAT_PATH_MAX_DIM = 16  # OpenBLAS's dot sums 16 or more entries in blocks: numpy's rounding, not a loop's
+
 
 @dataclass(frozen=True)
 class ConfigSpace:
@@ -44,6 +46,8 @@ class ConfigSpace:
     _w_lin: np.ndarray = field(init=False, repr=False)
     _w_ang: np.ndarray = field(init=False, repr=False)
     _span: np.ndarray = field(init=False, repr=False)
+    _w2_list: tuple | None = field(init=False, repr=False)  # the squared weights as floats: the float path (below)
+    embeds_as_is: bool = field(init=False, repr=False)  # the embedding is the coordinates (no angles, unit weights)
 
     def __post_init__(self):
         n = len(self.names)
@@ -66,6 +70,12 @@ class ConfigSpace:
         object.__setattr__(self, "_w_lin", weights[~wrap])
         object.__setattr__(self, "_w_ang", weights[wrap])
         object.__setattr__(self, "_span", upper - lower)
+        # Every coordinate linear and fewer than 16 of them: distances and probes on Python floats, the same IEEE
+        # operations in the same order as numpy's (np.dot below 16 entries sums in order; checked bit for bit,
+        # tests/unit/test_space_floats.py), without numpy's call overhead on tiny arrays (#31).
+        fast = not wrap.any() and n < FLOAT_PATH_MAX_DIM
+        object.__setattr__(self, "_w2_list", tuple((weights**2).tolist()) if fast else None)
+        object.__setattr__(self, "embeds_as_is", not wrap.any() and bool(np.all(weights == 1.0)))
 
     @property
     def dim(self) -> int:
@@ -76,7 +86,10 @@ class ConfigSpace:
         return len(self._lin) + 2 * len(self._ang)
 
     def sample(self, rng: np.random.Generator) -> np.ndarray:
-        return self.lower + rng.random(len(self._span)) * self._span
+        q = rng.random(len(self._span))
+        q *= self._span  # (in place: lower + r * span, the same numbers without two temporaries)
+        q += self.lower
+        return q
 
     def embed(self, q: np.ndarray) -> np.ndarray:
         """Points whose Euclidean distance is the space's metric (rows or one vector)."""
@@ -100,6 +113,13 @@ class ConfigSpace:
         An angle difference d weighted w contributes the chord (2 w sin(d/2))^2
         = 2 w^2 (1 - cos d), which needs no wrapping.
         """
+        w2 = self._w2_list
+        if w2 is not None:
+            s = 0.0
+            for w, x, y in zip(w2, np.asarray(a, float).tolist(), np.asarray(b, float).tolist()):
+                v = y - x
+                s += w * (v * v)
+            return math.sqrt(s)
         return self._length(np.subtract(b, a))
 
     def _length(self, d: np.ndarray) -> float:
@@ -111,6 +131,8 @@ class ConfigSpace:
 
     def interpolate(self, a: np.ndarray, b: np.ndarray, t) -> np.ndarray:
         """Configurations a + t (b - a) along shortest arcs; ``t`` scalar or 1-D."""
+        if self._w2_list is not None and isinstance(t, float):  # (a lazy probe: Python floats, the same numbers)
+            return np.array([x + t * (y - x) for x, y in zip(np.asarray(a, float).tolist(), np.asarray(b, float).tolist())])
         t = np.asarray(t, float)
         q = np.asarray(a, float) + np.multiply.outer(t, self.difference(a, b))
         if len(self._ang):
@@ -125,6 +147,15 @@ class ConfigSpace:
 
     def steer(self, a: np.ndarray, b: np.ndarray, step: float) -> tuple[np.ndarray, bool]:
         """Move from a towards b by at most ``step``; returns (q, reached_b)."""
+        if not len(self._ang):  # no angles: the same numbers in fewer numpy calls
+            a = np.asarray(a, float)
+            diff = np.subtract(b, a)
+            d = math.sqrt(np.dot(self._w2, diff * diff))
+            if d <= step:
+                return np.array(b, float), True
+            diff *= step / d  # (in place: a + (step / d) * diff as below)
+            diff += a
+            return diff, False
         diff = self.difference(a, b)
         d = self._length(diff)
         if d <= step:

@@ -14,6 +14,10 @@ from lazyground.planning.nn import NearestNeighbors
 from lazyground.planning.space import ConfigSpace
 
 
+def _as_is(q: np.ndarray) -> np.ndarray:
+    return np.asarray(q, float)
+
+
 class Tree:
     def __init__(self, space: ConfigSpace, per_label: bool = False):
         self.space = space
@@ -27,6 +31,8 @@ class Tree:
         self._per_label = per_label
         self._label_nn: dict[int, tuple[NearestNeighbors, list[int]]] = {}
         self._local: list[int] = []  # index of each node in its label's index
+        # (coordinates that are their own embedding are not copied per query: the index copies what it keeps)
+        self._embed = _as_is if getattr(space, "embeds_as_is", False) else space.embed
 
     def __len__(self) -> int:
         return len(self.nodes)
@@ -45,7 +51,7 @@ class Tree:
         self.goal_biased.append(goal_biased)
         self.alive.append(True)
         self.checked.append(checked)
-        x = self.space.embed(q)
+        x = self._embed(q)
         i = self.nn.add(x)
         if self._per_label:
             nn, members = self._label_nn.setdefault(label, (NearestNeighbors(self.space.embed_dim, capacity=64), []))
@@ -59,7 +65,7 @@ class Tree:
         A space with ``nn_candidates`` > 1 (a car) ranks that many nearest nodes of the
         embedding by its own :meth:`closest` (the driving distance to ``q``).
         """
-        x = self.space.embed(q)
+        x = self._embed(q)
         if label is None:
             nn, members = (self.nn, None) if len(self.nn) else (None, None)
         else:
@@ -82,7 +88,7 @@ class Tree:
             return [i] if i >= 0 else []
         if not len(self.nn):
             return []
-        return [j for j in self.nn.nearest_k(self.space.embed(q), k).tolist() if self.alive[j]]
+        return [j for j in self.nn.nearest_k(self._embed(q), k).tolist() if self.alive[j]]
 
     def chain(self, i: int) -> list[int]:
         """Node indices from ``i`` up to its root."""

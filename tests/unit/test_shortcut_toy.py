@@ -193,3 +193,16 @@ def test_the_greedy_search_on_probes_keeps_only_points_whose_whole_edge_passes()
     assert all(edge(a, b) for a, b in zip(out.q[:-2], out.q[1:-1]))  # the last is a piece of the input's own segment
     assert 0.9 < out.q[1][0] <= 1.0 and out.q[1][1] == 4.0  # the farthest point seen whole, within 4 / 2**6
     assert "rest" in asked
+
+
+def test_the_fine_check_stops_at_the_first_failing_segment():
+    # a version whose second segment crosses the wall: its third segment is not checked (the version goes);
+    # an earlier version that keeps that segment checks it then
+    world = CountingWorld(WALLS)
+    a, b, c, d = np.array([1.0, 1.0]), np.array([3.0, 1.0]), np.array([6.0, 1.0]), np.array([6.0, 0.2])
+    fine = _FineCheck(SPACE, world, FINE, np.array([a, d]))
+    assert fine.first_failure(_Path(SPACE, [a, b, c, d], [2, 3, 1])) == 3
+    first_two = len(SPACE.discretize(a, b, FINE)) + len(SPACE.discretize(b, c, FINE))
+    assert world.asked <= first_two  # c -> d was not asked about
+    assert fine.first_failure(_Path(SPACE, [a, c, d], [0, 1])) == 0 and world.asked <= first_two + len(SPACE.discretize(a, c, FINE))
+    assert fine.first_failure(_Path(SPACE, [c, d], [1])) is None
