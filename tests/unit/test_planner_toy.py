@@ -78,6 +78,15 @@ def test_collision_time_and_count_leave_out_every_goal_draws_checks():
     assert 0 <= res.goal_sampling_s <= goals.sample_time - sampling
 
 
+def test_the_strategy_resamples_at_the_planners_threshold():
+    # threshold 0.6: a penalty takes any weight (at most 1) to at most 0.5, below it, so every penalty of the
+    # one-tree planner asks for more samples (the default 0.2 takes four penalties from 1)
+    settings = replace(SETTINGS, goal_bias=0.5, resample_threshold=0.6, max_iterations=300)
+    world, res = run([UNREACHABLE], 0, settings)
+    penalties = sum(s.penalties for s in res.goal_samples)
+    assert penalties > 0 and res.resamplings == penalties
+
+
 def test_reward_penalty_penalises_unreachable_samples_and_resamples():
     settings = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=SOLVE_BUDGET, goal_bias=0.5, initial_goal_samples=4, resample_count=4)
     world, res = run([UNREACHABLE], 0, replace(settings, max_iterations=TIMEOUT_BUDGET))
