@@ -40,7 +40,7 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
     "search": (["lazyground/planning/search.py", "lazyground/planning/rrt.py", "lazyground/planning/birrt.py"],
                ["tests/unit/test_planner_toy.py", "tests/unit/test_birrt_toy.py", "tests/unit/test_fine_recheck.py",
                 "tests/contract/test_planner_contract.py"]),
-    "cover": (["lazyground/planning/cover.py"],
+    "cover-rule": (["lazyground/planning/cover.py"],
               ["tests/unit/test_cover.py", "tests/contract/test_strategy_contract.py", "tests/unit/test_strategies.py"]),
     "validate": (["lazyground/motion/validate.py", "lazyground/motion/limits.py"],
                  ["tests/unit/test_validate.py", "tests/unit/test_motion_checks.py"]),
