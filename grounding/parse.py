@@ -14,16 +14,20 @@ A noun-less phrase that only holds positions ("the can on the left") joins the p
 
 from __future__ import annotations
 
+import hashlib
+import sys
 from dataclasses import replace
 from functools import lru_cache
 from pathlib import Path
 
+import lark
 from lark import Lark, Token as LarkToken, Transformer, UnexpectedInput, v_args
 from lark.lexer import Lexer
 
 from grounding.lexicon import Entry, Lexicon, Token
 from grounding.model import GroundingError
 from grounding.phrases import Clause, Location, Modifier, NounPhrase, PrepPhrase, Quantity, Request
+from lazyground.user_cache import cache_dir
 
 DROPPED = {"polite", "filler", "particle"}
 GRAMMAR = Path(__file__).with_name("grammar.lark")
@@ -65,9 +69,43 @@ def _terminal(toks: list[Token], i: int) -> str:
     return cat.upper()
 
 
+def _row_name(t: Token) -> bool:
+    """A row's name after "row": one letter ("row c") or a number ("row 2")."""
+    return (len(t.text) == 1 and t.text.isalpha()) or t.cat == "number"
+
+
+def _row_per_name(toks: list[Token]) -> list[Token]:
+    """ "row t or b" -> "row t or row b": each name joined by "or" to a row's name names a row too."""
+    out: list[Token] = []
+    for i, t in enumerate(toks):
+        if (i >= 2 and toks[i - 1].cat == "disjunction" and _row_name(t) and _row_name(toks[i - 2])
+                and any(o.cat == "row" for o in out[-3:-2])):
+            out.append(out[-3])
+        out.append(t)
+    return out
+
+
+def _cache_file(grammar: str) -> str | bool:
+    """Where the built parser is kept between processes: one file per grammar, lark and Python version in the
+    user's cache folder (``lazyground.user_cache``: $LAZYGROUND_CACHE/grammar); False (no cache) if it cannot be made.
+
+    Building the LALR tables takes ~0.1-0.2 s of CPU, the first request of every process; loading them ~0.01 s.
+    lark checks the file's grammar hash before using it and rebuilds on any unreadable or stale file.
+    """
+    try:
+        root = cache_dir("grammar")
+        root.mkdir(parents=True, exist_ok=True)
+    except (OSError, RuntimeError):  # RuntimeError: no home directory
+        return False
+    digest = hashlib.sha256(f"{grammar}{lark.__version__}".encode()).hexdigest()[:16]
+    return str(root / f"grammar-{digest}-py{sys.version_info[0]}{sys.version_info[1]}.lark")
+
+
 @lru_cache(maxsize=1)
 def _parser() -> Lark:
-    return Lark(GRAMMAR.read_text(), parser="lalr", lexer=_Tokens, maybe_placeholders=False, propagate_positions=True)
+    grammar = GRAMMAR.read_text()
+    return Lark(grammar, parser="lalr", lexer=_Tokens, maybe_placeholders=False, propagate_positions=True,
+                cache=_cache_file(grammar))
 
 
 def verb_list(lexicon: Lexicon) -> str:
@@ -85,7 +123,7 @@ def parse(tokens: list[Token], lexicon: Lexicon, things: str) -> Request:
     Raises:
         GroundingError: one line naming the unknown word or where the sentence stopped making sense.
     """
-    toks = [t for t in tokens if t.cat not in DROPPED]
+    toks = _row_per_name([t for t in tokens if t.cat not in DROPPED])
     if not toks:
         raise GroundingError("empty request: say what to do, e.g. 'pick up a can', 'put a cup on the table' or 'park'")
     first = toks[1] if toks[0].cat == "negation" and len(toks) > 1 else toks[0]

@@ -126,6 +126,8 @@ class Resolver:
             objs = [self.scene.object(np.value)]
         elif np.head == "idref":
             objs = self._idref(np, role)
+        elif np.head == "row" and role == "park":  # "park in spot b1 or row t": that row's spots
+            objs = [o for row in self._rows(np) for o in row]
         elif np.head == "noun":
             objs = self.scene.objects_of_type(np.value)
             if not objs:

@@ -14,6 +14,11 @@ The oracles patch the planner's internals in this process only (a diagnosis; not
 them). Example (about 6 min on a quiet machine)::
 
     PYTHONPATH=. python3 tools/lot_growth.py --sizes 8,64,256 --seeds 0-9 --cap 2000 --oracle
+
+The paper's one-tree planner on the same lots (no goal forest; 4,000-iteration cap)::
+
+    PYTHONPATH=. python3 tools/lot_growth.py --sizes 8,64 --seeds 0-5 --cap 4000 \\
+        --algorithm rrt --strategy reward-penalty --goal-bias 0.05
 """
 
 from __future__ import annotations
@@ -31,6 +36,7 @@ from lazyground.drake.world import DrakeWorld
 from lazyground.planning import birrt, search
 from lazyground.planning.nn import NearestNeighbors
 from lazyground.planning.tree import Tree
+from lazyground.settings import Algorithm, Strategy
 
 MODES = ("none", "forest", "select", "forest+select")
 STATE: dict = {"mode": "none", "reach": set(), "search": None, "counts": collections.Counter()}
@@ -89,7 +95,11 @@ def main(argv=None) -> int:
     p.add_argument("--seeds", default="0-4", help="a-b or a comma list")
     p.add_argument("--cap", type=int, default=2000, help="iteration cap")
     p.add_argument("--time-limit", type=float, default=60.0)
-    p.add_argument("--strategy", default="cover-connect")
+    p.add_argument("--strategy", default=Strategy.COVER_CONNECT.value)
+    p.add_argument("--algorithm", default=Algorithm.BIDIRECTIONAL.value,
+                   help=f"{Algorithm.RRT}: the one-tree planner (no goal forest: the forest columns stay empty, "
+                   "the oracles change only its strategy's choice)")
+    p.add_argument("--goal-bias", type=float, default=None, help="default: the scene's (0.05)")
     p.add_argument("--oracle", action="store_true", help="also run the oracles")
     a = p.parse_args(argv)
     seeds = (list(range(int(a.seeds.split("-")[0]), int(a.seeds.split("-")[1]) + 1)) if "-" in a.seeds
@@ -107,8 +117,9 @@ def main(argv=None) -> int:
             STATE["counts"] = collections.Counter()
             its, secs, solved = [], [], 0
             for seed in seeds:
-                r = api.plan(scene, "park", seed=seed, world=world, strategy=a.strategy, algorithm="bidirectional",
-                             time_limit=a.time_limit, max_iterations=a.cap).result
+                bias = {} if a.goal_bias is None else {"goal_bias": a.goal_bias}
+                r = api.plan(scene, "park", seed=seed, world=world, strategy=a.strategy, algorithm=a.algorithm,
+                             time_limit=a.time_limit, max_iterations=a.cap, **bias).result
                 secs.append(r.time_s)  # the planner's own time (no grounding, shortcut or timing)
                 its.append(r.iterations)
                 solved += r.status.value == "solved"

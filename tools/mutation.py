@@ -22,6 +22,7 @@ import argparse
 import json
 import os
 import random
+import re
 import shutil
 import subprocess
 import sys
@@ -39,6 +40,8 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
     "search": (["lazyground/planning/search.py", "lazyground/planning/rrt.py", "lazyground/planning/birrt.py"],
                ["tests/unit/test_planner_toy.py", "tests/unit/test_birrt_toy.py", "tests/unit/test_fine_recheck.py",
                 "tests/contract/test_planner_contract.py"]),
+    "cover-rule": (["lazyground/planning/cover.py"],
+              ["tests/unit/test_cover.py", "tests/contract/test_strategy_contract.py", "tests/unit/test_strategies.py"]),
     "validate": (["lazyground/motion/validate.py", "lazyground/motion/limits.py"],
                  ["tests/unit/test_validate.py", "tests/unit/test_motion_checks.py"]),
     "spatial": (["grounding/spatial.py"], ["tests/unit/test_spatial.py", "tests/unit/test_grounding.py",
@@ -97,18 +100,30 @@ def _statuses(scratch: Path) -> dict[str, str]:
     return out
 
 
-def _sample_names(scratch: Path, children: int, size: int, seed: int) -> list[str]:
+def _file_of(name: str) -> str:
+    """The dotted module of a mutant's name (``lazyground.planning.rrt.x_extend__mutmut_3`` -> ``lazyground.planning.rrt``)."""
+    return re.split(r"\.x[_\u01c1]", name, maxsplit=1)[0]
+
+
+def _sample_names(scratch: Path, children: int, size: int, seed: int, per_file: bool = False) -> list[str]:
     """Make every mutant and the test map (a run filtered to no mutant: mutmut stops before running any), then
-    draw ``size`` mutant names with ``random.Random(seed)`` from the sorted list."""
+    draw ``size`` mutant names with ``random.Random(seed)`` from the sorted list (with ``per_file``, ``size``
+    from each mutated file's sorted list, files in sorted order, one generator)."""
     if not (scratch / "mutants" / "mutmut-stats.json").exists():
         subprocess.run(["mutmut", "run", "--max-children", str(children), "no-such-mutant-*"], cwd=scratch,
                        check=False, capture_output=True)
     names = sorted(_statuses(scratch))
-    return sorted(random.Random(seed).sample(names, min(size, len(names))))
+    rng = random.Random(seed)
+    if not per_file:
+        return sorted(rng.sample(names, min(size, len(names))))
+    groups: dict[str, list[str]] = {}
+    for n in names:
+        groups.setdefault(_file_of(n), []).append(n)
+    return sorted(n for f in sorted(groups) for n in rng.sample(groups[f], min(size, len(groups[f]))))
 
 
 def run_module(name: str, work: Path, children: int, survivors_only: bool = False,
-               sample: int | None = None, seed: int = 0, keep: bool = False) -> dict:
+               sample: int | None = None, seed: int = 0, keep: bool = False, per_file: bool = False) -> dict:
     """Copy the tree, configure mutmut for ``name``, run it; returns the counts by status and the survivors.
 
     With ``survivors_only``, keep the scratch copy of an earlier run, copy the current tests into it and run
@@ -133,7 +148,7 @@ def run_module(name: str, work: Path, children: int, survivors_only: bool = Fals
             pyproject = scratch / "pyproject.toml"
             pyproject.write_text(pyproject.read_text() + _mutmut_section(files, tests))
         if sample is not None:
-            names = _sample_names(scratch, children, sample, seed)
+            names = _sample_names(scratch, children, sample, seed, per_file)
     todo = names
     if keep and names:
         judged = _statuses(scratch)
@@ -184,6 +199,7 @@ def main(argv=None) -> int:
     p.add_argument("--children", type=int, default=1, help="mutmut worker processes (default 1: a shared machine)")
     p.add_argument("--list", action="store_true", help="print the modules and their tests, run nothing")
     p.add_argument("--sample", type=int, help="run only this many of each module's mutants, drawn with --seed")
+    p.add_argument("--per-file", action="store_true", help="with --sample: that many from each mutated file")
     p.add_argument("--seed", type=int, default=0, help="seed of the --sample draw (default 0)")
     p.add_argument("--recheck", action="store_true",
                    help="run the survivors of an earlier run against the current tests (no mutmut bookkeeping)")
@@ -209,7 +225,8 @@ def main(argv=None) -> int:
             print(f"{m}: {killed} of {len(out)} survivors killed by the current tests")
             print("\n".join(f"  {k}: {v}" for k, v in out.items()))
         return 0
-    results = [run_module(m, args.work, args.children, args.survivors, args.sample, args.seed, args.keep)
+    results = [run_module(m, args.work, args.children, args.survivors, args.sample, args.seed, args.keep,
+                          args.per_file)
                for m in args.modules or MODULES]
     print("\n| module | killed | survived | other | score |\n| --- | --- | --- | --- | --- |")
     for r in results:

@@ -1,7 +1,8 @@
 #!/bin/sh
 # The figures of issue 32's "suite in under 8 minutes on 2 cores": wall time of the whole suite serial and with
-# pytest-xdist's two workers, then two workers beside two busy loops (the suite must still pass), each with the
-# 40 slowest tests. Run from the repository root on a quiet machine: about 4 + 3 + 5 minutes.
+# pytest-xdist's two workers (the README's test command, -n 2), then two workers beside two busy loops (the suite
+# must still pass), each with the 40 slowest tests. Run from the repository root on a quiet machine: about
+# 9 + 5 + 10 minutes.
 #   sh tools/suite_time.sh [OUT_DIR]        (default /tmp/lazyground-suite-time; one log per run there)
 set -u
 out=${1:-/tmp/lazyground-suite-time}

@@ -47,8 +47,6 @@ from lazyground.drake.solids import cover, exact, inner, solid, solid_distance, 
 
 MARGIN = 1e-4  # metres beyond the padding a lower bound must clear
 SLACK = 0.008  # metres a cover's spheres may reach beyond their shape (finer: more spheres)
-ANCHOR_EVERY = 12  # rows of a batch per anchor (see SphereCertifier.certified_free)
-FAR_PAIR = 0.05  # metres: self pairs this far apart at every anchor of a batch split their gap between their geometries
 
 
 @dataclass(frozen=True)
@@ -126,16 +124,6 @@ class SphereCertifier:
         cut = np.array([max(np.flatnonzero(self._path[g] & self._path[o]), default=-1) + 1
                         for g, o in zip(self_pairs.mover, self_pairs.other)], int)
         self._pair_below = (np.arange(m) >= cut[:, None]).astype(float)  # (pairs, joints)
-        self._self_sides = []  # per side of the self pairs: (pair order by geometry, first of each run, its geometry)
-        for side in (self_pairs.mover, self_pairs.other):
-            order = np.argsort(side, kind="stable")
-            owner, first = np.unique(side[order], return_index=True)
-            self._self_sides.append((order, first, owner))
-        # per moving geometry, its self pairs: _pair_of[_pair_start[g]:_pair_start[g] + _pair_count[g]]
-        sides = np.concatenate([self_pairs.mover, self_pairs.other])
-        self._pair_of = np.tile(np.arange(len(self_pairs.mover)), 2)[np.argsort(sides, kind="stable")]
-        self._pair_count = np.bincount(sides, minlength=len(node))
-        self._pair_start = np.cumsum(self._pair_count) - self._pair_count
 
     def kernel_blocks(self) -> dict:
         """Every array the compiled test needs (lazyground.drake.sphere_kernels.pack's blocks)."""
@@ -171,91 +159,13 @@ class SphereCertifier:
         Drake's checker calls such a row free exactly when each of its open pairs is farther apart than
         the pair's padding (every other pair it checks is proven to be).
 
-        Every ``ANCHOR_EVERY``-th row (an anchor) is bounded pair by pair, with its geometries'
-        levers (:meth:`levers`). Every other row is bounded column by column: per moving geometry,
-        the environment; per moving geometry, half the gap of its self pairs ``FAR_PAIR`` apart at
-        every anchor (each side moving on its own); each other self pair, its two geometries
-        relative to each other. A column is clear at a row when, from one of the row's two anchors,
-        it cannot have moved as far as its clearance there (the half-gap columns all from the same
-        anchor: a far pair's two geometries must be bounded from one configuration); the columns that
-        are not are bounded at the row itself, pair by pair. Consecutive rows of a densely checked
-        path are mostly clear from their anchors.
+        Each row is bounded on its own, pair by pair (:meth:`clearance`): the test the compiled kernels
+        run per row (lazyground.drake.sphere_kernels), in numpy. (Rows bounded from anchor rows through
+        their levers, with a rule for far self pairs, were removed in #32: the product checks through the
+        kernels only, and no comparison with Drake exercised that rule.)
         """
-        q = np.atleast_2d(np.asarray(q_full, float))
-        if len(q) < 2 * ANCHOR_EVERY:
-            clear, _, (row, pair) = self._bounds(q, levers=False)
-            return clear.min(axis=1) > 0.0, row, pair
-        anchors = np.arange(0, len(q), ANCHOR_EVERY)
-        clear, lever, (stuck, open_pairs) = self._bounds(q[anchors])
-        columns, lever, near, folded = self._columns(clear, lever)
-        n, A = len(q), len(anchors)
-        # the rows by anchor (A, ANCHOR_EVERY, joints), the last run padded with the last row
-        rows = np.vstack([q, np.repeat(q[-1:], A * ANCHOR_EVERY - n, axis=0)])[:, self.tree.index]
-        rows = rows.reshape(A, ANCHOR_EVERY, -1)
-        by_side = []
-        for side in (np.arange(A), np.minimum(np.arange(1, A + 1), A - 1)):
-            dq = np.abs(rows - rows[side, :1])
-            moved = np.matmul(dq, lever[side].transpose(0, 2, 1))
-            # a column that cannot move (no lever) stays at 0 however far the joints go: a(e^s - 1)/s with a = 0
-            np.multiply(moved, _growth(dq[:, :, self._revolute].sum(axis=2))[:, :, None], out=moved, where=moved > 0)
-            by_side.append(moved < columns[side, None])
-        ok = by_side[0] | by_side[1]
-        # a far pair's gap is split between its two geometries, each bounded from an anchor: both from the same
-        # one (g within half the gap at anchor 0 and o within half of it at anchor 1 bound nothing). Per row, the
-        # half columns count as clear from one anchor only, the one that clears more of them
-        G = len(self._count)
-        a, b = by_side[0][:, :, G:2 * G], by_side[1][:, :, G:2 * G]
-        ok[:, :, G:2 * G] = np.where((a.sum(axis=2) >= b.sum(axis=2))[:, :, None], a, b)
-        ok = ok.reshape(A * ANCHOR_EVERY, -1)[:n]
-        free = ok.all(axis=1)
-        free[anchors] = clear.min(axis=1) > 0.0
-        rest = np.flatnonzero(~free)
-        rest = rest[rest % ANCHOR_EVERY != 0]
-        free[rest], (row, pair) = self._recheck(q[rest], ~ok[rest], near, folded)
-        return free, np.concatenate([rest[row], anchors[stuck]]), np.concatenate([pair, open_pairs])
-
-    def _columns(self, clear: np.ndarray, lever: np.ndarray):
-        """The anchors' clearance and levers per column of :meth:`certified_free` (per moving geometry: the
-        environment, then half the gap of its self pairs far at every anchor; then the self pairs ``near``),
-        ``near``, and per self pair whether it is far (split between its geometries)."""
-        G = len(self._count)
-        near = np.flatnonzero((clear[:, G:] < FAR_PAIR).any(axis=0))
-        folded = np.ones(len(self._self.mover), bool)
-        folded[near] = False
-        half = np.full_like(clear[:, :G], np.inf)
-        gap = np.where(folded, clear[:, G:] / 2, np.inf)
-        for order, first, owner in self._self_sides:  # each side's pairs in a run: one reduction per geometry
-            half[:, owner] = np.minimum(half[:, owner], np.minimum.reduceat(gap[:, order], first, axis=1))
-        columns = np.hstack([clear[:, :G], half, clear[:, G + near]])
-        return columns, np.concatenate([lever, lever, self._pair_levers(lever, near)], axis=1), near, folded
-
-    def _recheck(self, q: np.ndarray, failing: np.ndarray, near: np.ndarray, folded: np.ndarray):
-        """(whether the pairs of each row's ``failing`` columns (:meth:`certify`) clear their thresholds there,
-        (row, pair) of those that do not)."""
-        if not len(q):
-            return np.zeros(0, bool), (np.zeros(0, int), np.zeros(0, int))
-        R, p = self.tree.forward(q)
-        centre = np.einsum("bgij,gj->bgi", R[:, self._node], self._solids.o) + p[:, self._node]
-        G, O = self._env_threshold.shape
-        clear = np.full((len(q), G + len(self._self.mover)), np.inf)
-        b, g = np.nonzero(failing[:, :G])
-        d = np.abs(centre[b, g][:, None] - self._aabb_centre) - self._aabb_half  # (failing, obstacles, 3)
-        np.maximum(d, 0.0, out=d)
-        i, o = np.nonzero(np.einsum("noi,noi->no", d, d) <= self._env_reach2[g])  # within reach of the world box
-        b, g = b[i], g[i]
-        env = self._finer(R, p, centre, clear, b, g, o, self._env_threshold[g, o], g, moving=False, pair=g * O + o)
-        b, g = np.nonzero(failing[:, G:2 * G])
-        row, k = _ranges(self._pair_start[g], self._pair_count[g])  # the geometry's self pairs
-        b, k = b[row], self._pair_of[k]
-        bn, c = np.nonzero(failing[:, 2 * G:])
-        b, k = np.concatenate([b[folded[k]], bn]), np.concatenate([k[folded[k]], near[c]])
-        g, o = self._self.mover[k], self._self.other[k]
-        v = centre[b, g] - centre[b, o]
-        reach = self._solids.radius[g] + self._solids.radius[o] + self._self.threshold[k]
-        reach = np.einsum("ni,ni->n", v, v) <= reach ** 2  # bounding spheres within reach of each other
-        b, g, o, k = b[reach], g[reach], o[reach], k[reach]
-        own = self._finer(R, p, centre, clear, b, g, o, self._self.threshold[k], G + k, moving=True, pair=G * O + k)
-        return clear.min(axis=1) > 0.0, self._open([env, own])
+        clear, _, (row, pair) = self._bounds(q_full, levers=False)
+        return clear.min(axis=1) > 0.0, row, pair
 
     @cached_property
     def pair_geometries(self) -> np.ndarray:

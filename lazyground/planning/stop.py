@@ -69,11 +69,13 @@ class StopCondition:
 
     @classmethod
     def after(cls, seconds: float | None, *, max_iterations: int | None = None,
-              interrupt: Callable[[], bool] | None = None, clock: Clock | None = None) -> "StopCondition":
-        """A condition whose deadline is ``seconds`` from now on ``clock`` (None: no deadline)."""
+              interrupt: Callable[[], bool] | None = None, clock: Clock | None = None,
+              spent: float = 0.0) -> "StopCondition":
+        """A condition whose deadline is ``seconds`` from now on ``clock`` (None: no deadline), less ``spent``
+        seconds the run already used on it (grounding the request: the time limit counts it)."""
         clock = clock or default_clock
         now = clock()
-        deadline = None if seconds is None or seconds == math.inf else now + seconds
+        deadline = None if seconds is None or seconds == math.inf else now + seconds - spent
         return cls(deadline, max_iterations, interrupt, clock, math.inf if seconds is None else seconds, now)
 
     def now(self) -> float:

@@ -38,6 +38,7 @@ from lazyground.mesh_files import MeshFileError, mesh_from_triangles, obj_text, 
 from lazyground.robots.lenient_xml import declare_prefixes, drop_world_weld, parse_lenient, strip_unused, unwrap_continuous_limits
 from lazyground.robots.xacro_file import expand_xacro
 from lazyground.typed_yaml import SceneError
+from lazyground.user_cache import cache_dir
 
 DRAKE_MESHES = (".obj", ".gltf", ".glb", ".vtk")
 CONVERTED = (".stl", ".dae")
@@ -151,8 +152,7 @@ def _installed_share(path: Path, packages: dict[str, Path]) -> Path | None:
 
 
 def _cache_dir() -> Path:
-    root = os.environ.get("LAZYGROUND_CACHE") or Path.home() / ".cache" / "lazyground"
-    return Path(root) / "meshes"
+    return cache_dir("meshes")
 
 
 def _read_dae(path: Path) -> np.ndarray:

@@ -22,6 +22,7 @@ import types
 from pathlib import Path
 
 from lazyground.typed_yaml import SceneError
+from lazyground.user_cache import cache_dir
 
 XACRO_SUFFIXES = (".xacro",)
 _LOCK = threading.Lock()  # xacro keeps its state in module globals
@@ -60,8 +61,7 @@ def parse_xacro_args(items) -> dict[str, str]:
 
 
 def _cache_dir() -> Path:
-    root = os.environ.get("LAZYGROUND_CACHE") or Path.home() / ".cache" / "lazyground"
-    return Path(root) / "xacro"
+    return cache_dir("xacro")
 
 
 def _digest(*parts: bytes) -> str:

@@ -10,17 +10,16 @@ from __future__ import annotations
 from functools import lru_cache
 from pathlib import Path
 
-import yaml
 
 from lazyground.scene.schema import Geometry, Scene, SceneObject
-from lazyground.typed_yaml import SceneError, load_dataclass
+from lazyground.typed_yaml import SceneError, load_dataclass, load_yaml
 
 TYPES_FILE = Path(__file__).with_name("types.yaml")
 
 
 @lru_cache(maxsize=1)
 def default_types() -> dict:
-    return yaml.safe_load(TYPES_FILE.read_text())
+    return load_yaml(TYPES_FILE.read_text())
 
 
 def type_definitions(scene: Scene | None) -> dict:

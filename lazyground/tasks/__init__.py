@@ -2,7 +2,7 @@
 
     outcome = tasks.run(scene, grounding, settings, rng, worlds, seed=seed)
 
-Every task is ``run(scene, grounding, settings, rng, worlds, *, seed, keep_tree, clock) -> Outcome``
+Every task is ``run(scene, grounding, settings, rng, worlds, *, seed, keep_tree, clock, spent) -> Outcome``
 (:mod:`lazyground.tasks.outcome`). Entries name their module, imported on first use, so
 importing this package does not import pydrake. A new task is one module plus one line here.
 """
@@ -37,8 +37,10 @@ def task(action: str):
 
 
 def run(scene, grounding, settings, rng, worlds: Worlds, *, seed: int | None = None, keep_tree: bool = False,
-        clock=None) -> Outcome:
+        clock=None, spent: float = 0.0) -> Outcome:
     """Run the task registered for ``grounding.action`` (see the module docstring); ``clock`` (default
-    :func:`lazyground.planning.stop.default_clock`) is the one its stop conditions read."""
+    :func:`lazyground.planning.stop.default_clock`) is the one its stop conditions read; ``spent``: seconds of
+    the time limit already used on it (grounding the request), taken off the task's deadline."""
     key = "several" if getattr(grounding, "groups", ()) else grounding.action
-    return task(key)(scene, grounding, settings, rng, worlds, seed=seed, keep_tree=keep_tree, clock=clock)
+    return task(key)(scene, grounding, settings, rng, worlds, seed=seed, keep_tree=keep_tree, clock=clock,
+                     spent=spent)

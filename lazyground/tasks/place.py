@@ -112,7 +112,7 @@ def combine(results: list[PlanResult], status: PlanStatus, path, goal, region, e
 
 def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Generator, worlds: Worlds, *,
         seed: int | None = None, keep_tree: bool = False, place_share: float | None = None,
-        clock: Clock | None = None, prefer=None) -> Outcome:
+        clock: Clock | None = None, prefer=None, spent: float = 0.0) -> Outcome:
     """Plan "put X on Y": a grasp of any X, then a placement on any Y, with fallback (the "place" task);
     then each step is shortened and timed (lazyground.motion.steps).
 
@@ -126,6 +126,7 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
         keep_tree: keep the search trees (for viewers).
         place_share: the share of the time limit one placement attempt may use (default: the task setting's).
         clock: the clock the time limit is read on (default: the stop condition's).
+        spent: seconds of the time limit used before the task (grounding), taken off its deadline.
         prefer: ``prefer(object_id, placement_regions)`` -> which placements to try first and which to rule out
             (a :class:`lazyground.tasks.packing.Preference`, several objects); None: uniform placements.
 
@@ -138,7 +139,7 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
     # one budget for every step: the pick gets what is left, a placement attempt its share (StopCondition.share)
     planner = settings.planner
     place_share = settings.task.place_share if place_share is None else place_share
-    stop = StopCondition.after(planner.time_limit, max_iterations=planner.max_iterations, clock=clock)
+    stop = StopCondition.after(planner.time_limit, max_iterations=planner.max_iterations, clock=clock, spent=spent)
     setup_before = worlds.setup_s  # world building from here on is set-up, not planning
     frame = frame_of(scene.robot)
     grasps, places = _regions_by_object(g)

@@ -18,7 +18,7 @@ def make_goal_source(world, regions, sampling=None):
 
 
 def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, keep_tree: bool = False,
-        clock=None) -> Outcome:
+        clock=None, spent: float = 0.0) -> Outcome:
     """Plan to whichever of ``grounding``'s goal regions is reachable first, or the best one found within the
     budget (``objective``; :mod:`lazyground.tasks.anytime`).
 
@@ -31,6 +31,7 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
         seed: recorded in the result.
         keep_tree: keep the search tree (for viewers).
         clock: the clock the time limit is read on (default: the stop condition's).
+        spent: seconds of the time limit used before the task (grounding), taken off its deadline.
 
     Returns:
         An Outcome with one step; its path shortened and timed (lazyground.motion) when solved.
@@ -39,7 +40,7 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     setup_s = worlds.setup_s
     planner = settings.planner
     space = planning_space(scene, world.space, planner.kinematics)  # a car's curves, or world.space
-    stop = StopCondition.after(planner.time_limit, max_iterations=planner.max_iterations, clock=clock)
+    stop = StopCondition.after(planner.time_limit, max_iterations=planner.max_iterations, clock=clock, spent=spent)
 
     best = best_step(lambda source, within: solve(space, world, source, world.start, planner, rng, seed=seed,
                                                   keep_tree=keep_tree, stop=within),

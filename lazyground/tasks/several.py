@@ -49,18 +49,18 @@ class _Done:
 
 
 def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Generator, worlds: Worlds, *,
-        seed: int | None = None, keep_tree: bool = False, clock: Clock | None = None) -> Outcome:
+        seed: int | None = None, keep_tree: bool = False, clock: Clock | None = None, spent: float = 0.0) -> Outcome:
     """Plan one pick and place per object the grounding's groups ask for, in turn.
 
     Args:
-        scene, g, settings, rng, worlds, seed, keep_tree, clock: as every task's (:mod:`lazyground.tasks`);
+        scene, g, settings, rng, worlds, seed, keep_tree, clock, spent: as every task's (:mod:`lazyground.tasks`);
             the planner's ``time_limit`` bounds the whole run, each step getting an equal share of what is left.
 
     Returns:
         An Outcome: every step's pick and place steps in order, the path through all of them, and
         ``objects``: per object asked for, done / already there / stowed / held / not done and why.
     """
-    stop = StopCondition.after(settings.planner.time_limit, clock=clock)
+    stop = StopCondition.after(settings.planner.time_limit, clock=clock, spent=spent)
     picking = g.action == "pick"
     slots = [k for k, group in enumerate(g.groups) for _ in range(_need(group))]
     done: list[_Done] = []

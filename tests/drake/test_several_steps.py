@@ -76,12 +76,17 @@ def _ledge(seeds, **settings):
     return {s: plan(PACK, "put all the cups on the ledge", s, max_iterations=4000, **settings) for s in seeds}
 
 
-def test_packing_leaves_room_for_the_second_cup():
+@pytest.fixture(scope="module")
+def uniform_ledge():
+    """Seeds 0-5 with uniform placements and no going back: the plans both tests below start from (planned once)."""
+    return _ledge(range(6), placement_draws=1, backtracks=0)
+
+
+def test_packing_leaves_room_for_the_second_cup(uniform_ledge):
     """A ledge that holds both cups only when the first goes near an end: uniform placements fail on
     seeds where the first lands in the middle; packing puts it at an end."""
-    seeds = range(6)
-    uniform = _ledge(seeds, placement_draws=1, backtracks=0)
-    packed = _ledge(seeds, backtracks=0)
+    uniform = uniform_ledge
+    packed = _ledge(uniform, backtracks=0)
     blocked = [s for s, r in uniform.items() if not r.result.solved]
     assert blocked, "no seed's first placement blocked the second: the ledge no longer tests packing"
     assert all(packed[s].result.solved for s in blocked)
@@ -91,10 +96,9 @@ def test_packing_leaves_room_for_the_second_cup():
             assert [s for _, s, _ in statuses(r)] == ["done", "not done"] and "not done: 1" in r.result.message
 
 
-def test_backtracking_replans_the_step_that_blocked_the_next():
+def test_backtracking_replans_the_step_that_blocked_the_next(uniform_ledge):
     """Uniform placements: where the first cup's placement leaves no room, going back re-plans it elsewhere."""
-    seeds = range(6)
-    once = _ledge(seeds, placement_draws=1, backtracks=0)
+    once = uniform_ledge
     blocked = [s for s, r in once.items() if not r.result.solved]
     assert blocked, "no seed's first placement blocked the second: the ledge no longer tests backtracking"
     again = _ledge(blocked, placement_draws=1, backtracks=2)

@@ -84,7 +84,7 @@ def test_never_certifies_a_colliding_configuration(scene):
     near = _near_contact(world, rng, 150)
     certified = _assert_sound(world, np.vstack([random, near]))
     dense = _dense_paths(world, rng, 20)
-    assert 0 < _assert_sound(world, dense).sum() < len(dense)  # rows certified through their anchors' clearance too
+    assert 0 < _assert_sound(world, dense).sum() < len(dense)
     through = _rows_through_contact(world, rng, 15)
     assert 0 < _assert_sound(world, through).sum() < len(through)
     drake = _drake_free(world, random)
@@ -123,8 +123,8 @@ def test_a_car_is_left_to_drake(scene):
 
 def test_dense_rows_near_self_collision_stay_sound(tmp_path):
     """A Fetch alone (every collision a self collision): rows 0.01 rad apart (twice the fine re-check's step)
-    along segments through near-contact configurations, as a path's fine re-check asks; anchors cover rows
-    through the self pairs' relative bounds, and no Drake-colliding row is certified."""
+    along segments through near-contact configurations, as a path's fine re-check asks; no Drake-colliding row
+    is certified."""
     path = tmp_path / "alone.yaml"
     path.write_text(f"name: alone\nrobot: {FETCH}\nobstacles: []\n")
     world = DrakeWorld(load_scene(str(path)), visual=False)
@@ -252,35 +252,6 @@ def test_a_cover_encloses_its_shape_and_the_solid_distance_is_a_lower_bound(shap
     d_far = solid_distance(far - centre, half, np.full(500, rounding), np.full(500, cylinder))
     nearest = np.linalg.norm(far[:, None] - points[None], axis=-1).min(axis=1)  # an upper bound of the true distance
     assert np.all(d_far <= nearest + 1e-12)
-
-
-def test_a_far_pair_is_not_proven_from_two_anchors_at_once():
-    """A far self pair's gap is split between its two geometries; each half bounds a geometry's motion from
-    one anchor. Geometry g clear only from the first anchor and o only from the second prove nothing about
-    the pair (g near where it is at one anchor, o near where it is at the other): such rows are checked
-    again at the row itself, not certified."""
-    world = DrakeWorld(load_scene("yaml_scenes/fetch_cans_1.yaml"), visual=False)
-    cert = world.checker.certifier
-    G = len(cert._count)
-    g, o = int(cert._self.mover[0]), int(cert._self.other[0])
-    rows = world.full(np.zeros((24, world.space.dim)))
-    rows[:, cert.tree.index[-1]] = np.linspace(0.0, 0.01, 24)  # rows move a little from both anchors
-
-    def columns(clear, lever):  # anchors 0 and 12: every column clear by far, but g's half and o's half
-        columns = np.full((2, 2 * G), 10.0)
-        columns[1, G + g] = columns[0, G + o] = 0.0  # ... each clear from one anchor only
-        return columns, np.ones((2, 2 * G, len(cert.tree.kinds))), np.zeros(0, int), np.ones(len(cert._self.mover), bool)
-
-    rechecked = []
-
-    def recheck(q, failing, near, folded):
-        rechecked.append(np.flatnonzero(failing.any(axis=0)))
-        return np.zeros(len(q), bool), (np.zeros(0, int), np.zeros(0, int))
-
-    cert._columns, cert._recheck = columns, recheck
-    free = cert.certified_free(rows)
-    assert not free[1:12].any()  # between the anchors: left to the row's own bound
-    assert np.isin(rechecked[0], [G + g, G + o]).all() and len(rechecked[0])
 
 
 def test_every_pair_drake_finds_within_its_padding_is_left_open(tmp_path):

@@ -26,3 +26,23 @@ def test_total_is_the_call_less_the_world_build_and_its_split_adds_up(monkeypatc
     out = report_to_json(report)
     assert out["total_s"] == round(report.total_s, 6) and set(out["total_split_s"]) == set(split)
     assert any(line.startswith(f"request: {report.total_s:.3f} s (grounding") for line in report_lines(report))
+
+
+@pytest.mark.parametrize("grounding_s,solved", [(0.0, True), (2.0, False)])
+def test_the_time_limit_counts_the_grounding(monkeypatch, grounding_s, solved):
+    # a grounding that takes 2 s of the fake clock leaves nothing of a 1 s limit: the task stops at once
+    clock = stop.FakeClock(tick=1e-6)
+    monkeypatch.setattr(stop, "CLOCK", clock)
+    ground = api.grounding.ground
+
+    def slow_ground(*args, **kwargs):
+        out = ground(*args, **kwargs)
+        clock.advance(grounding_s)
+        return out
+
+    monkeypatch.setattr(api.grounding, "ground", slow_ground)
+    report = api.plan("parking_1", "park", seed=0, time_limit=1.0, max_iterations=3000)
+    assert report.grounding_s >= grounding_s
+    assert report.result.solved is solved, report.result.message
+    if not solved:
+        assert report.result.status.value == "timeout" and report.result.time_s < 0.01, report.result

@@ -1,5 +1,7 @@
 """The bidirectional variant (start tree + goal forest) on the 2-D toy world."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -120,3 +122,66 @@ def test_start_tree_edges_are_checked_when_a_path_uses_them(monkeypatch):
         assert res.solved and res.invalid_paths_rejected == 0, (seed, res.message)
         assert path_is_valid(SPACE, world, res.path, BI.resolution) == -1
     assert any(v >= 0 for v in verdicts), "no start-tree edge crossed the wall: the test lost its point"
+
+
+@pytest.mark.parametrize("algorithm", ["rrt", "bidirectional"])
+def test_a_retired_sample_is_never_selected_again(algorithm, monkeypatch):
+    # the world of test_a_failing_approach_segment_retires_its_sample: every sample's approach crosses the thin wall
+    from lazyground.planning.search import Search
+
+    events = []
+    select, retire = Search.select, Search.retire
+    monkeypatch.setattr(Search, "select", lambda self: events.append(("select", select(self))) or events[-1][1])
+    monkeypatch.setattr(Search, "retire", lambda self, gi: events.append(("retire", gi)) or retire(self, gi))
+    world = BoxWorld(WALLS + [(7.0, 8.2, 9.0, 8.2001)])
+    settings = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=400, goal_bias=0.5, algorithm=algorithm,
+                               validation_factor=1000.0)
+    res = solve(SPACE, world, _BadApproach(goal_source(world, [REACHABLE])), START, settings, np.random.default_rng(1))
+    retired = [gi for kind, gi in events if kind == "retire"]
+    assert retired and all(isinstance(gi, int) and 0 <= gi < len(res.goal_samples) for gi in retired)
+    gone = set()
+    for kind, gi in events:
+        if kind == "retire":
+            gone.add(gi)
+        else:
+            assert gi not in gone
+
+
+def test_only_paths_that_pass_at_the_planner_resolution_reach_the_fine_recheck(monkeypatch):
+    # the goal trees' edges are checked in full as they grow and the start tree's in the join, at the planner's
+    # resolution: a path the fine re-check sees passes that coarser check everywhere. Walls 0.1 thick, a fifth of
+    # a step, just past the start (its first edges cross them) and further away
+    from lazyground.planning.search import Search
+
+    seen = []
+    recheck = Search.first_invalid_segment
+    monkeypatch.setattr(Search, "first_invalid_segment", lambda self, path: seen.append(path) or recheck(self, path))
+    for x in (1.3, 4.0):
+        walls = [(x, 0.0, x + 0.1, 8.0), (x, 9.0, x + 0.1, 10.0)]
+        for seed in range(6):
+            seen.clear()
+            world, res = run([REACHABLE], seed, walls=walls)
+            assert res.solved and seen
+            assert all(path_is_valid(SPACE, world, path, BI.resolution) == -1 for path in seen), (x, seed)
+
+
+def test_a_goal_turn_credits_the_selected_tree_by_its_own_step(monkeypatch):
+    # each credit follows, in the same iteration, the selected goal tree's step: blocked (-1) is a penalty
+    # (gap -1), a free step is judged by its gap to the start tree (>= 0)
+    import lazyground.planning.birrt as birrt
+
+    events = []
+    extend, credit = birrt._extend, birrt._credit
+    monkeypatch.setattr(birrt, "_extend", lambda s, tree, near, q: events.append(
+        ("extend", s.iterations, tree is s.trees[1], extend(s, tree, near, q))) or events[-1][3])
+    monkeypatch.setattr(birrt, "_credit", lambda s, gi, closest, gap: events.append(
+        ("credit", s.iterations, gap)) or credit(s, gi, closest, gap))
+    for seed in range(3):
+        events.clear()
+        run([UNREACHABLE, REACHABLE], seed, replace(BI, goal_bias=0.5))
+        credits = [i for i, e in enumerate(events) if e[0] == "credit"]
+        assert credits and any(events[i][2] < 0 for i in credits) and any(events[i][2] >= 0 for i in credits)
+        for i in credits:
+            kind, iteration, goal_tree, b = events[i - 1]
+            assert kind == "extend" and iteration == events[i][1] and goal_tree, (seed, events[i - 1], events[i])
+            assert (events[i][2] < 0) == (b < 0)

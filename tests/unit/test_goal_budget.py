@@ -150,3 +150,43 @@ def test_one_sample_costs_the_same_whatever_the_number_of_regions():
         attempts = [st.attempts for st in source.stats]
         assert sum(attempts) == 20 and max(attempts) - min(attempts) <= 1  # still round-robin
     assert max(reads) <= 3 * 20  # O(draws), not O(regions) (the scan over all of them: 10,051 at 512)
+
+
+class Screened(RoundRobinGoalSource):
+    """Region 0 fails the screen ('hand in collision') until attempt ``passes_from``, then reaches the solver; regions
+    1 and 2 always reach it ('in collision'); never a valid sample."""
+
+    screened_reasons = ("out of reach", "hand in collision")
+
+    def __init__(self, regions, passes_from=10**9, **kw):
+        super().__init__(regions, **kw)
+        self.passes_from = passes_from
+
+    def attempt(self, j, rng, stop):
+        screened = j == 0 and self.stats[0].attempts < self.passes_from
+        return None, "hand in collision" if screened else "in collision"
+
+
+def _three():
+    return tuple(ConfigRegion(id=f"r{k}", interpretation=f"i{k}", object=f"o{k}", lower=(0.0,), upper=(1.0,)) for k in range(3))
+
+
+def _attempts(source, total):
+    rng = np.random.default_rng(0)
+    while source.total_attempts < total:
+        source.draw(1, rng, never())
+    return [st.attempts for st in source.stats]
+
+
+def test_a_region_whose_targets_fail_the_screen_takes_one_turn_in_defer():
+    """Issue #33: after DEFER_AFTER attempts none of which reached the solver, region 0 takes one round-robin turn in
+    DEFER; it is not given up; without screened reasons (or once its targets pass) it takes every turn."""
+    from lazyground.goals import DEFER, DEFER_AFTER
+
+    deferred = _attempts(Screened(_three(), give_up_after=10**6), 3 * DEFER_AFTER + 2 * DEFER * 40)
+    assert abs(deferred[0] - (DEFER_AFTER + 40)) <= 4 and abs(deferred[1] - deferred[2]) <= 1
+    plain = Screened(_three(), give_up_after=10**6)
+    plain.screened_reasons = ()
+    assert max(_attempts(plain, 600)) - min(_attempts(plain, 600)) <= 1
+    back = _attempts(Screened(_three(), passes_from=DEFER_AFTER + 10, give_up_after=10**6), 3000)
+    assert back[0] > 900  # one target past the screen brings its share back: every turn again

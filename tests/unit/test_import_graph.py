@@ -8,6 +8,7 @@ Python runs first but which is a cycle only if it imports back.
 """
 
 import ast
+import functools
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -23,6 +24,12 @@ def module_names() -> dict[str, Path]:
     return out
 
 
+@functools.lru_cache(maxsize=None)
+def parsed(path: Path) -> ast.AST:
+    """A module's syntax tree, parsed once for every test here (read-only)."""
+    return ast.parse(path.read_text())
+
+
 def _resolve(name: str, modules) -> str | None:
     while name and name not in modules:
         name = name.rpartition(".")[0]
@@ -34,7 +41,7 @@ def import_graph() -> dict[str, set[str]]:
     graph: dict[str, set[str]] = {m: set() for m in modules}
     for mod, path in modules.items():
         package = mod if path.name == "__init__.py" else mod.rpartition(".")[0]
-        for node in ast.walk(ast.parse(path.read_text())):
+        for node in ast.walk(parsed(path)):
             targets = []
             if isinstance(node, ast.Import):
                 targets = [a.name for a in node.names]
@@ -105,7 +112,7 @@ def test_api_and_place_do_not_import_each_other():
 LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("scene", ("lazyground.scene", "lazyground.robots", "lazyground.typed_yaml", "lazyground.geometry",
                "lazyground.settings", "lazyground.planner_spec", "lazyground.bundled", "lazyground.mesh_files",
-               "lazyground.tolerance", "lazyground.interrupt")),
+               "lazyground.tolerance", "lazyground.interrupt", "lazyground.user_cache")),
     ("regions", ("lazyground.regions",)),
     ("grounding", ("grounding",)),
     ("planning", ("lazyground.planning",)),
@@ -190,7 +197,7 @@ def test_the_library_never_prints_nor_parses_arguments():
     for mod, path in module_names().items():
         if not _below_cli(mod):
             continue
-        for node in ast.walk(ast.parse(path.read_text())):
+        for node in ast.walk(parsed(path)):
             if isinstance(node, ast.Call):
                 f = node.func
                 name = f.id if isinstance(f, ast.Name) else f.attr if isinstance(f, ast.Attribute) else ""
@@ -208,7 +215,7 @@ def test_no_module_reaches_into_anothers_private_members():
     another class's internals is on the wrong side of a boundary (ik_attempts.py did this before #35)."""
     found = []
     for mod, path in module_names().items():
-        for node in ast.walk(ast.parse(path.read_text())):
+        for node in ast.walk(parsed(path)):
             if isinstance(node, ast.Attribute) and node.attr.startswith("_") and not node.attr.startswith("__"):
                 owner = node.value
                 if not (isinstance(owner, ast.Name) and owner.id in ("self", "cls", "os")):  # os._exit: public API

@@ -66,3 +66,78 @@ def test_random_shortcuts_stop_when_they_stop_gaining():
     out = shortcut_path(SPACE, world, path, SETTINGS.resolution, SETTINGS.validation_factor,
                         ShortcutSettings(max_iterations=10_000, time_budget=1e9, patience=5), np.random.default_rng(3))
     assert 5 <= out.iterations < 10_000
+
+
+# issue 32: the validate survivors of the mutation run (docs/reliability.md), each expectation worked by hand
+WRAPPED = ConfigSpace(("x", "theta"), np.array([0.0, -np.pi]), np.array([10.0, np.pi]), wrap=np.array([False, True]))
+
+
+class Recording(BoxWorld):
+    """The toy world, keeping every configuration it was asked about."""
+
+    def __init__(self, boxes):
+        super().__init__(boxes)
+        self.seen = []
+
+    def configs_free(self, qs):
+        self.seen.append(np.atleast_2d(qs).copy())
+        return super().configs_free(qs)
+
+
+def test_a_join_across_pi_is_checked_along_the_short_arc_inside_the_space():
+    # theta from 3.0 to -3.0 the short way (through pi: 2 pi - 6 = 0.283 rad); the band theta in [-3.12, -3.08]
+    # (unwrapped 3.163..3.203, wider than the 0.01 spacing) lies on it, the band around 0 only on the long way
+    q = np.array([[5.0, 3.0], [5.0, -3.0]])
+    on_arc = Recording([(0.0, -3.12, 10.0, -3.08)])
+    assert first_colliding_join(WRAPPED, on_arc, q, 0.01) == 0
+    seen = np.concatenate(on_arc.seen)
+    assert seen[:, 1].min() >= -np.pi and seen[:, 1].max() <= np.pi  # the checker sees angles in the space's range
+    assert first_colliding_join(WRAPPED, Recording([(0.0, -0.1, 10.0, 0.1)]), q, 0.01) is None
+
+
+def test_a_two_sample_motion_through_a_wall_collides_on_its_only_join():
+    q = np.array([[1.0, 5.0], [9.0, 5.0]])
+    assert first_colliding_join(SPACE, BoxWorld([(4.95, 0.0, 5.05, 10.0)]), q, 0.01) == 0
+    assert first_colliding_join(SPACE, BoxWorld([]), q, 0.01) is None
+    assert first_colliding_join(SPACE, BoxWorld([]), q[:1], 0.01) is None  # one sample: no motion
+
+
+def test_a_start_in_collision_counts_by_default():
+    q = np.array([[1.0, 5.0], [2.0, 5.0], [3.0, 5.0]])
+    world = BoxWorld([(0.5, 4.5, 1.5, 5.5)])  # around the start, left at x = 1.5
+    assert first_colliding_join(SPACE, world, q, 0.1) == 0
+    assert first_colliding_join(SPACE, world, q, 0.1, from_first_free=True) is None
+
+
+def test_a_single_colliding_point_is_found():
+    # x = 0, 0.25, 0.5, 0.75, 1 along one join: only x = 0.5 is inside the thin wall
+    q = np.array([[0.0, 5.0], [1.0, 5.0]])
+    assert first_colliding_join(SPACE, BoxWorld([(0.49, 0.0, 0.51, 10.0)]), q, 0.25) == 0
+
+
+def test_dense_points_and_owners_worked_by_hand():
+    # arc length 1 at 0.3: ceil(1 / 0.3) = 4 steps of 0.25; the point on sample 1 (x = 0.25) follows sample 1
+    dense, owner = _dense(SPACE, np.array([[0.0, 0.0], [0.25, 0.0], [1.0, 0.0]]), 0.3)
+    assert np.allclose(dense[:, 0], [0.0, 0.25, 0.5, 0.75, 1.0]) and np.all(dense[:, 1] == 0.0)
+    assert owner.tolist() == [0, 1, 1, 1, 1]
+    # shorter than the resolution: its two ends only
+    dense, owner = _dense(SPACE, np.array([[0.0, 0.0], [0.2, 0.0]]), 0.3)
+    assert np.allclose(dense, [[0.0, 0.0], [0.2, 0.0]]) and owner.tolist() == [0, 0]
+    # a motion that does not move: its configuration twice, finite
+    dense, owner = _dense(SPACE, np.array([[0.5, 0.5], [0.5, 0.5]]), 0.3)
+    assert np.array_equal(dense, [[0.5, 0.5], [0.5, 0.5]]) and owner.tolist() == [0, 0]
+
+
+class TrustingAlong(BoxWorld):
+    """A checker whose sequence shortcut (``configs_free_along``) wrongly calls everything free."""
+
+    def configs_free_along(self, qs):
+        return np.ones(len(qs), bool)
+
+
+def test_the_recheck_does_not_trust_the_timings_sequence_shortcut():
+    # the re-check (trajectory_problems' path) asks configs_free; the timing's own check (along=True) the shortcut
+    q = np.array([[1.0, 5.0], [9.0, 5.0]])
+    world = TrustingAlong([(4.95, 0.0, 5.05, 10.0)])
+    assert first_colliding_join(SPACE, world, q, 0.01) == 0
+    assert first_colliding_join(SPACE, world, q, 0.01, along=True) is None

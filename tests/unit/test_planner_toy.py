@@ -7,7 +7,7 @@ import pytest
 
 from lazyground.planning import PlannerSettings, PlanStatus, path_is_valid, solve
 from lazyground.planning.stop import FakeClock, StopCondition, StopReason
-from tests.unit.toy import INVALID, REACHABLE, SPACE, START, UNREACHABLE, WALLS, BoxWorld, goal_source
+from tests.unit.toy import INVALID, REACHABLE, SPACE, START, UNREACHABLE, WALLS, BoxWorld, goal_source, region
 from tests.unit.toy import NO_CLOCK, SOLVE_BUDGET, TIMEOUT_BUDGET
 
 SETTINGS = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=SOLVE_BUDGET, goal_bias=0.1)
@@ -50,6 +50,43 @@ def test_result_records_counts_and_time_split():
     assert pocket and all(s.rewards == 0 or s.penalties > 0 for s in pocket)
 
 
+class CountingWorld(BoxWorld):
+    """The toy world on a check clock: each configuration checked costs one 'second'."""
+
+    @property
+    def check_time(self) -> float:
+        return float(self.checks)
+
+
+def test_collision_time_and_count_leave_out_every_goal_draws_checks():
+    # on the check clock, the search's collision seconds are its collision checks, one for one, however many draws
+    settings = replace(SETTINGS, initial_goal_samples=1, resample_count=1)  # one sample per draw: many draws
+    resamplings = 0
+    for seed in range(3):
+        world = CountingWorld(WALLS)
+        res = solve(SPACE, world, goal_source(world, [UNREACHABLE, REACHABLE]), START, settings, np.random.default_rng(seed))
+        assert 0 < res.collision_checks < world.checks  # the draws' checks are left out
+        assert res.collision_s == res.collision_checks
+        resamplings += res.resamplings
+    assert resamplings >= 2
+    # a second plan on the same world and goal source counts only its own checks and goal-sampling time
+    goals = goal_source(world, [UNREACHABLE, REACHABLE])
+    solve(SPACE, world, goals, START, settings, np.random.default_rng(0))
+    checks, sampling = world.checks, goals.sample_time
+    res = solve(SPACE, world, goals, START, settings, np.random.default_rng(1))
+    assert 0 < res.collision_checks < world.checks - checks and res.collision_s == res.collision_checks
+    assert 0 <= res.goal_sampling_s <= goals.sample_time - sampling
+
+
+def test_the_strategy_resamples_at_the_planners_threshold():
+    # threshold 0.6: a penalty takes any weight (at most 1) to at most 0.5, below it, so every penalty of the
+    # one-tree planner asks for more samples (the default 0.2 takes four penalties from 1)
+    settings = replace(SETTINGS, goal_bias=0.5, resample_threshold=0.6, max_iterations=300)
+    world, res = run([UNREACHABLE], 0, settings)
+    penalties = sum(s.penalties for s in res.goal_samples)
+    assert penalties > 0 and res.resamplings == penalties
+
+
 def test_reward_penalty_penalises_unreachable_samples_and_resamples():
     settings = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=SOLVE_BUDGET, goal_bias=0.5, initial_goal_samples=4, resample_count=4)
     world, res = run([UNREACHABLE], 0, replace(settings, max_iterations=TIMEOUT_BUDGET))
@@ -70,7 +107,7 @@ def test_a_one_tree_timeout_says_what_to_try():
     _, res = run([UNREACHABLE], 0, settings)
     assert res.status is PlanStatus.TIMEOUT and res.message.endswith("try --algorithm bidirectional")
     _, res = run([UNREACHABLE], 0, replace(settings, algorithm="bidirectional"))
-    assert res.status is PlanStatus.TIMEOUT and "try --algorithm" not in res.message
+    assert res.status is PlanStatus.TIMEOUT and res.message == "no path within 5 iterations (max_iterations)"
 
 
 def test_same_seed_same_path():
@@ -96,7 +133,7 @@ def test_start_outside_limits():
 def test_no_valid_goal_names_each_region():
     world, res = run([INVALID], 0)
     assert res.status is PlanStatus.NO_VALID_GOAL
-    assert "block: 50 configurations tried, 0 valid (in collision x50)" in res.message
+    assert res.message == "no valid goal configuration in any goal region: block: 50 configurations tried, 0 valid (in collision x50)"
 
 
 def fake_stop(settings: PlannerSettings) -> StopCondition:
@@ -115,6 +152,19 @@ def test_a_limit_reached_before_every_region_was_tried_is_a_timeout(algorithm):
     settings = PlannerSettings(time_limit=1.0, algorithm=algorithm)  # time to give up on the region
     world, res = run([INVALID], 0, settings, stop=fake_stop(settings))
     assert res.status is PlanStatus.NO_VALID_GOAL, res.message
+
+
+def test_regions_a_limit_came_before_are_named_not_tried():
+    # 1 ms on a clock that advances 1 ms per reading: over before the first goal-sampling attempt
+    settings = PlannerSettings(time_limit=0.001)
+    world, res = run([INVALID, region("block2", 8.0, 6.75, half=0.5)], 0, settings, stop=fake_stop(settings))
+    assert res.status is PlanStatus.TIMEOUT
+    assert res.message.endswith(": block: not tried; block2: not tried"), res.message
+
+
+def test_a_solved_result_has_an_empty_message():
+    world, res = run([REACHABLE], 0)
+    assert res.status is PlanStatus.SOLVED and res.message == ""
 
 
 def test_timeout_respects_the_limit():

@@ -21,3 +21,17 @@ def parking():
                       kinematics="holonomic")  # the sliding car: its path is shortcut and timed (#16)  # by seed, not clock
     assert report.result.solved, report.result.message
     return scene, report
+
+
+@pytest.fixture(scope="session")
+def parking_gif(parking, tmp_path_factory):
+    """(path, figure) of the parking report's GIF, rendered once (the costliest viz step): the file for the GIF's
+    own tests, the figure it was drawn on (kept open) for the layout tests."""
+    from lazyground.viz import plots
+
+    scene, report = parking
+    path, closed = tmp_path_factory.mktemp("gif") / "p.gif", []
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(plots.plt, "close", lambda fig=None: closed.append(fig))  # keep it to look at
+        plots.animate_parking(report, scene, path)
+    return path, closed[0]

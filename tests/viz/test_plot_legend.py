@@ -39,17 +39,9 @@ def test_spot_labels_are_drawn_above_the_car(parking, tmp_path, monkeypatch):
     assert label.get_zorder() > car_z
 
 
-def _gif_figure(parking, tmp_path, monkeypatch):
-    scene, report = parking
-    closed = []
-    monkeypatch.setattr(plots.plt, "close", lambda fig=None: closed.append(fig))  # keep it to look at
-    plots.animate_parking(report, scene, tmp_path / "p.gif")
-    return closed[0]
-
-
-def test_the_legend_stays_clear_of_the_axis_labels_in_png_and_gif(parking, tmp_path, monkeypatch):
+def test_the_legend_stays_clear_of_the_axis_labels_in_png_and_gif(parking, parking_gif, tmp_path, monkeypatch):
     # issue 34: the GIF's "x (m)" sat on the legend's first row (a fixed offset under the axes, a smaller figure)
-    for fig in (_figure(parking, tmp_path, monkeypatch)[0], _gif_figure(parking, tmp_path, monkeypatch)):
+    for fig in (_figure(parking, tmp_path, monkeypatch)[0], parking_gif[1]):
         fig.canvas.draw()
         ax = fig.axes[0]
         legend = (fig.legends[0] if fig.legends else ax.get_legend()).get_window_extent()

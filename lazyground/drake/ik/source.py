@@ -116,6 +116,7 @@ class IKGoalSource(RoundRobinGoalSource):
 
     reached_reasons = ("in collision",)  # IK reached the grasp, the arm collided: another grasp of the region may not
     hopeless_reasons = ("out of reach",)  # the wrist point beyond the sampled reach (screened before any solve)
+    screened_reasons = ("out of reach", "hand in collision")  # TargetScreen's reasons (RoundRobinGoalSource.deferred)
 
     def __init__(self, regions: tuple[PoseRegion, ...], world, settings: IKSettings | None = None, **kwargs):
         super().__init__(regions, **kwargs)
