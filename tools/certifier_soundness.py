@@ -10,7 +10,9 @@ certifier's code (proven free / open / proven colliding) is compared with Drake'
 checker's ``edge_free`` and ``edge_fraction`` with Drake's ``CheckEdgeCollisionFree`` and
 ``MeasureEdgeCollisionFree`` on a checker built without certifier; per sweep (a random straight
 segment stepped every 0.005, all in one sequence) the rows the sequence test (``sweep``) calls
-free or colliding against Drake's answers. Prints one line per scene and
+free or colliding against Drake's answers; per configuration (a quarter as many) the penetration test
+``config_unpadded_free`` asks the kernel (thresholds less the padding) against SceneGraph's penetration
+query. Prints one line per scene and
 exits 1 on any mismatch where the certifier claims an answer.
 """
 
@@ -26,7 +28,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from lazyground.drake.certify_check import compare_configs, compare_edges, compare_sweeps  # noqa: E402
+from lazyground.drake.certify_check import compare_configs, compare_edges, compare_penetration, compare_sweeps  # noqa: E402
 
 
 def main(argv=None) -> int:
@@ -50,18 +52,27 @@ def main(argv=None) -> int:
         c = compare_configs(world, rng, args.configs)
         e = compare_edges(world, rng, args.edges)
         s = compare_sweeps(world, rng, args.sweeps)
+        u = compare_penetration(world, rng, args.configs // 4)
         bad += c.wrong_free + c.wrong_collides + e.mismatches + s.wrong_free + s.wrong_collides
+        bad += u.wrong_free + u.wrong_collides if u is not None else 0
         totals += [c.configs, c.proven_free, c.proven_colliding, c.wrong_free + c.wrong_collides, e.edges, e.mismatches,
                    s.configs, s.proven_free, s.wrong_free + s.wrong_collides]
         print(f"{name}: {c.configs} configurations (Drake free {c.drake_free}): proven free {c.proven_free}, "
               f"proven colliding {c.proven_colliding}, open {c.open}; wrong: free {c.wrong_free}, colliding "
               f"{c.wrong_collides}; {e.edges} edges ({e.free} free): mismatches {e.mismatches}; sweeps: {s.configs} "
               f"rows (Drake free {s.drake_free}): proven free {s.proven_free}, wrong {s.wrong_free + s.wrong_collides} "
-              f"[{time.perf_counter() - t0:.0f} s]", flush=True)
+              f"{_penetration(u)} [{time.perf_counter() - t0:.0f} s]", flush=True)
     print(f"total: {totals[0]} configurations ({totals[1]} proven free, {totals[2]} proven colliding), "
           f"{totals[3]} wrong; {totals[4]} edges, {totals[5]} mismatches; {totals[6]} sweep rows ({totals[7]} proven "
           f"free), {totals[8]} wrong")
     return 1 if bad else 0
+
+
+def _penetration(u) -> str:
+    if u is None:
+        return "; penetration: not asked"
+    return (f"; penetration (config_unpadded_free): {u.configs} rows (none penetrating {u.drake_free}): proven "
+            f"none {u.proven_free}, proven some {u.proven_colliding}, wrong {u.wrong_free + u.wrong_collides}")
 
 
 if __name__ == "__main__":

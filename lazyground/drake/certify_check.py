@@ -100,3 +100,20 @@ def compare_sweeps(world, rng: np.random.Generator, n: int, step: float = 0.005)
     return ConfigComparison(len(q), int(drake.sum()), int((code == 0).sum()), int((code == COLLIDES).sum()),
                             int(((code != 0) & (code != COLLIDES)).sum()), int(((code == 0) & ~drake).sum()),
                             int(((code == COLLIDES) & drake).sum()))
+
+
+def compare_penetration(world, rng: np.random.Generator, n: int) -> ConfigComparison | None:
+    """The kernel's penetration test (``certify_one`` with the padding as ``shift``, as ``config_unpadded_free``
+    asks) on :func:`sample_configs` rows: its 0 against SceneGraph's penetration query (free: nothing penetrates),
+    its COLLIDES (a padded collision) against Drake's checker; None where the checker does not ask that (paddings
+    differ, see checker._candidates_all_checked)."""
+    checker = world.checker
+    if not checker._penetration_first:
+        return None
+    q = sample_configs(world, rng, n)
+    code = np.array([checker.compiled.certify_one(row, checker._unpadded_shift)[0] for row in q])
+    clear = np.array([not checker._penetrates(row) for row in q])
+    padded = drake_free(world, q)
+    return ConfigComparison(len(q), int(clear.sum()), int((code == 0).sum()), int((code == COLLIDES).sum()),
+                            int(((code != 0) & (code != COLLIDES)).sum()), int(((code == 0) & ~clear).sum()),
+                            int(((code == COLLIDES) & padded).sum()))

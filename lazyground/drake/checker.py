@@ -60,6 +60,7 @@ class DrakeChecker:
         # context's current poses), fetched once here: ~1 us a check (#19)
         self._query = self._context.GetQueryObject()
         self._penetration_first = _candidates_all_checked(self.drake)
+        self._unpadded_shift = max(self.drake.GetLargestPadding(), 0.0)  # every pair's padding where that holds
         # proves configurations free before Drake is asked (None: this world cannot be bounded; lazyground.drake.spheres),
         # in compiled code (lazyground.drake.compiled)
         self.certifier = sphere_certifier(self.drake) if certify else None
@@ -107,8 +108,9 @@ class DrakeChecker:
         q_full = self.coordinates.full(q)
         if self.compiled is None:
             free = not self._penetrates(q_full)
-        else:  # what the certifier leaves open: the open pairs' penetration (no other pair comes within the padding)
-            code, pairs = self.compiled.certify_one(q_full)
+        else:  # the certifier's test for penetration (thresholds less the padding; COLLIDES: a padded collision,
+            # False here as before), then the open pairs' penetration (every other pair is proven apart)
+            code, pairs = self.compiled.certify_one(q_full, self._unpadded_shift)
             free = code == 0 or code != COLLIDES and (
                 self._open_free(q_full, pairs, unpadded=True) if code > 0 else not self._penetrates(q_full))
         self.check_time += _clock() - t0

@@ -33,7 +33,7 @@ def warm_up() -> float:
     fd, idata = kernels.pack(_TOY)
     work, pairs = np.zeros(kernels.work_size(idata)), np.zeros(CAP + 1, np.int64)
     kernels.certify_rows(np.zeros((1, 1)), fd, idata, work, np.zeros((1, CAP), np.int64))
-    kernels.certify_one(np.zeros(1), fd, idata, work, pairs)
+    kernels.certify_one(np.zeros(1), fd, idata, work, pairs, 0.0)
     kernels.first_open(np.zeros(1), np.ones(1), 2, np.arange(3), 0, fd, idata, work, pairs)
     kernels.sweep_rows(np.zeros((2, 1)), fd, idata, work, _above(_TOY), np.zeros((2, CAP), np.int64))
     _compile_s = time.perf_counter() - t0
@@ -60,9 +60,11 @@ class CompiledCertifier:
         self._open = np.zeros(CAP + 1, np.int64)
         self._work = np.zeros(kernels.work_size(self.idata))
 
-    def certify_one(self, q_full: np.ndarray) -> tuple[int, np.ndarray | None]:
-        """(the code of one configuration (:meth:`certify`), its open pairs when it has some)."""
-        code = kernels.certify_one(q_full, self.fd, self.idata, self._work, self._open)
+    def certify_one(self, q_full: np.ndarray, shift: float = 0.0) -> tuple[int, np.ndarray | None]:
+        """(the code of one configuration (:meth:`certify`), its open pairs when it has some). ``shift``: the
+        padding, to ask whether any pair penetrates instead (0 and the open pairs: against every pair's threshold
+        less it; COLLIDES is still a padded collision), where every checked pair has that one padding."""
+        code = kernels.certify_one(q_full, self.fd, self.idata, self._work, self._open, shift)
         return code, (self._open[:code].copy() if code > 0 else None)
 
     def certify(self, q_full: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -9,7 +9,7 @@ import pytest
 
 pytest.importorskip("pydrake")
 
-from lazyground.drake.certify_check import compare_configs, compare_edges, compare_sweeps  # noqa: E402
+from lazyground.drake.certify_check import compare_configs, compare_edges, compare_penetration, compare_sweeps  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
 
@@ -32,6 +32,11 @@ def test_claims_agree_with_drake(scene):
     s = compare_sweeps(world, rng, 4)
     assert s.wrong_free == 0 and s.wrong_collides == 0
     assert s.proven_free > 0.5 * s.drake_free and s.drake_free < s.configs
+    # the penetration test (config_unpadded_free): thresholds less the padding
+    u = compare_penetration(world, rng, 300)
+    if u is not None:
+        assert u.wrong_free == 0 and u.wrong_collides == 0
+        assert u.proven_free > 0.5 * u.drake_free and u.proven_colliding > 0
 
 
 def test_edges_at_any_resolution_on_one_checker():
