@@ -12,8 +12,10 @@ from lazyground.drake.compiled import _above
 
 @pytest.mark.parametrize("a", [1e-3, 0.3, 0.65, 2.0])
 def test_the_moved_bound_is_at_least_the_true_one(a):
-    """A point at lever sum a moves at most a (e^s - 1) / s when the revolute joints turn by s in total
-    (SphereCertifier.levers); the kernels' bound may not be below that anywhere in (0, 1]."""
+    """A point at lever sum a moves at most a (e^s - 1) / s on the straight line while the revolute joints turn by
+    s in total (the argument of SphereCertifier.levers); the kernels' bound may not be below that anywhere in
+    (0, 1]. (A row's endpoint moves at most a itself, docs/reliability.md: this holds the bound to its documented
+    argument, no sweep can show the difference.)"""
     for s in np.linspace(1e-4, 1.0, 2001):
         assert kernels.moved_bound(a, s) >= a * np.expm1(s) / s
     # and not far above it: the bound is a (1 + s) plus rounding (2 at s = 1, the true 1.718...)
