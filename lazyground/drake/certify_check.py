@@ -108,11 +108,11 @@ def compare_penetration(world, rng: np.random.Generator, n: int) -> ConfigCompar
     its COLLIDES (a padded collision) against Drake's checker; None where the checker does not ask that (paddings
     differ, see checker._candidates_all_checked)."""
     checker = world.checker
-    if not checker._penetration_first:
+    if not checker.penetration_first:
         return None
     q = sample_configs(world, rng, n)
-    code = np.array([checker.compiled.certify_one(row, checker._unpadded_shift)[0] for row in q])
-    clear = np.array([not checker._penetrates(row) for row in q])
+    code = np.array([checker.compiled.certify_one(row, checker.unpadded_shift)[0] for row in q])
+    clear = np.array([not checker.penetrates(row) for row in q])
     padded = drake_free(world, q)
     return ConfigComparison(len(q), int(clear.sum()), int((code == 0).sum()), int((code == COLLIDES).sum()),
                             int(((code != 0) & (code != COLLIDES)).sum()), int(((code == 0) & ~clear).sum()),

@@ -59,8 +59,8 @@ class DrakeChecker:
         # SceneGraph's query object for that context: the same object on every call (its queries read the
         # context's current poses), fetched once here: ~1 us a check (#19)
         self._query = self._context.GetQueryObject()
-        self._penetration_first = _candidates_all_checked(self.drake)
-        self._unpadded_shift = max(self.drake.GetLargestPadding(), 0.0)  # every pair's padding where that holds
+        self.penetration_first = _candidates_all_checked(self.drake)
+        self.unpadded_shift = max(self.drake.GetLargestPadding(), 0.0)  # every pair's padding where that holds
         # proves configurations free before Drake is asked (None: this world cannot be bounded; lazyground.drake.spheres),
         # in compiled code (lazyground.drake.compiled)
         self.certifier = sphere_certifier(self.drake) if certify else None
@@ -102,17 +102,17 @@ class DrakeChecker:
         Where the boolean query cannot stand in for the checker's (see _candidates_all_checked),
         this is :meth:`config_free`.
         """
-        if not self._penetration_first:
+        if not self.penetration_first:
             return self.config_free(q)
         t0 = _clock()
         q_full = self.coordinates.full(q)
         if self.compiled is None:
-            free = not self._penetrates(q_full)
+            free = not self.penetrates(q_full)
         else:  # the certifier's test for penetration (thresholds less the padding; COLLIDES: a padded collision,
             # False here as before), then the open pairs' penetration (every other pair is proven apart)
-            code, pairs = self.compiled.certify_one(q_full, self._unpadded_shift)
+            code, pairs = self.compiled.certify_one(q_full, self.unpadded_shift)
             free = code == 0 or code != COLLIDES and (
-                self._open_free(q_full, pairs, unpadded=True) if code > 0 else not self._penetrates(q_full))
+                self._open_free(q_full, pairs, unpadded=True) if code > 0 else not self.penetrates(q_full))
         self.check_time += _clock() - t0
         self.checks += 1
         return free
@@ -128,13 +128,13 @@ class DrakeChecker:
         Otherwise the distance query runs on the same, already posed context: the checker's
         own test, so the answer is Drake's either way (benchmarks/RESULTS.md, #19).
         """
-        if not self._penetration_first:
+        if not self.penetration_first:
             return bool(self.drake.CheckConfigCollisionFree(q_full))
-        if self._penetrates(q_full):
+        if self.penetrates(q_full):
             return False
         return not self._query.ComputeSignedDistancePairwiseClosestPoints(self.drake.GetLargestPadding())
 
-    def _penetrates(self, q_full: np.ndarray) -> bool:
+    def penetrates(self, q_full: np.ndarray) -> bool:
         """SceneGraph's boolean collision query at q_full (left posed in the main thread's context)."""
         self.drake.UpdatePositions(q_full)
         return self._query.HasCollisions()
@@ -246,7 +246,7 @@ class DrakeChecker:
         the steps ourselves in one batch was slower (Python overhead on the cheap car
         checks, no early exit on the arm; benchmarks/RESULTS.md, #19).
         """
-        if self._penetration_first and self._penetrates(qb):
+        if self.penetration_first and self.penetrates(qb):
             return False
         return bool(self.drake.CheckEdgeCollisionFree(qa, qb))
 

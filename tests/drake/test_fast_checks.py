@@ -49,7 +49,7 @@ def _near_obstacles(world, rng, n):
 
 
 def test_the_cheap_config_check_is_drakes_answer(world):
-    assert world.checker._penetration_first  # the bundled scenes qualify: else this test tests nothing new
+    assert world.checker.penetration_first  # the bundled scenes qualify: else this test tests nothing new
     rng = np.random.default_rng(7)
     qs = np.vstack([np.array([world.space.sample(rng) for _ in range(300)]), _near_obstacles(world, rng, 60)])
     drake = np.array([world.checker.drake.CheckConfigCollisionFree(world.full(q)) for q in qs], bool)
@@ -95,7 +95,7 @@ def test_a_negative_padding_keeps_drakes_own_checks():
 
     coordinates = coordinates_from_plant(diagram.plant(), robot, scene)
     checker = DrakeChecker(diagram, robot, coordinates, padding=-0.01, edge_resolution=0.05)
-    assert not checker._penetration_first  # a penetration shallower than the padding is free for Drake
+    assert not checker.penetration_first  # a penetration shallower than the padding is free for Drake
     rng = np.random.default_rng(9)
     qs = [coordinates.space.sample(rng) for _ in range(50)]
     assert [checker.config_free(q) for q in qs] == [bool(checker.drake.CheckConfigCollisionFree(coordinates.full(q))) for q in qs]
