@@ -643,6 +643,14 @@ MAX_WAIT = 32  # rows: the most between two anchor attempts (near an obstacle mo
 SAFETY = 1e-9  # metres: a moved distance must stay this far below its clearance (rounding of the bound itself)
 
 
+@njit(cache=True, inline="always")
+def moved_bound(a, s):
+    """How far a point moves at most from an anchor when the joints turn by |dq_j| with lever sum
+    a = sum_j |dq_j| lever_j and s = sum |dq_j| over revolute joints (<= 1): the true bound a (e^s - 1) / s
+    (``SphereCertifier.levers``) is below a (1 + s); plus the bound's own rounding."""
+    return a * (1.0 + s) * (1.0 + SAFETY) + SAFETY
+
+
 @njit(cache=True)
 def _clearance(q, fd, idata, Rs, ps, Rb, pb, centre, W, above, lever, clear_g, clear_k):
     """At q: per geometry its environment clearance into ``clear_g``, per self pair its clearance into ``clear_k``,
@@ -738,7 +746,7 @@ def sweep_rows(Q, fd, idata, work, above, pairs):
                     a = 0.0
                     for j in range(m):
                         a += dq[j] * lever[g, j]
-                    moved[g] = a * (1.0 + s) * (1.0 + SAFETY) + SAFETY
+                    moved[g] = moved_bound(a, s)
                     if moved[g] >= clear_g[g]:
                         covered = False
                         break
@@ -754,7 +762,7 @@ def sweep_rows(Q, fd, idata, work, above, pairs):
                     a = 0.0
                     for j in range(m):
                         a += dq[j] * pair_lever[k, j]
-                    if a * (1.0 + s) * (1.0 + SAFETY) + SAFETY >= clear_k[k]:
+                    if moved_bound(a, s) >= clear_k[k]:
                         covered = False
                         break
             if covered:
