@@ -122,3 +122,14 @@ def test_a_process_forked_after_a_parallel_batch_checks_serially_and_finishes():
     parallel_in_child, there = ours.recv()
     child.join()
     assert not parallel_in_child and there == here
+
+
+def test_each_single_check_counts_once(world):
+    """The reports' check counts (checks, µs per check) rest on one count per call, whatever path answers it."""
+    rng = np.random.default_rng(11)
+    qs = np.vstack([np.array([world.space.sample(rng) for _ in range(40)]), _near_obstacles(world, rng, 10)])
+    for method in (world.checker.config_free, world.checker.config_unpadded_free):
+        before = world.checker.checks
+        for k, q in enumerate(qs, 1):
+            method(q)
+            assert world.checker.checks == before + k
