@@ -133,3 +133,35 @@ def test_each_single_check_counts_once(world):
         for k, q in enumerate(qs, 1):
             method(q)
             assert world.checker.checks == before + k
+
+
+@pytest.mark.parametrize("n", range(1, 41))
+def test_the_bisection_order_visits_every_step_once_end_first(n):
+    """Steps 0..n of an edge, each exactly once, the end n first and the start 0 next (else a step goes
+    unchecked, or is checked twice); worked from the docstring's rule, not from the code."""
+    order = DrakeChecker._bisection(_ORDERS, n).tolist()
+    assert sorted(order) == list(range(n + 1))
+    assert order[:2] == [n, 0]
+    if n >= 2:
+        assert order[2] == n // 2  # the first halving's middle
+
+
+class _Orders:  # the only state _bisection reads and writes: its cache of orders by step count
+    def __init__(self):
+        self._orders = {}
+
+
+_ORDERS = _Orders()
+
+
+def test_a_checker_without_certifier_keeps_its_first_edge_resolution():
+    """Drake's checker has one edge step size: a second resolution is refused, not silently used as the first."""
+    world = DrakeWorld(load_scene(SCENES / "parking_1.yaml"), visual=False)
+    assert world.checker.compiled is None and world.checker.edge_resolution is None
+    rng = np.random.default_rng(0)
+    a, b = world.space.sample(rng), world.space.sample(rng)
+    world.checker.edge_free(a, b, 0.05)
+    assert world.checker.edge_resolution == 0.05
+    world.checker.edge_free(a, b, 0.05)
+    with pytest.raises(ValueError, match="every 0.05, not 0.1"):
+        world.checker.edge_free(a, b, 0.1)
