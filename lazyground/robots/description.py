@@ -151,10 +151,6 @@ def _installed_share(path: Path, packages: dict[str, Path]) -> Path | None:
     return None
 
 
-def _cache_dir() -> Path:
-    return cache_dir("meshes")
-
-
 def _read_dae(path: Path) -> np.ndarray:
     try:
         import trimesh  # optional: DAE needs an XML scene-graph reader
@@ -184,7 +180,7 @@ def obj_for(mesh: Path) -> Path:
         raise SceneError(f"{mesh}: mesh format {suffix or '(none)'} is not supported (Drake reads OBJ, glTF, VTK; "
                          "lazyground converts STL and DAE); convert it to OBJ")
     digest = hashlib.sha256(mesh.read_bytes()).hexdigest()[:20]
-    out = _cache_dir() / f"{mesh.stem}-{digest}.obj"
+    out = cache_dir("meshes") / f"{mesh.stem}-{digest}.obj"
     if not out.is_file():
         vertices, triangles = _read_stl(mesh) if suffix == ".stl" else _read_dae(mesh)
         if len(triangles) == 0:

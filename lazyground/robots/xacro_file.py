@@ -60,10 +60,6 @@ def parse_xacro_args(items) -> dict[str, str]:
     return dict(parse_xacro_arg(item) for item in items or ())
 
 
-def _cache_dir() -> Path:
-    return cache_dir("xacro")
-
-
 def _digest(*parts: bytes) -> str:
     h = hashlib.sha256()
     for part in parts:
@@ -95,7 +91,7 @@ def expand_xacro(path: str | os.PathLike, args: dict | None = None, packages: di
     packages = {k: str(Path(v).resolve()) for k, v in (packages or {}).items()}
     key = _digest(path.read_bytes(), str(path).encode(), json.dumps(args, sort_keys=True).encode(),
                   json.dumps(packages, sort_keys=True).encode())
-    cached = _cache_dir() / f"{path.name.replace('.', '_')}-{key}"  # no dots: with_suffix adds .xml/.json
+    cached = cache_dir("xacro") / f"{path.name.replace('.', '_')}-{key}"  # no dots: with_suffix adds .xml/.json
     text = _cached(cached)
     if text is not None:
         return text

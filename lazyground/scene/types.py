@@ -10,7 +10,6 @@ from __future__ import annotations
 from functools import lru_cache
 from pathlib import Path
 
-
 from lazyground.scene.schema import Geometry, Scene, SceneObject
 from lazyground.typed_yaml import SceneError, load_dataclass, load_yaml
 
