@@ -9,6 +9,7 @@ checker per resolution.
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 
@@ -65,8 +66,6 @@ class DrakeChecker:
         # in compiled code (lazyground.drake.compiled)
         self.certifier = sphere_certifier(self.drake) if certify else None
         self.compiled = CompiledCertifier(self.certifier) if self.certifier is not None else None
-        self._orders = {}  # bisection order of an edge's steps, by step count (_bisection)
-        self._sequences = {}  # steps in order, by step count (_sequence)
         # bound once: an edge check's glue is a fifth of its cost on Fetch (#31)
         self._difference = coordinates.space.difference
         self._distance = self.drake.ComputeConfigurationDistance
@@ -267,7 +266,7 @@ class DrakeChecker:
     def edge_part_free(self, a: np.ndarray, b: np.ndarray, resolution: float, first: int = 0,
                        stop: int | None = None) -> bool:
         """Whether the steps at positions ``first`` .. ``stop`` - 1 of a → b, in interior-first bisection order
-        (:meth:`_interior_first`), are free at ``resolution``: the whole edge by default, in one compiled call with
+        (:func:`interior_first_order`), are free at ``resolution``: the whole edge by default, in one compiled call with
         early exit (a shortcut's candidate edges, whose ends lie on a checked path; a search probing a few steps
         first). The steps and answers are :meth:`edge_free`'s (Drake's); only the order and the part differ.
 
@@ -297,8 +296,8 @@ class DrakeChecker:
         # Drake's own distance: a sum in another order can differ in the last bit, and so the step count
         # (math.ceil: np.ceil's number, without a numpy scalar)
         n = max(1, math.ceil(self._distance(qa, qb) / resolution))
-        order = (self._sequence(n) if fraction else self._bisection(n) if part is None
-                 else self._interior_first(n)[slice(*part)])
+        order = (sequence_order(n) if fraction else bisection_order(n) if part is None
+                 else interior_first_order(n)[slice(*part)])
         begin, out = 0, (1.0 if fraction else True)
         first_open = self.compiled.first_open
         while True:
@@ -315,40 +314,6 @@ class DrakeChecker:
         self.check_time += _clock() - t0
         self.checks += 1
         return out
-
-    def _sequence(self, n: int) -> np.ndarray:
-        """Steps 0..n in order (an edge's free fraction is measured from its start), kept per n."""
-        order = self._sequences.get(n)
-        if order is None:
-            order = self._sequences[n] = np.arange(n + 1)
-        return order
-
-    def _bisection(self, n: int) -> np.ndarray:
-        """Steps 0..n of an edge in the order to check them: the end n first (a planner's extension usually
-        fails there, as Drake checks it first), the start, then the middles of ever finer halvings."""
-        order = self._orders.get(n)
-        if order is None:
-            out, seen, level = [n, 0], {0, n}, [(0, n)]
-            while level:
-                nxt = []
-                for lo, hi in level:
-                    if hi - lo > 1:
-                        mid = (lo + hi) // 2
-                        if mid not in seen:
-                            seen.add(mid)
-                            out.append(mid)
-                        nxt += [(lo, mid), (mid, hi)]
-                level = nxt
-            order = self._orders[n] = np.array(out, np.int64)
-        return order
-
-    def _interior_first(self, n: int) -> np.ndarray:
-        """Steps 0..n of an edge, the middles of ever finer halvings first, the ends last (0, then n)."""
-        order = self._orders.get(-n)
-        if order is None:
-            ends_first = self._bisection(n)
-            order = self._orders[-n] = np.concatenate([ends_first[2:], ends_first[1::-1]])
-        return order
 
     def _edge(self, check, a, b, resolution: float):
         if self._resolution is None:
@@ -377,6 +342,39 @@ class DrakeChecker:
                 continue
             pairs.append((_geometry_name(plant, inspector, p.id_A), _geometry_name(plant, inspector, p.id_B)))
         return sorted(set(pairs))
+
+
+# An edge's steps 0..n in the orders the checks visit them: pure functions of the step count, kept once per process.
+
+@functools.lru_cache(maxsize=4096)
+def sequence_order(n: int) -> np.ndarray:
+    """Steps 0..n in order (an edge's free fraction is measured from its start)."""
+    return np.arange(n + 1)
+
+
+@functools.lru_cache(maxsize=4096)
+def bisection_order(n: int) -> np.ndarray:
+    """Steps 0..n of an edge in the order to check them: the end n first (a planner's extension usually
+    fails there, as Drake checks it first), the start, then the middles of ever finer halvings."""
+    out, seen, level = [n, 0], {0, n}, [(0, n)]
+    while level:
+        nxt = []
+        for lo, hi in level:
+            if hi - lo > 1:
+                mid = (lo + hi) // 2
+                if mid not in seen:
+                    seen.add(mid)
+                    out.append(mid)
+                nxt += [(lo, mid), (mid, hi)]
+        level = nxt
+    return np.array(out, np.int64)
+
+
+@functools.lru_cache(maxsize=4096)
+def interior_first_order(n: int) -> np.ndarray:
+    """Steps 0..n of an edge, the middles of ever finer halvings first, the ends last (0, then n)."""
+    ends_first = bisection_order(n)
+    return np.concatenate([ends_first[2:], ends_first[1::-1]])
 
 
 def _candidates_all_checked(checker) -> bool:

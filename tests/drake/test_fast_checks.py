@@ -17,7 +17,7 @@ import pytest
 pytest.importorskip("pydrake")
 
 from lazyground.drake import parallel  # noqa: E402
-from lazyground.drake.checker import DrakeChecker  # noqa: E402
+from lazyground.drake.checker import DrakeChecker, bisection_order  # noqa: E402
 from lazyground.drake.diagram import build_diagram  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
@@ -139,19 +139,11 @@ def test_each_single_check_counts_once(world):
 def test_the_bisection_order_visits_every_step_once_end_first(n):
     """Steps 0..n of an edge, each exactly once, the end n first and the start 0 next (else a step goes
     unchecked, or is checked twice); worked from the docstring's rule, not from the code."""
-    order = DrakeChecker._bisection(_ORDERS, n).tolist()
+    order = bisection_order(n).tolist()
     assert sorted(order) == list(range(n + 1))
     assert order[:2] == [n, 0]
     if n >= 2:
         assert order[2] == n // 2  # the first halving's middle
-
-
-class _Orders:  # the only state _bisection reads and writes: its cache of orders by step count
-    def __init__(self):
-        self._orders = {}
-
-
-_ORDERS = _Orders()
 
 
 def test_a_checker_without_certifier_keeps_its_first_edge_resolution():
