@@ -24,12 +24,17 @@ _compiled_now = False  # whether that call compiled (no usable cache on this mac
 
 
 def warm_up() -> float:
-    """Compile (or load from numba's on-disk cache) the kernels once per process; the seconds it took
-    (0.0 after the first call). The first call on a machine compiles (~20-60 s), later processes load (~1 s)."""
+    """Compile (or load from numba's on-disk cache) the kernels once per process, the planner's nearest-neighbour
+    and steering kernels too (lazyground.planning.linear_kernels: an arm's tree would load them in its first
+    request); the seconds it took (0.0 after the first call). The first call on a machine compiles (~20-60 s),
+    later processes load (~1 s)."""
     global _compile_s, _compiled_now
     if _compile_s is not None:
         return 0.0
     t0 = time.perf_counter()
+    from lazyground.planning import linear_kernels
+
+    planner_compiled = linear_kernels.warm_up()[1]
     fd, idata = kernels.pack(_TOY)
     work, pairs = np.zeros(kernels.work_size(idata)), np.zeros(CAP + 1, np.int64)
     kernels.certify_rows(np.zeros((1, 1)), fd, idata, work, np.zeros((1, CAP), np.int64))
@@ -37,8 +42,8 @@ def warm_up() -> float:
     kernels.first_open(np.zeros(1), np.ones(1), 2, np.arange(3), 0, fd, idata, work, pairs)
     kernels.sweep_rows(np.zeros((2, 1)), fd, idata, work, _above(_TOY), np.zeros((2, CAP), np.int64))
     _compile_s = time.perf_counter() - t0
-    _compiled_now = any(sum(k.stats.cache_misses.values()) for k in (kernels.certify_rows, kernels.certify_one,
-                                                                    kernels.first_open, kernels.sweep_rows))
+    _compiled_now = planner_compiled or any(sum(k.stats.cache_misses.values()) for k in (
+        kernels.certify_rows, kernels.certify_one, kernels.first_open, kernels.sweep_rows))
     return _compile_s
 
 

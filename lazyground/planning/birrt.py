@@ -49,6 +49,7 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
     start_turn = True
     closest: dict[int, float] = {}  # goal sample -> the smallest gap its subtree has left to the start tree
     connects_selected = bool(getattr(s.selector, "connects_selected", False))
+    step = s.settings.step_size
     while s.time_left():
         if not s.have_samples():
             if s.goals.exhausted():
@@ -61,7 +62,7 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
         q_rand = space.sample(rng)
         reached = False
         if start_turn:
-            a = _extend(s, ts, ts.nearest(q_rand), q_rand)
+            _, a = _extend(s, ts, q_rand, step)
             if a >= 0:
                 b, reached = _connect(s, tg, ts.nodes[a])
                 if not reached and connects_selected:
@@ -69,8 +70,7 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
         else:
             # goal turn: the strategy's goal tree grows (with probability goal_bias; credited), else the forest
             gi = s.select() if rng.random() < s.settings.goal_bias else None
-            near = tg.nearest(q_rand, label=gi)
-            b = _extend(s, tg, near, q_rand) if near >= 0 else -1
+            near, b = _extend(s, tg, q_rand, step, gi)
             if b >= 0:
                 a, reached = _connect(s, ts, tg.nodes[b])
             if gi is not None:
@@ -120,10 +120,11 @@ def _credit(s: Search, gi: int, closest: dict[int, float], gap: float) -> None:
         s.penalize(gi, only_if_all_stuck=True)
 
 
-def _extend(s: Search, tree: Tree, near: int, q_towards: np.ndarray) -> int:
-    """One step from node ``near`` towards q_towards: the new node, or -1 if blocked."""
-    q_new, _ = s.space.steer(tree.nodes[near], q_towards, s.settings.step_size)
-    return _step(s, tree, near, q_new)
+def _extend(s: Search, tree: Tree, q_towards: np.ndarray, step: float, label: int | None = None) -> tuple[int, int]:
+    """One step from the tree's nearest node (in one label's subtree if given) towards q_towards:
+    (that node, or -1 if there is none; the new node, or -1 if blocked)."""
+    near, q_new, _ = tree.nearest_steer(q_towards, step, label)
+    return near, (_step(s, tree, near, q_new) if near >= 0 else -1)
 
 
 def _step(s: Search, tree: Tree, parent: int, q_new: np.ndarray) -> int:
@@ -174,7 +175,7 @@ def _connect(s: Search, tree: Tree, q_target: np.ndarray) -> tuple[int, bool]:
 def _greedy(s: Search, tree: Tree, node: int, q_target: np.ndarray) -> tuple[int, bool]:
     """Greedy steps from ``node`` towards q_target: (last node, reached)."""
     while s.time_left():
-        q_new, reached = s.space.steer(tree.nodes[node], q_target, s.settings.step_size)
+        q_new, reached = tree.steer(node, q_target, s.settings.step_size)
         new = _step(s, tree, node, q_new)
         if new < 0:
             return node, False

@@ -104,9 +104,8 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
             q_towards = s.samples[gi].q
         else:
             q_towards = space.sample(rng)
-        near = tree.nearest(q_towards)
+        near, q_new, reached = tree.nearest_steer(q_towards, settings.step_size)
         q_near = tree.nodes[near]
-        q_new, reached = space.steer(q_near, q_towards, settings.step_size)
         if gi is not None and (near, gi) in blocked:
             q_new = None  # the same edge as before: its answer has not changed
         elif gi is not None and settings.goal_extension is GoalExtension.PARTIAL:
@@ -128,7 +127,7 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
             continue
         # "connect" keeps stepping towards the goal sample while the steps are free
         while settings.goal_extension is GoalExtension.CONNECT and not reached and s.time_left():
-            q_next, r = space.steer(q_new, q_towards, settings.step_size)
+            q_next, r = tree.steer(node, q_towards, settings.step_size)
             if not motion.edge_free(q_new, q_next, resolution):
                 break
             node, q_new, reached = tree.add(q_next, node, True), q_next, r

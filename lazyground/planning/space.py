@@ -48,6 +48,7 @@ class ConfigSpace:
     _span: np.ndarray = field(init=False, repr=False)
     _w2_list: tuple | None = field(init=False, repr=False)  # the squared weights as floats: the float path (below)
     embeds_as_is: bool = field(init=False, repr=False)  # the embedding is the coordinates (no angles, unit weights)
+    unit_linear: bool = field(init=False, repr=False)  # embeds_as_is, < 16 coordinates: lazyground.planning.linear_kernels
 
     def __post_init__(self):
         n = len(self.names)
@@ -76,6 +77,7 @@ class ConfigSpace:
         fast = not wrap.any() and n < FLOAT_PATH_MAX_DIM
         object.__setattr__(self, "_w2_list", tuple((weights**2).tolist()) if fast else None)
         object.__setattr__(self, "embeds_as_is", not wrap.any() and bool(np.all(weights == 1.0)))
+        object.__setattr__(self, "unit_linear", self.embeds_as_is and fast)
 
     @property
     def dim(self) -> int:
