@@ -145,7 +145,7 @@ def _step(s: Search, tree: Tree, parent: int, q_new: np.ndarray) -> int:
     """
     q_parent = tree.nodes[parent]
     if tree is not s.trees[0]:
-        return tree.add(q_new, parent) if s.motion.edge_free(q_parent, q_new, s.resolution) else -1
+        return tree.add(q_new, parent) if s.edge_free(q_parent, q_new, s.resolution) else -1
     free = s.probe_free
     if not free(q_new):
         return -1  # (most steps end blocked: the probes are computed only past a free end)

@@ -147,6 +147,28 @@ class ConfigSpace:
         t = np.arange(1 if skip_first else 0, n + 1) / n
         return self.interpolate(a, b, t)
 
+    def discretize_path(self, path: np.ndarray, segments, resolution: float) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`discretize` of the path's segments ``segments`` (ascending) stacked, a vertex shared by two of
+        them once; and each row's segment index.
+
+        Linear straight segments go in a few numpy calls over all of them: the same numbers as segment by
+        segment (a + t (b - a) with t = i / n, elementwise), without a dozen numpy calls per segment (#31)."""
+        segments = list(segments)
+        skips = [i > 0 and segments[i - 1] == k - 1 for i, k in enumerate(segments)]
+        if self._w2_list is None or type(self).discretize is not ConfigSpace.discretize or not segments:
+            chunks = [self.discretize(path[k], path[k + 1], resolution, skip_first=skip) for k, skip in zip(segments, skips)]
+            owner = [np.full(len(qs), k) for k, qs in zip(segments, chunks)]
+            return (np.vstack(chunks), np.concatenate(owner)) if chunks else (np.empty((0, self.dim)), np.empty(0, int))
+        path = np.asarray(path, float)
+        ks = np.array(segments)
+        ns = np.array([max(1, int(np.ceil(self.distance(path[k], path[k + 1]) / resolution))) for k in segments])
+        first = np.array(skips, int)
+        counts = ns + 1 - first
+        rows = np.repeat(np.arange(len(ks)), counts)
+        i = np.arange(len(rows)) - np.repeat(np.cumsum(counts) - counts, counts) + first[rows]
+        a = path[ks][rows]
+        return a + (i / ns[rows])[:, None] * (path[ks + 1][rows] - a), ks[rows]
+
     def steer(self, a: np.ndarray, b: np.ndarray, step: float) -> tuple[np.ndarray, bool]:
         """Move from a towards b by at most ``step``; returns (q, reached_b)."""
         if not len(self._ang):  # no angles: the same numbers in fewer numpy calls
