@@ -32,15 +32,15 @@ def warm_up() -> float:
     if _compile_s is not None:
         return 0.0
     t0 = time.perf_counter()
-    from lazyground.planning import linear_kernels
-
-    planner_compiled = linear_kernels.warm_up()[1]
     fd, idata = kernels.pack(_TOY)
     work, pairs = np.zeros(kernels.work_size(idata)), np.zeros(CAP + 1, np.int64)
     kernels.certify_rows(np.zeros((1, 1)), fd, idata, work, np.zeros((1, CAP), np.int64))
     kernels.certify_one(np.zeros(1), fd, idata, work, pairs, 0.0)
     kernels.first_open(np.zeros(1), np.ones(1), 2, np.arange(3), 0, fd, idata, work, pairs)
     kernels.sweep_rows(np.zeros((2, 1)), fd, idata, work, _above(_TOY), np.zeros((2, CAP), np.int64))
+    from lazyground.planning import linear_kernels
+
+    planner_compiled = linear_kernels.warm_up()[1]
     _compile_s = time.perf_counter() - t0
     _compiled_now = planner_compiled or any(sum(k.stats.cache_misses.values()) for k in (
         kernels.certify_rows, kernels.certify_one, kernels.first_open, kernels.sweep_rows))
