@@ -63,12 +63,12 @@ def test_random_reachable_targets_are_met_within_tolerance_and_limits(cans1):
 def test_the_kernels_pose_jacobian_and_met_verdict_are_the_chains(cans1):
     """The compiled solver's forward kinematics (a prismatic torso, revolute joints) and its "met" verdict agree
     with Chain.forward (itself held to Drake's plant) and with pose_errors against the accepted error."""
-    from lazyground.drake.ik import dls_kernel
+    from lazyground.drake.ik import kernels
     from lazyground.drake.ik.batch import pose_errors
     _, world, _ = cans1
     problem = _fetch_problem(world)
     chain = problem.chain
-    assert dls_kernel.PRISMATIC_KIND in chain.kinds and 0 in chain.kinds
+    assert kernels.PRISMATIC_KIND in chain.kinds and 0 in chain.kinds
     rng = np.random.default_rng(3)
     q = np.array([world.space.sample(rng) for _ in range(50)])
     X_ref, J_ref = chain.forward(q, jacobian=True)
@@ -76,7 +76,7 @@ def test_the_kernels_pose_jacobian_and_met_verdict_are_the_chains(cans1):
     scratch = (np.empty((3, 4)), np.empty((n, 3)), np.empty((n, 3)))
     for k in range(len(q)):
         X, J = np.empty((4, 4)), np.empty((6, n))
-        dls_kernel._forward(q[k], chain.X_before, chain.X_after, chain.kinds, *scratch, X, J, True, np.empty(4))
+        kernels._forward(q[k], chain.X_before, chain.X_after, chain.kinds, *scratch, X, J, True, np.empty(4))
         assert np.allclose(X, X_ref[k], atol=1e-12) and np.allclose(J, J_ref[k], atol=1e-12)
     targets = chain.forward(np.array([world.space.sample(rng) for _ in range(200)]))
     accepted = accepted_error(0.002, 0.01)

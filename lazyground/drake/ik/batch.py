@@ -3,7 +3,7 @@
 A goal-sampling round poses dozens of IK problems (every live region x its drawn
 target x several random starts). One SNOPT solve costs ~1.4 ms from Python, most
 of it building and entering the program; here all problems are rows of one
-(B, n) array solved in one compiled call (:mod:`~lazyground.drake.ik.dls_kernel`,
+(B, n) array solved in one compiled call (:mod:`~lazyground.drake.ik.kernels`,
 ~10 µs a row on Fetch), each iteration one forward-kinematics + Jacobian evaluation
 of the chain and one 6x6 solve. Levenberg-Marquardt damping is kept per problem: a step
 that lowers a problem's error is taken and its damping halved, one that does not
@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from lazyground.drake.chain import Chain
-from lazyground.drake.ik import dls_kernel
+from lazyground.drake.ik import kernels
 
 ITERATIONS = 15  # per problem; converged from random starts on fetch_cans_1: 83 % by 10, 93 % by 15, 95 % by 30 (SNOPT 64 %)
 DAMPING = 0.05  # initial damping (m or rad), per problem
@@ -107,7 +107,7 @@ def solve_batch(problem: BatchIKProblem, q0: np.ndarray, targets: np.ndarray, po
     Returns:
         (answers (B, n), converged (B,) bool, met (B,) bool: the answer's pose within ``accepted``).
 
-    Compiled row by row (:mod:`~lazyground.drake.ik.dls_kernel`): the same steps as the numpy
+    Compiled row by row (:mod:`~lazyground.drake.ik.kernels`): the same steps as the numpy
     batch it replaced, answers equal to ~1e-9 rad (fetch_cans_1, 800 random rows), ~8x less CPU.
     """
     chain = problem.chain
@@ -115,7 +115,7 @@ def solve_batch(problem: BatchIKProblem, q0: np.ndarray, targets: np.ndarray, po
     targets = np.ascontiguousarray(targets, float).reshape(-1, 4, 4)
     B = len(q0)
     q, done, met = np.empty((B, chain.n)), np.empty(B, np.bool_), np.empty(B, np.bool_)
-    dls_kernel.solve_rows(q0, targets, chain.X_before, chain.X_after, chain.kinds, problem.free, problem.lower, problem.upper,
+    kernels.solve_rows(q0, targets, chain.X_before, chain.X_after, chain.kinds, problem.free, problem.lower, problem.upper,
                           problem.wrap, float(position_tolerance), float(orientation_tolerance), int(iterations), DAMPING,
                           MIN_DAMPING, MAX_DAMPING, SETTLE, WEIGHT, float(accepted[0]), float(accepted[1]), q, done, met)
     return q, done, met

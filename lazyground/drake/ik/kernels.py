@@ -1,4 +1,5 @@
-"""The batch IK solver's damped least squares, compiled with numba (#31).
+"""Goal sampling's inner loops, compiled with numba (#31): the batch IK solver's damped least squares
+(:func:`solve_rows`) and the hand probe's test of targets (:func:`probe_rows`).
 
 :func:`solve_rows` runs :func:`lazyground.drake.ik.batch.solve_batch`'s method row by
 row: forward kinematics and the geometric Jacobian of the chain (as
@@ -8,7 +9,7 @@ the step kept only when it lowers the error. A row stops when it is within SETTL
 of its tolerance. The numpy batch paid one array operation per iteration for all
 rows and kept iterating while any row was live (~70 µs a row on Fetch); a row here
 costs ~1 µs an iteration. ``cache=True``: compiled once per machine
-(:func:`lazyground.drake.compiled.warm_up` loads it with the collision kernels).
+(:func:`lazyground.drake.compiled.warm_up` loads them with the collision kernels).
 """
 
 from __future__ import annotations
@@ -220,10 +221,50 @@ def solve_rows(q0, targets, X_before, X_after, kinds, free, lower, upper, wrap, 
         met_out[b] = math.sqrt(e[3] * e[3] + e[4] * e[4] + e[5] * e[5]) <= max_dp and angle <= max_angle
 
 
+@njit(cache=True)
+def _solid_distance(x0, x1, x2, half, rounding, cylinder):
+    """:func:`lazyground.drake.solids.solid_distance` of one point in its solid's centred frame."""
+    d0, d1, d2 = abs(x0) - half[0], abs(x1) - half[1], abs(x2) - half[2]
+    if cylinder:  # radial and axial distance only
+        d0, d1 = math.hypot(x0, x1) - half[0], -math.inf
+    outside = math.sqrt(max(d0, 0.0) ** 2 + max(d1, 0.0) ** 2 + max(d2, 0.0) ** 2)
+    return outside + min(max(max(d0, d1), d2), 0.0) - rounding
+
+
+@njit(cache=True)
+def probe_rows(X_WT, points, R_WS, p_WS, half, rounding, cylinder, limit, near, out):
+    """:meth:`lazyground.drake.ik.hand_probe.HandProbe.blocked` per target pose (B, 4, 4) into ``out`` (B,):
+    some probe point, placed by the target, closer to an obstacle's solid than its limit there."""
+    for b in range(len(X_WT)):
+        out[b] = False
+        for k in range(len(R_WS)):
+            v0, v1, v2 = X_WT[b, 0, 3] - p_WS[k, 0], X_WT[b, 1, 3] - p_WS[k, 1], X_WT[b, 2, 3] - p_WS[k, 2]
+            o0 = v0 * R_WS[k, 0, 0] + v1 * R_WS[k, 1, 0] + v2 * R_WS[k, 2, 0]  # the hand's origin in the solid's frame
+            o1 = v0 * R_WS[k, 0, 1] + v1 * R_WS[k, 1, 1] + v2 * R_WS[k, 2, 1]
+            o2 = v0 * R_WS[k, 0, 2] + v1 * R_WS[k, 1, 2] + v2 * R_WS[k, 2, 2]
+            if not _solid_distance(o0, o1, o2, half[k], rounding[k], cylinder[k]) < near[k]:
+                continue
+            for p in range(len(points)):
+                x, y, z = points[p, 0], points[p, 1], points[p, 2]
+                w0 = X_WT[b, 0, 0] * x + X_WT[b, 0, 1] * y + X_WT[b, 0, 2] * z  # the point's offset, in world
+                w1 = X_WT[b, 1, 0] * x + X_WT[b, 1, 1] * y + X_WT[b, 1, 2] * z
+                w2 = X_WT[b, 2, 0] * x + X_WT[b, 2, 1] * y + X_WT[b, 2, 2] * z
+                l0 = o0 + w0 * R_WS[k, 0, 0] + w1 * R_WS[k, 1, 0] + w2 * R_WS[k, 2, 0]
+                l1 = o1 + w0 * R_WS[k, 0, 1] + w1 * R_WS[k, 1, 1] + w2 * R_WS[k, 2, 1]
+                l2 = o2 + w0 * R_WS[k, 0, 2] + w1 * R_WS[k, 1, 2] + w2 * R_WS[k, 2, 2]
+                if _solid_distance(l0, l1, l2, half[k], rounding[k], cylinder[k]) < limit[k, p]:
+                    out[b] = True
+                    break
+            if out[b]:
+                break
+
+
 def warm_up() -> bool:
-    """Compile (or load from numba's cache) :func:`solve_rows` with the argument types the solver passes, on a
-    one-joint chain; whether it compiled (no usable cache)."""
+    """Compile (or load from numba's cache) the kernels with the argument types their callers pass, on toy
+    data (a one-joint chain, one probe point and box); whether any compiled (no usable cache)."""
     eye, f, b = np.eye(4), np.zeros(1), np.zeros(1, np.bool_)
     solve_rows(np.zeros((1, 1)), eye[None].copy(), eye[None].copy(), eye.copy(), np.zeros(1, np.int64), ~b, f - 1.0,
                f + 1.0, b, 0.002, 0.01, 1, 0.05, 1e-6, 1e3, 0.05, np.ones(6), 0.002, 0.01, np.zeros((1, 1)), b.copy(), b.copy())
-    return bool(sum(solve_rows.stats.cache_misses.values()))
+    probe_rows(eye[None].copy(), np.zeros((1, 3)), np.eye(3)[None].copy(), np.zeros((1, 3)), np.ones((1, 3)), f.copy(),
+               b.copy(), np.zeros((1, 1)), np.ones(1), b.copy())
+    return bool(sum(solve_rows.stats.cache_misses.values()) + sum(probe_rows.stats.cache_misses.values()))
