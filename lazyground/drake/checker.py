@@ -16,7 +16,9 @@ import time
 import numpy as np
 from pydrake.planning import LinearDistanceAndInterpolationProvider, SceneGraphCollisionChecker
 
-from lazyground.drake.compiled import COLLIDES, CompiledCertifier
+from lazyground.drake.compiled import CAP, COLLIDES, CompiledCertifier
+from lazyground.drake.edge_kernel import (ALL_FREE, BISECTION, INTERIOR_FIRST, SEQUENCE, edge_data, edge_open,
+                                          eigen_packet)
 from lazyground.drake.coordinates import Coordinates
 from lazyground.drake.parallel import parallel_batch
 from lazyground.drake.spheres import sphere_certifier
@@ -69,6 +71,16 @@ class DrakeChecker:
         # bound once: an edge check's glue is a fifth of its cost on Fetch (#31)
         self._difference = coordinates.space.difference
         self._distance = self.drake.ComputeConfigurationDistance
+        if self.compiled is not None:  # an edge's glue and steps in one compiled call (edge_kernel.edge_open)
+            self._ends = np.empty((2, len(coordinates.q_full)))  # its ends' plant positions, the step count
+            self._steps = np.zeros(1, np.int64)
+            self._open = np.zeros(CAP + 1, np.int64)
+            # how this Drake sums its distance (0: unknown; then Drake gives each step count): a fixed seed
+            self._packet = eigen_packet(self._distance, coordinates.plant_weights(), np.random.default_rng(0))
+            self._edge_open = functools.partial(
+                edge_open, self.compiled.fd, self.compiled.idata, self.compiled.work, self._open, self._steps,
+                self._ends, np.asarray(coordinates.planned, np.int64),
+                edge_data(coordinates.q_full, coordinates.plant_weights(), coordinates.space.wrap), self._packet)
         self.certified = 0  # configurations the certifier proved free
         self._pairs = {}  # the certifier's pairs as SceneGraph's (id, id, padding), as they come up (_pair)
 
@@ -283,37 +295,49 @@ class DrakeChecker:
         ``resolution``, with the certifier: the same steps (q_k = qa + k / n (qb - qa), k = 0..n, n =
         max(1, ceil(Drake's distance / resolution)); the certifier's margin covers the last bit by which Drake's
         interpolation may differ, and a step it leaves open is Drake's interpolation), certified in one compiled
-        call in bisection order (sequentially for the fraction) up to the first one it cannot prove, which
+        call (:func:`lazyground.drake.edge_kernel.edge_open`: the ends, the step count, the order and the steps)
+        in bisection order (sequentially for the fraction) up to the first one it cannot prove, which
         SceneGraph decides (:meth:`_open_free`) unless it proves a collision there; then on from there. So the answer is Drake's: a step is
         called colliding by Drake or by a proof of it, and every other step is proven free."""
         if self._resolution is None:
             self._resolution = resolution
         t0 = _clock()
-        a = np.asarray(a, float)
+        mode = SEQUENCE if fraction else BISECTION if part is None else INTERIOR_FIRST
+        first, stop = (0, -1) if part is None else (part[0], -1 if part[1] is None else part[1])
+        a, b = np.ascontiguousarray(a, float), np.ascontiguousarray(b, float)
+        p = self._edge_open(a, b, resolution, mode, first, stop, 0 if self._packet else self._drake_steps(a, b, resolution))
+        if p == ALL_FREE:
+            out = 1.0 if fraction else True
+        elif not fraction and self._open[-1] == COLLIDES:  # a step proven colliding: most of a planner's edges
+            out = False
+        else:
+            out = self._open_steps(p, mode, stop, fraction)
+        self.check_time += _clock() - t0
+        self.checks += 1
+        return out
+
+    def _drake_steps(self, a: np.ndarray, b: np.ndarray, resolution: float) -> int:
+        """The step count of a -> b from Drake's own distance (where edge_kernel cannot sum as this Drake does)."""
         full = self.coordinates.full
-        qa = full(a)
-        qb = full(a + self._difference(a, b))
-        # Drake's own distance: a sum in another order can differ in the last bit, and so the step count
-        # (math.ceil: np.ceil's number, without a numpy scalar)
-        n = max(1, math.ceil(self._distance(qa, qb) / resolution))
-        order = (sequence_order(n) if fraction else bisection_order(n) if part is None
-                 else interior_first_order(n)[slice(*part)])
-        begin, out = 0, (1.0 if fraction else True)
-        first_open = self.compiled.first_open
+        return max(1, math.ceil(self._distance(full(a), full(a + self._difference(a, b))) / resolution))
+
+    def _open_steps(self, p: int, mode: int, stop: int, fraction: bool):
+        """The rest of :meth:`_certified_edge` from the first step the certifier left open (position p of the
+        order; the ends in ``_ends``, the count in ``_steps``): SceneGraph decides it, then on from there."""
+        (qa, qb), n = self._ends, int(self._steps[0])
+        order = _ORDERS[mode](n)
+        order = order if stop < 0 else order[:stop]
+        code = int(self._open[-1])
+        pairs = self._open[:code].copy() if code > 0 else None
         while True:
-            p, code, pairs = first_open(qa, qb, n, order, begin)
-            if p < 0:
-                break
             k = int(order[p])
             # Drake's own interpolation: ours differs in the last bit, which decides a step on the boundary
             q = qa if k == 0 else qb if k == n else self.drake.InterpolateBetweenConfigurations(qa, qb, k / n)
             if code == COLLIDES or not self._open_free(q, pairs):
-                out = max(0.0, (k - 1) / n) if fraction else False
-                break
-            begin = p + 1
-        self.check_time += _clock() - t0
-        self.checks += 1
-        return out
+                return max(0.0, (k - 1) / n) if fraction else False
+            p, code, pairs = self.compiled.first_open(qa, qb, n, order, p + 1)
+            if p < 0:
+                return 1.0 if fraction else True
 
     def _edge(self, check, a, b, resolution: float):
         if self._resolution is None:
@@ -375,6 +399,9 @@ def interior_first_order(n: int) -> np.ndarray:
     """Steps 0..n of an edge, the middles of ever finer halvings first, the ends last (0, then n)."""
     ends_first = bisection_order(n)
     return np.concatenate([ends_first[2:], ends_first[1::-1]])
+
+
+_ORDERS = {SEQUENCE: sequence_order, BISECTION: bisection_order, INTERIOR_FIRST: interior_first_order}
 
 
 def _candidates_all_checked(checker) -> bool:
