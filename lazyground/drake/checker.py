@@ -21,9 +21,15 @@ from lazyground.drake.edge_kernel import (ALL_FREE, BISECTION, INTERIOR_FIRST, S
                                           eigen_packet)
 from lazyground.drake.coordinates import Coordinates
 from lazyground.drake.parallel import parallel_batch
+from lazyground.drake.sphere_kernels import certify_one
 from lazyground.drake.spheres import sphere_certifier
 
 _clock = time.perf_counter
+
+# A batch this long is certified as configurations in sequence (CompiledCertifier.sweep): the search's re-check of
+# a path it returns (~1,000-3,000 rows a few mm apart on Fetch: 1.5-3x cheaper a row); shorter batches (goal
+# samples' approaches, the segments a rejected path left unchecked: 2-200 rows) cost more that way (#31).
+SWEEP_ROWS = 512
 
 # Drake needs a positive step at construction; a checker built without a resolution
 # replaces this once, before its first edge check, and never again.
@@ -75,6 +81,8 @@ class DrakeChecker:
             self._ends = np.empty((2, len(coordinates.q_full)))  # its ends' plant positions, the step count
             self._steps = np.zeros(1, np.int64)
             self._open = np.zeros(CAP + 1, np.int64)
+            self._certify_one = functools.partial(certify_one, self.compiled.fd, self.compiled.idata, self.compiled.work,
+                                                  self._open)  # (q_full, shift) -> code, open pairs in _open
             # how this Drake sums its distance (0: unknown; then Drake gives each step count): a fixed seed
             self._packet = eigen_packet(self._distance, coordinates.plant_weights(), np.random.default_rng(0))
             self._edge_open = functools.partial(
@@ -100,7 +108,7 @@ class DrakeChecker:
         if self.compiled is None:
             free = self._free(q_full)
         else:
-            free = self._decide(q_full, *self.compiled.certify_one(q_full))
+            free = self._decide(q_full, self._certify_one(q_full, 0.0))
         self.check_time += _clock() - t0
         self.checks += 1
         return free
@@ -121,9 +129,9 @@ class DrakeChecker:
             free = not self.penetrates(q_full)
         else:  # the certifier's test for penetration (thresholds less the padding; COLLIDES: a padded collision,
             # False here as before), then the open pairs' penetration (every other pair is proven apart)
-            code, pairs = self.compiled.certify_one(q_full, self.unpadded_shift)
+            code = self._certify_one(q_full, self.unpadded_shift)
             free = code == 0 or code != COLLIDES and (
-                self._open_free(q_full, pairs, unpadded=True) if code > 0 else not self.penetrates(q_full))
+                self._open_free(q_full, self._open[:code].copy(), unpadded=True) if code > 0 else not self.penetrates(q_full))
         self.check_time += _clock() - t0
         self.checks += 1
         return free
@@ -174,11 +182,13 @@ class DrakeChecker:
         return free
 
     def _batch(self, configs: np.ndarray, along: bool = False) -> np.ndarray:
-        """The batch's answers: the certifier proves what it can (``along``: rows in sequence, :meth:`configs_free_along`)
+        """The batch's answers: the certifier proves what it can (``along``: rows in sequence, :meth:`configs_free_along`,
+        or a batch of SWEEP_ROWS or more)
         and SceneGraph measures the pairs it leaves open (:meth:`_open_free`); a world without certifier goes to
         Drake's batch check, on several threads when that is many (lazyground.drake.parallel)."""
         if self.compiled is None:
             return np.asarray(self.drake.CheckConfigsCollisionFree(list(configs), parallelize=parallel_batch(len(configs))), bool)
+        along = along or len(configs) >= SWEEP_ROWS
         count, pairs = (self.compiled.sweep if along else self.compiled.certify)(configs)
         free = count == 0
         self.certified += int(free.sum())
@@ -188,14 +198,14 @@ class DrakeChecker:
             free[i] = self._free(configs[i])
         return free
 
-    def _decide(self, q_full: np.ndarray, code: int, pairs: np.ndarray | None) -> bool:
-        """Drake's answer at ``q_full`` from the certifier's ``code`` for it (and its open ``pairs``)."""
+    def _decide(self, q_full: np.ndarray, code: int) -> bool:
+        """Drake's answer at ``q_full`` from the certifier's ``code`` for it (its open pairs in ``_open``)."""
         if code == 0:
             self.certified += 1
             return True
         if code == COLLIDES:
             return False
-        return self._open_free(q_full, pairs)
+        return self._open_free(q_full, self._open[:code].copy() if code > 0 else None)
 
     def _open_free(self, q_full: np.ndarray, pairs: np.ndarray | None, unpadded: bool = False) -> bool:
         """Drake's answer at ``q_full``, which the certifier left open, from SceneGraph's signed distance of its

@@ -34,7 +34,7 @@ def warm_up() -> float:
     fd, idata = kernels.pack(_TOY)
     work, pairs = np.zeros(kernels.work_size(idata)), np.zeros(CAP + 1, np.int64)
     kernels.certify_rows(np.zeros((1, 1)), fd, idata, work, np.zeros((1, CAP), np.int64))
-    kernels.certify_one(np.zeros(1), fd, idata, work, pairs, 0.0)
+    kernels.certify_one(fd, idata, work, pairs, np.zeros(1), 0.0)
     kernels.first_open(np.zeros(1), np.ones(1), 2, np.arange(3), 0, fd, idata, work, pairs)
     kernels.sweep_rows(np.zeros((2, 1)), fd, idata, work, _above(_TOY), np.zeros((2, CAP), np.int64))
     edge_kernel.edge_open(fd, idata, work, pairs, np.zeros(1, np.int64), np.zeros((2, 1)), np.zeros(1, np.int64),
@@ -68,7 +68,7 @@ class CompiledCertifier:
         """(the code of one configuration (:meth:`certify`), its open pairs when it has some). ``shift``: the
         padding, to ask whether any pair penetrates instead (0 and the open pairs: against every pair's threshold
         less it; COLLIDES is still a padded collision), where every checked pair has that one padding."""
-        code = kernels.certify_one(q_full, self.fd, self.idata, self.work, self._open, shift)
+        code = kernels.certify_one(self.fd, self.idata, self.work, self._open, q_full, shift)
         return code, (self._open[:code].copy() if code > 0 else None)
 
     def certify(self, q_full: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -179,7 +179,8 @@ def _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap,
     _centres(node, go, Rb, pb, centre)
     done[:] = 0.0
     count = 0
-    for g in range(G):
+    for last in range(G):
+        g = G - 1 - last  # the geometries far down the tree first: they collide most (edge ends: ~10 % sooner, #31)
         cx, cy, cz, rg = centre[g, 0], centre[g, 1], centre[g, 2], grad[g]
         # the bounding sphere against every obstacle's world box at once (no branches: vectorised); reach2 is
         # (radius + threshold)^2, or -1 for a pair Drake does not check
@@ -590,8 +591,9 @@ def certify_rows(Q, fd, idata, work, pairs):
 
 
 @njit(cache=True)
-def certify_one(q, fd, idata, work, pairs, shift):
-    """:func:`certify_rows` of one configuration; its open pairs in ``pairs[:-1]``; ``shift``: see :func:`_row`."""
+def certify_one(fd, idata, work, pairs, q, shift):
+    """:func:`certify_rows` of one configuration; its open pairs in ``pairs[:-1]``; ``shift``: see :func:`_row`.
+    (The certifier's arrays first: a checker binds them once, functools.partial.)"""
     Rs, ps, Rb, pb, centre, sph, done, W, A, gap = _views(idata, work)
     return _row(q, fd, idata, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, len(pairs) - 1, shift)
 
