@@ -16,6 +16,7 @@ import numpy as np
 from lazyground.drake import edge_kernel
 from lazyground.drake import sphere_kernels as kernels
 from lazyground.drake.chain import PRISMATIC
+from lazyground.drake.ik import kernels as ik_kernels
 from lazyground.drake.sphere_kernels import COLLIDES  # noqa: F401  (re-exported: a row's code)
 
 CAP = 16  # open pairs kept per configuration; a configuration with more goes to Drake's whole check
@@ -25,8 +26,8 @@ _compiled_now = False  # whether that call compiled (no usable cache on this mac
 
 
 def warm_up() -> float:
-    """Compile (or load from numba's on-disk cache) the kernels once per process; the seconds it took
-    (0.0 after the first call). The first call on a machine compiles (~20-60 s), later processes load (~1 s)."""
+    """Compile (or load from numba's on-disk cache) the kernels (the certifier's and the batch IK solver's) once
+    per process; the seconds it took (0.0 after the first call). The first call on a machine compiles (~20-60 s), later processes load (~1 s)."""
     global _compile_s, _compiled_now
     if _compile_s is not None:
         return 0.0
@@ -39,10 +40,11 @@ def warm_up() -> float:
     kernels.sweep_rows(np.zeros((2, 1)), fd, idata, work, _above(_TOY), np.zeros((2, CAP), np.int64))
     edge_kernel.edge_open(fd, idata, work, pairs, np.zeros(1, np.int64), np.zeros((2, 1)), np.zeros(1, np.int64),
                           np.array([0.0, 1.0, 0.0]), 2, np.zeros(1), np.ones(1), 0.3, edge_kernel.BISECTION, 0, -1, 0)
+    ik_compiled = ik_kernels.warm_up()  # the batch IK solver's kernels (lazyground.drake.ik.kernels)
     _compile_s = time.perf_counter() - t0
-    _compiled_now = any(sum(k.stats.cache_misses.values()) for k in (kernels.certify_rows, kernels.certify_one,
-                                                                    kernels.first_open, kernels.sweep_rows,
-                                                                    edge_kernel.edge_open, edge_kernel.step_order))
+    _compiled_now = ik_compiled or any(sum(k.stats.cache_misses.values()) for k in (
+        kernels.certify_rows, kernels.certify_one, kernels.first_open, kernels.sweep_rows, edge_kernel.edge_open,
+        edge_kernel.step_order))
     return _compile_s
 
 
