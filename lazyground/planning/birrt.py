@@ -121,9 +121,22 @@ def _credit(s: Search, gi: int, closest: dict[int, float], gap: float) -> None:
 
 
 def _extend(s: Search, tree: Tree, near: int, q_towards: np.ndarray) -> int:
-    """One step from node ``near`` towards q_towards: the new node, or -1 if blocked."""
-    q_new, _ = s.space.steer(tree.nodes[near], q_towards, s.settings.step_size)
-    return _step(s, tree, near, q_new)
+    """One step from node ``near`` towards q_towards: the new node, or -1 if blocked.
+
+    A goal tree whose step is blocked tries the space's ``straight_step`` instead where it has one (a
+    car: straight forwards or backwards, out of a parking bay). A car's goal tree grows out of its spot
+    only towards samples roughly along the spot's axis (every curve towards the others sweeps the
+    neighbours); on the fixed lot (issue #33, cover-connect, seeds 0-5, 2,000-iteration cap) it cut the
+    median iterations from 69 / 791 to 21 / 183 at N = 8 / 64 and solved 5 of 6 at N = 256 (1 before).
+    """
+    q_near = tree.nodes[near]
+    q_new, _ = s.space.steer(q_near, q_towards, s.settings.step_size)
+    new = _step(s, tree, near, q_new)
+    if new < 0 and tree is not s.trees[0] and s.straight_step is not None:
+        q_new = s.straight_step(q_near, q_towards, s.settings.step_size)
+        if q_new is not None:
+            new = _step(s, tree, near, q_new)
+    return new
 
 
 def _step(s: Search, tree: Tree, parent: int, q_new: np.ndarray) -> int:
