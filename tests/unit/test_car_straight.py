@@ -2,13 +2,15 @@
 the bidirectional planner's use of it, on a fake checker (no Drake)."""
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 from lazyground.goals import ConfigGoalSource
-from lazyground.planning import PlannerSettings, solve
+from lazyground.planning import PlannerSettings, birrt, solve
 from lazyground.planning.car import CarSpace
+from lazyground.planning.tree import Tree
 from lazyground.regions import ConfigRegion
 
 R = 3.86
@@ -48,7 +50,7 @@ def test_straight_step_goes_along_the_heading_towards_the_target_side():
 
 def test_no_straight_step_out_of_bounds_or_for_a_dubins_car():
     assert _space().straight_step(np.array([1.0, 0.0, 0.0]), np.array([-5.0, 0.0, 0.0]), 2.0) is None
-    assert _space("dubins").straight_step(np.array([10.0, 0.0, 0.0]), np.array([20.0, 0.0, 0.0]), 2.0) is None
+    assert _space().drives_straight and not _space("dubins").drives_straight
 
 
 def _plan(seed, space):
@@ -69,3 +71,33 @@ def test_the_goal_tree_drives_out_of_a_tight_slot(monkeypatch):
     monkeypatch.setattr(CarSpace, "straight_step", lambda self, a, towards, step: None)  # curves only
     curves_only = [_plan(seed, _space()).iterations for seed in range(6)]
     assert min(curves_only) > 30
+
+
+class ClosedSlotWorld(SlotWorld):
+    """:class:`SlotWorld` with the slot closed 0.5 m either side of x = 1 (a barrier across its mouth)."""
+
+    def configs_free(self, qs):
+        qs = np.atleast_2d(qs)
+        return super().configs_free(qs) & ((qs[:, 0] >= 6.0) | (np.abs(qs[:, 0] - 1.0) <= 0.5))
+
+
+def _stub(space, world):
+    return SimpleNamespace(straight_step=space.straight_step if space.drives_straight else None, settings=SimpleNamespace(step_size=2.0),
+                           motion=space.motion_validator(world), resolution=0.1)
+
+
+def test_a_goal_sample_that_cannot_drive_a_step_straight_either_way_is_shut_in():
+    q = np.array([1.0, 0.0, 0.0])
+    assert birrt._shut_in(_stub(_space(), ClosedSlotWorld()), q)
+    assert not birrt._shut_in(_stub(_space(), SlotWorld()), q)  # straight forwards out of the open slot
+    assert not birrt._shut_in(_stub(_space("dubins"), ClosedSlotWorld()), q)  # no straight steps: never muted
+
+
+def test_a_muted_root_is_left_out_of_the_forest_queries_but_not_its_own():
+    space = _space()
+    tree = Tree(space, per_label=True)
+    near, far = tree.add_root(np.array([5.0, 5.0, 0.0]), label=0), tree.add_root(np.array([20.0, 5.0, 0.0]), label=1)
+    q = np.array([6.0, 5.0, 0.0])
+    assert tree.nearest(q) == near
+    tree.mute(near)
+    assert tree.nearest(q) == far and tree.nearest(q, label=0) == near
