@@ -94,16 +94,17 @@ def _shut_in(s: Search, q: np.ndarray) -> bool:
     Such a root is left out of the forest's nearest-neighbour queries (it still grows when the strategy
     selects it, and its subtree's later nodes are queried as any): with hundreds of blocked spots the
     forest's nearest node to a sample or to a new start-tree node was mostly such a root, whose steps
-    all fail. Two edge checks per goal sample. Fixed lot, cover-connect, seeds 0-5, 2,000-iteration cap:
-    median iterations 183 -> 138 at N = 64, 440 (5 of 6 solved) -> 362 (6 of 6) at N = 256; no reachable
-    spot's sample was muted."""
+    all fail. At most two edge checks per goal sample (mostly one pose each). Fixed lot, cover-connect,
+    seeds 0-5, 2,000-iteration cap: median iterations 183 -> 138 at N = 64, 440 (5 of 6 solved) -> 362
+    (6 of 6) at N = 256; no reachable spot's sample was muted."""
     if s.straight_step is None:
         return False
     step = s.settings.step_size
     for sign in (1.0, -1.0):
         ahead = np.array([q[0] + sign * np.cos(q[2]), q[1] + sign * np.sin(q[2]), q[2]])
         q_new = s.straight_step(q, ahead, step)
-        if q_new is not None and s.motion.edge_free(q, q_new, s.resolution):
+        # (its end first: one check rules out most blocked steps, a barrier or kerb across the car's end pose)
+        if q_new is not None and s.checker.config_free(q_new) and s.motion.edge_free(q, q_new, s.resolution):
             return False
     return True
 

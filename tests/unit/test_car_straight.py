@@ -82,8 +82,8 @@ class ClosedSlotWorld(SlotWorld):
 
 
 def _stub(space, world):
-    return SimpleNamespace(straight_step=space.straight_step if space.drives_straight else None, settings=SimpleNamespace(step_size=2.0),
-                           motion=space.motion_validator(world), resolution=0.1)
+    return SimpleNamespace(straight_step=space.straight_step if space.drives_straight else None, checker=world,
+                           settings=SimpleNamespace(step_size=2.0), motion=space.motion_validator(world), resolution=0.1)
 
 
 def test_a_goal_sample_that_cannot_drive_a_step_straight_either_way_is_shut_in():
