@@ -14,6 +14,7 @@ Trees as old as 703386a (the start of #31: ``make_motion`` took a PlannerSetting
     git -C /work/main worktree add /tmp/base 703386a
     nice python3 tools/motion_step_bench.py --tree before=/tmp/base --tree now=.
     nice python3 tools/motion_step_bench.py --tree main=/work/main --tree motion=.
+    nice python3 tools/motion_step_bench.py --tree before=/tmp/base --tree main=/work/main --tree now=.  (each against the last)
     python3 tools/motion_step_bench.py --tree main=/work/main --tree motion=. --seeds 5 --scenes fetch_cans_1
 
 Quiet machine: ~2 min for 3 scenes x 20 seeds x 2 trees (world builds included).
@@ -218,8 +219,8 @@ def main(argv=None) -> int:
                       f"{sum(r['bad_first'][0] for r in got)}/{len(got)}"]
             print("| " + " | ".join(cells) + " |", flush=True)
             w.close()
-        if len(labels) > 1:
-            base, other = rows[labels[0]], rows[labels[-1]]
+        for first in labels[:-1]:  # every other tree against the last
+            base, other = rows[first], rows[labels[-1]]
             ratio = _median([a["wall"] / b["wall"] for a, b in zip(base, other)])
             cpu = _median([a["cpu"] / b["cpu"] for a, b in zip(base, other)])
             lengths = [b["length"] / a["length"] for a, b in zip(base, other)]
@@ -227,8 +228,8 @@ def main(argv=None) -> int:
             durations = [b["duration"] / a["duration"] for a, b in zip(base, other)
                          if a["duration"] > 0 and b["duration"] == b["duration"]]  # nan: no trajectory
             mean_dur = sum(durations) / max(1, len(durations))
-            print(f"|  | {labels[0]} / {labels[-1]}, median per request | {ratio:.2f}x | {cpu:.2f}x | length "
-                  f"{labels[-1]} / {labels[0]}, mean {mean_len:.4f} (max {max(lengths, default=float('nan')):.4f}) | duration, mean {mean_dur:.4f} "
+            print(f"|  | {first} / {labels[-1]}, median per request | {ratio:.2f}x | {cpu:.2f}x | length "
+                  f"{labels[-1]} / {first}, mean {mean_len:.4f} (max {max(lengths, default=float('nan')):.4f}) | duration, mean {mean_dur:.4f} "
                   f"(max {max(durations, default=float('nan')):.4f}) |", flush=True)
     print(f"# load {os.getloadavg()[0]:.1f} at end; phases nest (fine may run inside greedy; dense inside timing); "
           "bad, bad/2 = failed re-checks of path and trajectory at the fine resolution (the tests'), and at half of it")
