@@ -121,6 +121,12 @@ def test_table_two_names_missing_scenes():
     assert (len(notes) == 1) == bool(missing)
 
 
+def test_baselines_get_their_own_time_limit():
+    specs, _, _ = plan_specs(_args(scenes="parking_1", runs=1, time_limit=2.0, strategies="consecutive",
+                                   baselines="nearest-first,eager", baseline_time_limit=7.0))
+    assert {(s.planner, s.time_limit) for s in specs} == {("lazyground", 2.0), ("nearest-first", 7.0), ("eager", 7.0)}
+
+
 def test_peers_missing_is_said_clearly(monkeypatch):
     import lazyground.bench.ompl_peer as peer
     import lazyground.bench.sscbirrt_peer as ssc
