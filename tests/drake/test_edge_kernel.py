@@ -77,3 +77,15 @@ def test_the_far_end_wraps_as_the_space_does():
         ek.edge_open(fd, idata, work, pairs, steps, ends, np.zeros(1, np.int64), edata, 2, np.array([a]), np.array([b]),
                      0.1, ek.BISECTION, 0, 0, 0)
         assert ends[1, 0] == a + wrap_angle(np.array([b - a]))[0]
+
+
+def test_where_the_sum_is_unknown_drake_gives_each_step_count(monkeypatch):
+    """A Drake whose distance no packet width reproduces: the checker asks Drake for every count, same answers."""
+    from lazyground.drake import checker as checker_module
+    from lazyground.drake.certify_check import compare_edges
+
+    monkeypatch.setattr(checker_module, "eigen_packet", lambda *a, **k: 0)
+    world = DrakeWorld(load_scene("panda_tabletop"), visual=False)
+    assert world.checker._packet == 0
+    e = compare_edges(world, np.random.default_rng(4), 40)
+    assert e.mismatches == 0 and 0 < e.free < e.edges
