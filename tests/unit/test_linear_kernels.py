@@ -51,6 +51,7 @@ def test_a_tree_answers_as_without_kernels():
         assert fast.add(q.copy(), parent) == slow.add(q.copy(), parent)
         if i == 200:
             fast.prune(50), slow.prune(50)
+            fast.mute(1), slow.mute(1)
     for _ in range(300):
         x, label = rng.uniform(-3, 3, 8), int(rng.integers(-1, 2))
         label = None if label < 0 else label
