@@ -23,7 +23,7 @@ import time
 from pathlib import Path
 
 from lazyground.bench import arms, families
-from lazyground.bench.baselines import BASELINES, planner_name
+from lazyground.bench.baselines import BASELINES, parse_planner, planner_name
 from lazyground.bundled import bundled_scene, scene_names as bundled_names
 from lazyground.bench.runner import ALGORITHMS, FIELDS, RunSpec, execute, row_key, Progress
 from lazyground.settings import BY_NAME, Algorithm, Kinematics, Strategy, from_scene
@@ -75,6 +75,8 @@ def build_parser() -> argparse.ArgumentParser:
                    "(default: each scene's)")
     p.add_argument("--baselines", help="comma list of what users do instead (issue #33), each on every --algorithms planner: "
                    "nearest-first, multiplexer, eager, independent (see lazyground/bench/baselines.py)")
+    p.add_argument("--baseline-time-limit", type=float, help="seconds per --baselines run (default: --time-limit); a "
+                   "longer one measures a slow baseline instead of cutting it off at the limit ours has")
     p.add_argument("--peers", action="store_true", help="also run OMPL RRT and RRTConnect and sscbirrt's CBiRRT (pip install .[bench])")
     p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="worker processes (default: cores)")
     p.add_argument("--cluster", metavar="ADDRESS", help="run on this Dask scheduler instead (pip install .[cluster])")
@@ -142,6 +144,9 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
         raise BenchUsageError("--runs must be >= 1")
     if args.time_limit is not None:
         _checked("time-limit", "time_limit", [args.time_limit])
+    baseline_limit = getattr(args, "baseline_time_limit", None)
+    if baseline_limit is not None:
+        _checked("baseline-time-limit", "time_limit", [baseline_limit])
     _checked("seed", "seed", [args.seed])
     keys, missing = [], []
     for name in scene_names:
@@ -184,7 +189,8 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
             limit = args.time_limit if args.time_limit is not None else _scene_time_limit(key)
             request = args.request or preset.get("requests", {}).get(Path(key).stem)
             for planner, strategy, bias, objective in configs:
-                specs.append(RunSpec(key, planner, strategy, bias, args.seed + i, limit, request, kinematics,
+                run_limit = baseline_limit if baseline_limit is not None and parse_planner(planner) else limit
+                specs.append(RunSpec(key, planner, strategy, bias, args.seed + i, run_limit, request, kinematics,
                                      str(objective), budget if objective != "first" else None))
     return specs, notes, preset.get("title", "Computation time (s)")
 

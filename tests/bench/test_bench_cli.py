@@ -316,3 +316,10 @@ def test_iteration_profile_splits_a_search_iteration(tmp_path, capsys):
     p = iteration_profile.profile_scene("parking_1", range(1), time_limit=600, max_iterations=20_000)
     assert p.iterations > 0 and p.split_us["nn"] > 0 and p.split_us["checks"] > 0
     assert sum(p.split_us.values()) == pytest.approx(p.us_per_iteration, rel=1e-6)
+
+
+def test_baseline_time_limit_applies_to_the_baselines_only():
+    specs, _, _ = plan_specs(_args(scenes="rack:panda:4:1", runs=1, time_limit=30.0, baseline_time_limit=300.0,
+                                   algorithms="bidirectional", strategies="cover", baselines="nearest-first,eager"))
+    limits = {s.planner: s.time_limit for s in specs}
+    assert limits == {"lazyground-bidirectional": 30.0, "nearest-first-bidirectional": 300.0, "eager-bidirectional": 300.0}
