@@ -14,7 +14,8 @@ budget), one that is given up costs its IK seconds; the reachable can's call is 
 Usage (from the repository root):
   PYTHONPATH=. python3 tools/rack_targets.py ROBOT N LAYOUTS [--strategies cover,consecutive] [--limit 30]
       [--budget 10] [--eager] [--eager-limit 120] [--real-nf TOTAL] [--seed 0] [--jsonl OUT.jsonl]
-LAYOUTS: 0-19 or 0,3,5. Prints one JSON line per layout and a summary (medians, ratios, Mann-Whitney p).
+LAYOUTS: 0-19 or 0,3,5. Prints one JSON line per layout and a summary (medians, ratios, Mann-Whitney p);
+  PYTHONPATH=. python3 tools/rack_targets.py summary A.jsonl B.jsonl   summarises rows written with --jsonl.
 """
 from __future__ import annotations
 
@@ -86,6 +87,10 @@ def main(argv: list[str]) -> int:
     p.add_argument("--seed", type=int, default=0, help="planner seed (the same for every layout)")
     p.add_argument("--no-nf", action="store_true", help="skip nearest-first")
     p.add_argument("--jsonl", help="also append the rows to this file")
+    if argv[:1] == ["summary"]:  # summary FILE.jsonl ...: the rows of earlier runs (e.g. layouts split over processes)
+        rows = [json.loads(line) for f in argv[1:] for line in open(f) if line.strip()]
+        summary(rows, [m for m in ("cover", "reward-penalty", "cover-connect", "consecutive", "random") if any(m in r for r in rows)])
+        return 0
     a = p.parse_args(argv)
     stop_module.CLOCK = time.process_time
     strategies = [s for s in a.strategies.split(",") if s]

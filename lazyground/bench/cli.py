@@ -75,8 +75,8 @@ def build_parser() -> argparse.ArgumentParser:
                    "(default: each scene's)")
     p.add_argument("--baselines", help="comma list of what users do instead (issue #33), each on every --algorithms planner: "
                    "nearest-first, multiplexer, eager, independent (see lazyground/bench/baselines.py)")
-    p.add_argument("--baseline-time-limit", type=float, help="seconds per --baselines run (default: --time-limit); a "
-                   "longer one measures a slow baseline instead of cutting it off at the limit ours has")
+    p.add_argument("--baseline-time-limit", type=float, help="--baselines: seconds per baseline run (default: --time-limit), "
+                   "so that their unsolved runs do not cap the ratios to ours (reported as bounds in table.md)")
     p.add_argument("--peers", action="store_true", help="also run OMPL RRT and RRTConnect and sscbirrt's CBiRRT (pip install .[bench])")
     p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="worker processes (default: cores)")
     p.add_argument("--cluster", metavar="ADDRESS", help="run on this Dask scheduler instead (pip install .[cluster])")
@@ -144,7 +144,7 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
         raise BenchUsageError("--runs must be >= 1")
     if args.time_limit is not None:
         _checked("time-limit", "time_limit", [args.time_limit])
-    baseline_limit = getattr(args, "baseline_time_limit", None)
+    baseline_limit = getattr(args, "baseline_time_limit", None)  # absent from Namespaces built by hand (tests)
     if baseline_limit is not None:
         _checked("baseline-time-limit", "time_limit", [baseline_limit])
     _checked("seed", "seed", [args.seed])
@@ -189,8 +189,8 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
             limit = args.time_limit if args.time_limit is not None else _scene_time_limit(key)
             request = args.request or preset.get("requests", {}).get(Path(key).stem)
             for planner, strategy, bias, objective in configs:
-                run_limit = baseline_limit if baseline_limit is not None and parse_planner(planner) else limit
-                specs.append(RunSpec(key, planner, strategy, bias, args.seed + i, run_limit, request, kinematics,
+                own = baseline_limit if baseline_limit is not None and parse_planner(planner) is not None else limit
+                specs.append(RunSpec(key, planner, strategy, bias, args.seed + i, own, request, kinematics,
                                      str(objective), budget if objective != "first" else None))
     return specs, notes, preset.get("title", "Computation time (s)")
 
@@ -368,12 +368,16 @@ def write_outputs(rows: list[dict], out: Path, title: str, notes: list[str], tot
         from lazyground.bench.compare import strategy_table
 
         md += ["## Strategies against consecutive (Mann-Whitney U, two-sided)\n", strategy_table(rows)]
-    from lazyground.bench.sweep import size_of, sweep_plot, sweep_table, sweep_tests
+    from lazyground.bench.sweep import size_of, sweep_plot, sweep_ratios, sweep_table, sweep_tests
 
     family = [r for r in rows if size_of(r["scene"]) is not None]
     if family:
         md += ["## Against the number of interpretations (generated families)\n", sweep_table(family),
-               "## Each method against round-robin per size (Mann-Whitney U, two-sided; layouts pooled)\n", sweep_tests(family)]
+               "## Each method against round-robin per size (Mann-Whitney U, two-sided and one-sided; layouts pooled)\n",
+               sweep_tests(family)]
+        ratios = sweep_ratios(family)
+        if ratios:
+            md += ["## Baselines against ours per size (median s; >= where unsolved runs censor a median)\n", ratios]
     objectives = tables.objective_table(rows)
     if objectives:
         md += ["## Objectives: path length, joint sweep and time against first (#30)\n", objectives]

@@ -17,13 +17,14 @@ from lazyground.settings import Strategy
 BASELINE = Strategy.CONSECUTIVE.value
 
 
-def mann_whitney_p(a, b) -> float:
-    """Two-sided Mann-Whitney U p-value of two samples (nan when either has fewer than two or all are equal)."""
+def mann_whitney_p(a, b, alternative: str = "two-sided") -> float:
+    """Mann-Whitney U p-value of two samples (nan when either has fewer than two or all are equal);
+    ``alternative="less"``: the one-sided test that ``a`` tends to be smaller than ``b``."""
     from scipy.stats import mannwhitneyu
 
     if len(a) < 2 or len(b) < 2 or (np.ptp(np.r_[a, b]) == 0):
         return float("nan")
-    return float(mannwhitneyu(a, b, alternative="two-sided").pvalue)
+    return float(mannwhitneyu(a, b, alternative=alternative).pvalue)
 
 
 def strategy_table(rows: list[dict]) -> str:

@@ -87,6 +87,10 @@ def curves(rows: list[dict]) -> dict:
 def sweep_table(rows: list[dict]) -> str:
     """Markdown: per family and method, median seconds (success) at each size."""
     lines = []
+    limits: dict = {}
+    for r in rows:
+        limits.setdefault(_method(r), set()).add(float(r["time_limit"]))
+    mixed = len(set().union(*limits.values())) > 1 if limits else False  # e.g. --baseline-time-limit: say each limit
     for (fam, fixed), by in sorted(curves(rows).items()):
         xs = sorted({x for pts in by.values() for x, *_ in pts})
         axis = "N" if fixed.startswith("k") else "k"
@@ -95,33 +99,81 @@ def sweep_table(rows: list[dict]) -> str:
         for method, pts in sorted(by.items()):
             at = {x: (m, s, n) for x, m, s, n in pts}
             cells = [f"{at[x][0]:.2f} ({at[x][1]:.0%} of {at[x][2]})" if x in at else "" for x in xs]
-            lines.append(f"| {method} | " + " | ".join(cells) + " |")
+            label = f"{method}, {max(limits[method]):g} s limit" if mixed else method
+            lines.append(f"| {label} | " + " | ".join(cells) + " |")
         lines.append("")
     return "\n".join(lines)
 
 
-def sweep_tests(rows: list[dict]) -> str:
-    """Markdown: in each (family, N, k) cell, every method's mean time against round-robin's (our planner with the
-    consecutive strategy; unsolved runs at the limit), with the two-sided Mann-Whitney p. The runs of a cell may be
-    different layouts of the family (keys with a layout seed), so a p per cell needs no repeated scene."""
-    from lazyground.bench.compare import mann_whitney_p
-    from lazyground.bench.tables import counted_time
-
+def _cells(rows: list[dict]) -> dict:
+    """{(family, N, k): {method: rows}} of the finished family rows."""
     cells: dict = {}
     for r in rows:
         size = size_of(r["scene"])
         if size is not None and r["status"] not in ("interrupted", "error"):
             cells.setdefault(size, {}).setdefault(_method(r), []).append(r)
-    lines = ["| family | N | k | method | runs | solved | mean s | median s | p vs round-robin |", "|---|---|---|---|---|---|---|---|---|"]
-    for (fam, n, k), by in sorted(cells.items()):
+    return cells
+
+
+def _limit(rs: list[dict]) -> float:
+    return max(float(r["time_limit"]) for r in rs)
+
+
+def sweep_tests(rows: list[dict]) -> str:
+    """Markdown: in each (family, N, k) cell, every method's mean time against round-robin's (our planner with the
+    consecutive strategy; unsolved runs at the limit), with the two-sided Mann-Whitney p and the one-sided p that
+    the method is faster. The runs of a cell may be different layouts of the family (keys with a layout seed), so a
+    p per cell needs no repeated scene. No p for a method run with another time limit than round-robin's (its
+    unsolved runs would count at another value)."""
+    from lazyground.bench.compare import mann_whitney_p
+    from lazyground.bench.tables import counted_time
+
+    lines = ["| family | N | k | method | limit s | runs | solved | mean s | median s | p vs round-robin | p (faster) |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for (fam, n, k), by in sorted(_cells(rows).items()):
         base = next((rs for rs in by.values() if rs[0]["planner"].startswith("lazyground") and rs[0]["strategy"] == Strategy.CONSECUTIVE), None)
         bt = [counted_time(r) for r in base] if base else None
         for method, rs in sorted(by.items()):
             t = [counted_time(r) for r in rs]
-            p = "" if bt is None or rs is base else f"{mann_whitney_p(t, bt):.3g}"
-            lines.append(f"| {fam} | {n} | {k} | {method} | {len(rs)} | {sum(r['status'] == 'solved' for r in rs)} | "
-                         f"{np.mean(t):.2f} | {np.median(t):.2f} | {p} |")
+            p = less = ""
+            if bt is not None and rs is not base and _limit(rs) == _limit(base):
+                p, less = f"{mann_whitney_p(t, bt):.3g}", f"{mann_whitney_p(t, bt, 'less'):.3g}"
+            lines.append(f"| {fam} | {n} | {k} | {method} | {_limit(rs):g} | {len(rs)} | {sum(r['status'] == 'solved' for r in rs)} | "
+                         f"{np.mean(t):.2f} | {np.median(t):.2f} | {p} | {less} |")
     return "\n".join(lines) + "\n"
+
+
+def censored_median(rows: list[dict]) -> tuple[float, bool]:
+    """(median time, exact) over runs, unsolved ones counted at their limit. Not exact (a lower bound) when an
+    unsolved run enters the median: its true time is beyond the limit."""
+    from lazyground.bench.tables import counted_time
+
+    true = [counted_time(r) if r["status"] == "solved" else np.inf for r in rows]
+    median = float(np.median(true))
+    return (median, True) if np.isfinite(median) else (float(np.median([counted_time(r) for r in rows])), False)
+
+
+def sweep_ratios(rows: list[dict]) -> str:
+    """Markdown: in each (family, N, k) cell, every baseline's median time over each of our methods' (how many
+    times faster ours is). A censored median (an unsolved run in it) is a lower bound, so the ratio is a lower
+    bound (>=) when the baseline's is censored, an upper bound (<=) when ours is, and unknown when both are.
+    Empty without baseline rows."""
+    from lazyground.bench.baselines import parse_planner
+
+    lines = ["| family | N | k | ours | baseline | ours median s | baseline median s | baseline / ours |",
+             "|---|---|---|---|---|---|---|---|"]
+    for (fam, n, k), by in sorted(_cells(rows).items()):
+        ours = {m: rs for m, rs in by.items() if rs[0]["planner"].startswith("lazyground")}
+        baselines = {m: rs for m, rs in by.items() if parse_planner(rs[0]["planner"]) is not None}
+        for o_name, o_rows in sorted(ours.items()):
+            o, o_exact = censored_median(o_rows)
+            for b_name, b_rows in sorted(baselines.items()):
+                b, b_exact = censored_median(b_rows)
+                bound = {(True, True): "", (True, False): ">= ", (False, True): "<= "}.get((o_exact, b_exact))
+                ratio = "unknown (both censored)" if bound is None else f"{bound}{b / o:.1f}x"
+                lines.append(f"| {fam} | {n} | {k} | {o_name} | {b_name} | {'' if o_exact else '>= '}{o:.2f} | "
+                             f"{'' if b_exact else '>= '}{b:.2f} | {ratio} |")
+    return "\n".join(lines) + "\n" if len(lines) > 2 else ""
 
 
 def sweep_plot(rows: list[dict], path: Path) -> None:

@@ -31,6 +31,40 @@ def test_each_method_is_tested_against_round_robin_per_size_over_layouts():
     slow = [_row(f"rack_panda_64_1_s{s}", "consecutive", "solved" if s else "timeout", 5.0 + s / 10) for s in range(8)]
     text = sweep_tests(fast + slow)
     cover = next(line for line in text.splitlines() if "Cover" in line)
-    assert cover.startswith("| rack-panda | 64 | 1 | Cover (bidirectional) | 8 | 8 | 1.35 | 1.35 | ")
-    assert float(cover.split("|")[-2]) < 0.001  # every cover run faster than every round-robin run
-    assert next(line for line in text.splitlines() if "Consecutive" in line).endswith("| 7 | 5.98 | 5.45 |  |")  # the timeout at its 10 s limit
+    assert cover.startswith("| rack-panda | 64 | 1 | Cover (bidirectional) | 10 | 8 | 8 | 1.35 | 1.35 | ")
+    two_sided, faster = (float(x) for x in cover.split("|")[-3:-1])
+    assert two_sided < 0.001 and faster < two_sided  # every cover run faster than every round-robin run
+    assert next(line for line in text.splitlines() if "Consecutive" in line).endswith("| 7 | 5.98 | 5.45 |  |  |")  # the timeout at its 10 s limit
+    slower = sweep_tests(slow + [_row(f"rack_panda_64_1_s{s}", "cover", "solved", 9.0) for s in range(8)])
+    assert float(next(line for line in slower.splitlines() if "Cover" in line).split("|")[-2]) > 0.99  # not faster
+
+
+def _baseline(scene, status, t, limit):
+    return dict(scene=scene, planner="nearest-first-bidirectional", strategy="consecutive", status=status, time_s=str(t),
+                time_limit=str(limit))
+
+
+def test_a_method_with_another_time_limit_gets_no_p_and_the_table_says_its_limit():
+    from lazyground.bench.sweep import sweep_tests
+
+    rows = [_row("lot_64_2_0_576", s, "solved", 1.0 + i) for i in range(3) for s in ("cover-connect", "consecutive")]
+    rows += [_baseline("lot_64_2_0_576", "solved", 30.0 + i, 60) for i in range(3)]
+    line = next(x for x in sweep_tests(rows).splitlines() if "nearest-first" in x)
+    assert line.endswith("| 60 | 3 | 3 | 31.00 | 31.00 |  |  |")
+    assert "| nearest-first-bidirectional, 60 s limit | 31.00 (100% of 3) |" in sweep_table(rows)
+
+
+def test_ratios_are_bounds_where_unsolved_runs_censor_a_median():
+    from lazyground.bench.sweep import censored_median, sweep_ratios
+
+    ours = [_row("lot_64_2_0_576", "cover-connect", "solved", t) for t in (2.0, 3.0, 4.0)]
+    assert censored_median(ours) == (3.0, True)
+    censored = [_baseline("lot_64_2_0_576", "timeout", 60.0, 60) for _ in range(2)] + [_baseline("lot_64_2_0_576", "solved", 50.0, 60)]
+    assert censored_median(censored) == (60.0, False)
+    line = next(x for x in sweep_ratios(ours + censored).splitlines() if "nearest-first" in x)
+    assert line.endswith("| 3.00 | >= 60.00 | >= 20.0x |")  # the baseline's median is only a lower bound
+    slow_ours = [_row("lot_64_2_0_576", "cover-connect", "timeout", 10.0) for _ in range(3)]
+    solved = [_baseline("lot_64_2_0_576", "solved", t, 60) for t in (20.0, 30.0, 40.0)]
+    assert sweep_ratios(slow_ours + solved).splitlines()[-1].endswith("| >= 10.00 | 30.00 | <= 3.0x |")
+    assert sweep_ratios(slow_ours + censored).splitlines()[-1].endswith("| unknown (both censored) |")
+    assert sweep_ratios(ours) == ""  # no baseline rows

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lazyground.settings import GoalExtension, Kinematics, Strategy
+from lazyground.settings import Algorithm, GoalExtension, Kinematics, Strategy
 
 SPOT_W, SPOT_D = 2.6, 5.5  # a spot's width and depth (m)
 AISLE = 7.0  # aisle width: a 3.86 m turning radius car turns into a spot from it
@@ -219,7 +219,7 @@ def generate_lot(spec: LotSpec) -> dict:
                   "limits": {"car_x": [0.0, round(W, 3)], "car_y": [0.0, round(H, 3)]}, "weights": {"car_qz": 2.0}},
         "obstacles": obstacles,
         "objects": objects,
-        "planner": {"strategy": Strategy.REWARD_PENALTY.value, "goal_bias": 0.05, "step_size": 2.0, "edge_resolution": 0.1,
+        "planner": {"strategy": Strategy.COVER_CONNECT.value, "algorithm": Algorithm.BIDIRECTIONAL.value, "goal_bias": 0.05, "step_size": 2.0, "edge_resolution": 0.1,
                     "time_limit": 20.0, "seed": 0, "goal_extension": GoalExtension.EXTEND.value,
                     "kinematics": Kinematics.REEDS_SHEPP.value},
         "expect": [{"request": "park", "success_rate": 0.9, "seeds": 3, "time_limit": 60.0, "reachable": reachable}],
