@@ -322,4 +322,3 @@ def test_iteration_profile_splits_a_search_iteration(tmp_path, capsys):
     p = iteration_profile.profile_scene("parking_1", range(1), time_limit=600, max_iterations=20_000)
     assert p.iterations > 0 and p.split_us["nn"] > 0 and p.split_us["checks"] > 0
     assert sum(p.split_us.values()) == pytest.approx(p.us_per_iteration, rel=1e-6)
-
