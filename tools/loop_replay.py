@@ -3,7 +3,10 @@
 Run from the checkout's root (cwd comes first on sys.path)::
 
     nice python3 tools/loop_replay.py                      # Fetch scenes, seeds 0-4, 20 replays each
-    nice python3 tools/loop_replay.py --scenes fetch_boxes_3 --seeds 10 --replays 50
+    nice python3 tools/loop_replay.py --scenes fetch_boxes_3 --seeds 10 --replays 50 --profile
+    # checkouts compared in one interleaved run (A B B A), each in its own process from its own root;
+    # runs on the issue's base 703386a too (its solve() has no stop condition: the replay lifts time_limit)
+    nice python3 tools/loop_replay.py --checkouts /tmp/base_703386a,. --rounds 2 --seeds 10 --replays 10 --profile
 
 Each seed is planned once for real (``api.plan`` on a prebuilt world) while the checker's answers and the
 goal source's samples (with the generator's state after each draw) are recorded; the search is then run
@@ -12,7 +15,10 @@ check and IK draw a list lookup. Its CPU time (``time.process_time``, so a busy 
 per iteration is the loop's overhead outside checks and goal sampling: nearest neighbours, steering, tree
 and strategy bookkeeping, Python calls per edge. Printed per scene: the median over seeds of the fastest
 replay (the least disturbed), and the search's real figures for scale. A replay that does not end as the
-real run did is reported (the record would not fit the code).
+real run did is reported (the record would not fit the code). ``us/it pooled`` is the seeds' loop CPU summed over
+their iterations summed (short runs weigh less than in the median). ``--profile`` adds one cProfiled replay per
+seed, its own time by planner file (numpy and builtins count for the planner file that called them), scaled
+to the unprofiled CPU (cProfile inflates Python calls ~5x, so the shares lean towards call-heavy parts).
 """
 
 from __future__ import annotations
@@ -92,13 +98,13 @@ def record(scene_name: str, seed: int, world, scene) -> dict:
     rec = {}
     real_solve = rrt.solve
 
-    def recording(space, checker, goals, start, settings, rng, seed=None, keep_tree=False, stop=None):
+    def recording(space, checker, goals, start, settings, rng, seed=None, keep_tree=False, **stop):
         if "space" in rec:  # (a later search of the same request, e.g. an anytime improvement: the first is replayed)
-            return real_solve(space, checker, goals, start, settings, rng, seed, keep_tree, stop)
+            return real_solve(space, checker, goals, start, settings, rng, seed, keep_tree, **stop)
         ck, gs = Recorder(checker), GoalRecorder(goals)
         rec.update(space=space, start=start.copy(), settings=settings, state=copy.deepcopy(rng.bit_generator.state),
                    seed=seed, checks=ck._log, goals=gs._log, regions=goals.regions, stats=copy.deepcopy(goals.stats))
-        r = real_solve(space, ck, gs, start, settings, rng, seed, keep_tree, stop)
+        r = real_solve(space, ck, gs, start, settings, rng, seed, keep_tree, **stop)
         rec["iterations"], rec["path"] = r.iterations, r.path
         return r
 
@@ -114,24 +120,174 @@ def record(scene_name: str, seed: int, world, scene) -> dict:
     return rec
 
 
-def replay(rec: dict) -> tuple[float, bool]:
-    """(CPU seconds of one replayed solve, whether it ended as the recorded run)."""
+def replay(rec: dict, prof=None) -> tuple[float, bool]:
+    """(CPU seconds of one replayed solve, whether it ended as the recorded run); ``prof``: a cProfile.Profile
+    enabled around the solve only."""
+    import dataclasses
+    import inspect
+
     import numpy as np
 
     from lazyground.planning import rrt
-    from lazyground.planning.stop import StopCondition
 
     ck = Recorder(log=rec["checks"])
     gs = GoalRecorder(log=copy.deepcopy(rec["goals"]), regions=rec["regions"], stats=copy.deepcopy(rec["stats"]))
     rng = np.random.default_rng()
     rng.bit_generator.state = copy.deepcopy(rec["state"])
-    stop = StopCondition.after(1e9, max_iterations=rec["settings"].max_iterations)
+    settings, stop = rec["settings"], {}
+    if "stop" in inspect.signature(rrt.solve).parameters:
+        from lazyground.planning.stop import StopCondition
+
+        stop["stop"] = StopCondition.after(1e9, max_iterations=settings.max_iterations)
+    else:  # (703386a, the issue's base: the search's deadline is settings.time_limit)
+        settings = dataclasses.replace(settings, time_limit=1e9)
+    if prof is not None:
+        prof.enable()
     t0 = time.process_time()
-    r = rrt.solve(rec["space"], ck, gs, rec["start"], rec["settings"], rng, rec["seed"], False, stop)
+    r = rrt.solve(rec["space"], ck, gs, rec["start"], settings, rng, rec["seed"], False, **stop)
     dt = time.process_time() - t0
+    if prof is not None:
+        prof.disable()
     same = r.iterations == rec["iterations"] and (
         (r.path is None) == (rec["path"] is None) and (r.path is None or np.array_equal(r.path, rec["path"])))
     return dt, same
+
+
+CATEGORIES = (("nn", ("planning/nn.py",)), ("space", ("planning/space.py",)), ("tree", ("planning/tree.py",)),
+              ("strategy", ("planning/strategies.py", "planning/weights.py", "planning/cover.py")),
+              ("search", ("planning/search.py", "planning/stop.py")), ("loop", ("planning/birrt.py", "planning/rrt.py")),
+              ("stand-ins", ("loop_replay.py",)))
+
+
+def _category(func) -> str | None:
+    path = func[0].replace("\\", "/")
+    for name, files in CATEGORIES:
+        if any(path.endswith(f) for f in files):
+            return name
+    return None
+
+
+def breakdown(stats) -> dict[str, float]:
+    """cProfile stats as seconds of own time per category: a function outside the planner (numpy, builtins)
+    counts for the planner file that called it, split by its callers' shares."""
+    memo: dict = {}
+
+    def shares(func, depth=0) -> dict[str, float]:  # the fraction of func's time that each category caused
+        if func in memo:
+            return memo[func]
+        cat = _category(func)
+        if cat is not None or depth > 30:
+            out = {cat or "other": 1.0}
+        else:
+            memo[func] = {"other": 1.0}  # (a cycle)
+            callers = stats.stats[func][4]
+            total = sum(c[2] for c in callers.values()) or sum(c[1] for c in callers.values()) or 1.0
+            out = {}
+            for caller, c in callers.items():
+                w = (c[2] or (c[1] if not any(x[2] for x in callers.values()) else 0.0)) / total
+                for k, v in shares(caller, depth + 1).items():
+                    out[k] = out.get(k, 0.0) + w * v
+            out = out or {"other": 1.0}
+        memo[func] = out
+        return out
+
+    got: dict[str, float] = {}
+    for func, (_cc, _nc, tt, _ct, _callers) in stats.stats.items():
+        for k, v in shares(func).items():
+            got[k] = got.get(k, 0.0) + tt * v
+    return got
+
+
+def measure(scenes, seeds: int, replays: int, profile: bool) -> dict:
+    """Per scene, per seed: iterations, the fastest replay's CPU seconds, replays that matched, search less IK;
+    with ``profile`` also one cProfiled replay per seed broken down by category (seconds)."""
+    import cProfile
+    import pstats
+
+    from lazyground.drake.world import DrakeWorld
+    from lazyground.scene import load_scene
+
+    out = {}
+    for name in scenes:
+        scene = load_scene(name)
+        world = DrakeWorld(scene, visual=False)
+        record(name, 1000, world, scene)  # warm-up
+        rows = []
+        for seed in range(seeds):
+            rec = record(name, seed, world, scene)
+            r = rec["report"].result
+            best, ok = float("inf"), 0
+            for _ in range(replays):
+                dt, same = replay(rec)
+                best, ok = min(best, dt), ok + same
+            row = dict(seed=seed, iterations=rec["iterations"], best_s=best, ok=ok,
+                       search_ms=(r.time_s - r.goal_sampling_s) * 1e3)
+            if profile:
+                prof = cProfile.Profile(time.process_time)
+                row["profiled_s"] = replay(rec, prof)[0]
+                row["profile"] = breakdown(pstats.Stats(prof))
+            rows.append(row)
+        out[name] = rows
+    return out
+
+
+def summary(rows: list[dict]) -> dict:
+    its = [r["iterations"] for r in rows]
+    return dict(iterations=statistics.median(its),
+                us_it=statistics.median(r["best_s"] / max(r["iterations"], 1) * 1e6 for r in rows),
+                pooled_us_it=sum(r["best_s"] for r in rows) / max(sum(its), 1) * 1e6,
+                ms_run=statistics.median(r["best_s"] * 1e3 for r in rows),
+                search_ms=statistics.median(r["search_ms"] for r in rows),
+                ok=sum(r["ok"] for r in rows))
+
+
+def print_profile(name: str, rows: list[dict]) -> None:
+    its = max(sum(r["iterations"] for r in rows), 1)
+    got: dict[str, float] = {}
+    for r in rows:
+        for k, v in r["profile"].items():
+            got[k] = got.get(k, 0.0) + v
+    cats = [c for c, _ in CATEGORIES] + ["other"]
+    scale = sum(r["best_s"] for r in rows) / max(sum(got.values()), 1e-12)
+    print(f"  {name} us/it by cProfile's shares, scaled to the unprofiled {sum(r['best_s'] for r in rows) / its * 1e6:.1f} "
+          f"(profiled {sum(r['profiled_s'] for r in rows) / its * 1e6:.0f}): "
+          + ", ".join(f"{c} {got.get(c, 0.0) * scale / its * 1e6:.1f}" for c in cats))
+
+
+def interleaved(args) -> int:
+    """Run this tool in each checkout in turn (A B A B ...), one process each, and compare."""
+    import json
+    import subprocess
+
+    checkouts = [str(Path(c).resolve()) for c in args.checkouts.split(",")]
+    runs: dict[str, list[dict]] = {c: [] for c in checkouts}
+    for rnd in range(args.rounds):
+        for c in (checkouts if rnd % 2 == 0 else checkouts[::-1]):
+            cmd = [sys.executable, str(Path(__file__).resolve()), "--json", "--scenes", args.scenes,
+                   "--seeds", str(args.seeds), "--replays", str(args.replays)] + (["--profile"] if args.profile else [])
+            t0 = time.strftime("%H:%M:%S", time.gmtime())
+            done = subprocess.run(cmd, cwd=c, capture_output=True, text=True, check=True)
+            runs[c].append(json.loads(done.stdout))
+            print(f"# round {rnd + 1} {c} {t0}-{time.strftime('%H:%M:%S', time.gmtime())} UTC, "
+                  f"load {open('/proc/loadavg').read().split()[0] if Path('/proc/loadavg').exists() else '?'}", flush=True)
+    base = checkouts[0]
+    for name in args.scenes.split(","):
+        print(f"\n{name}")
+        print(f"  {'checkout':40} {'iters/seed':>24} {'us/it (med)':>16} {'us/it pooled':>16} {'ms/run':>16} ok")
+        pooled = {}
+        for c in checkouts:
+            ss = [summary(run[name]) for run in runs[c]]
+            pooled[c] = statistics.median(s["pooled_us_it"] for s in ss)
+            its = ",".join(str(r["iterations"]) for r in runs[c][0][name])
+            cols = [" / ".join(f"{s[k]:.{d}f}" for s in ss) for k, d in (("us_it", 0), ("pooled_us_it", 0), ("ms_run", 1))]
+            print(f"  {c[-40:]:40} {its[:24]:>24} {cols[0]:>16} {cols[1]:>16} {cols[2]:>16} "
+                  f"{min(s['ok'] for s in ss)}/{args.seeds * args.replays}")
+        for c in checkouts[1:]:
+            print(f"  pooled us/it, median over rounds: {c[-30:]} / {base[-30:]} = {pooled[c] / pooled[base]:.2f}")
+        if args.profile:
+            for c in checkouts:
+                print_profile(c[-30:], runs[c][-1][name])
+    return 0
 
 
 def main() -> int:
@@ -139,31 +295,27 @@ def main() -> int:
     p.add_argument("--scenes", default=",".join(FETCH))
     p.add_argument("--seeds", type=int, default=5)
     p.add_argument("--replays", type=int, default=20)
+    p.add_argument("--profile", action="store_true", help="also one cProfiled replay per seed, by category")
+    p.add_argument("--json", action="store_true", help="per-seed figures as JSON (for --checkouts)")
+    p.add_argument("--checkouts", help="comma-separated checkout roots: run each in turn, interleaved")
+    p.add_argument("--rounds", type=int, default=2, help="with --checkouts: runs per checkout (A B B A ...)")
     args = p.parse_args()
+    if args.checkouts:
+        return interleaved(args)
     sys.path.insert(0, str(Path.cwd()))
-    from lazyground.drake.world import DrakeWorld
-    from lazyground.scene import load_scene
+    import json
 
-    print(f"{'scene':15} {'iters':>6} {'loop us/it':>10} {'loop ms/run':>11} {'search-IK ms':>12} {'replays ok':>10}")
-    for name in args.scenes.split(","):
-        scene = load_scene(name)
-        world = DrakeWorld(scene, visual=False)
-        record(name, 1000, world, scene)  # warm-up
-        per_it, per_run, search, its, ok = [], [], [], [], 0
-        for seed in range(args.seeds):
-            rec = record(name, seed, world, scene)
-            r = rec["report"].result
-            best = float("inf")
-            for _ in range(args.replays):
-                dt, same = replay(rec)
-                best, ok = min(best, dt), ok + same
-            per_it.append(best / max(rec["iterations"], 1) * 1e6)
-            per_run.append(best * 1e3)
-            search.append((r.time_s - r.goal_sampling_s) * 1e3)
-            its.append(rec["iterations"])
-        med = statistics.median
-        print(f"{name:15} {med(its):6.0f} {med(per_it):10.1f} {med(per_run):11.2f} {med(search):12.1f} "
-              f"{ok:>5}/{args.seeds * args.replays}", flush=True)
+    got = measure(args.scenes.split(","), args.seeds, args.replays, args.profile)
+    if args.json:
+        print(json.dumps(got))
+        return 0
+    print(f"{'scene':15} {'iters':>6} {'loop us/it':>10} {'us/it pooled':>12} {'loop ms/run':>11} {'search-IK ms':>12} {'replays ok':>10}")
+    for name, rows in got.items():
+        s = summary(rows)
+        print(f"{name:15} {s['iterations']:6.0f} {s['us_it']:10.1f} {s['pooled_us_it']:12.1f} {s['ms_run']:11.2f} "
+              f"{s['search_ms']:12.1f} {s['ok']:>5}/{args.seeds * args.replays}", flush=True)
+        if args.profile:
+            print_profile(name, rows)
     return 0
 
 

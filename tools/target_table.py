@@ -5,6 +5,7 @@ Run from the checkout's root (cwd comes first on sys.path), on a quiet machine (
 
     nice python3 tools/target_table.py                 # seeds 0-9 on Fetch, 0-19 on parking_1
     nice python3 tools/target_table.py --seeds 20 --parking-seeds 40
+    nice python3 tools/target_table.py --parking-only        # table 3 alone (~30 s quiet)
     cd /path/to/other/checkout && nice python3 /path/to/this/tools/target_table.py   # the same table on its code
 
 Prints three tables:
@@ -42,17 +43,24 @@ def parking(seeds: int) -> dict:
     request = scene.expect[0].request
     kw = dict(strategy=Strategy.REWARD_PENALTY, algorithm=Algorithm.RRT, goal_bias=0.05, kinematics="holonomic")
     api.plan(scene, request, seed=1000, world=world, **kw)
+    cpu = time.process_time()
     reports = [api.plan(scene, request, seed=s, world=world, **kw) for s in range(seeds)]
+    cpu = time.process_time() - cpu
     return dict(planning=statistics.median(r.time_s for r in reports), total=statistics.median(r.total_s for r in reports),
-                solved=sum(r.result.solved for r in reports), runs=len(reports))
+                solved=sum(r.result.solved for r in reports), runs=len(reports), cpu=cpu,
+                iterations=sum(r.result.iterations for r in reports))
 
 
 def main() -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--seeds", type=int, default=10, help="Fetch seeds per scene (0..N-1)")
     p.add_argument("--parking-seeds", type=int, default=20)
+    p.add_argument("--parking-only", action="store_true", help="only table 3 (Table I's parking_1)")
     args = p.parse_args()
     sys.path.insert(0, str(Path.cwd()))
+    if args.parking_only:
+        _print_parking(parking(args.parking_seeds), args.parking_seeds)
+        return 0
     sys.path.insert(1, str(Path(__file__).resolve().parent))
     import request_profile
 
@@ -79,12 +87,16 @@ def main() -> int:
     print(f"(target per check: {TARGET_US_PER_CHECK:g} us)\n")
     profiles = [iteration_profile.profile_scene(name, range(args.seeds)) for name in FETCH]
     print(iteration_profile.report(profiles), flush=True)
-    park = parking(args.parking_seeds)
-    print(f"parking_1, Table I settings (rrt, reward-penalty, bias 0.05, holonomic), seeds 0-{args.parking_seeds - 1}: "
-          f"median planning {park['planning'] * 1e3:.1f} ms, total {park['total'] * 1e3:.1f} ms, "
-          f"solved {park['solved']}/{park['runs']}")
+    _print_parking(parking(args.parking_seeds), args.parking_seeds)
     print(f"({time.perf_counter() - t0:.0f} s)", file=sys.stderr)
     return 0
+
+
+def _print_parking(park: dict, seeds: int) -> None:
+    print(f"parking_1, Table I settings (rrt, reward-penalty, bias 0.05, holonomic), seeds 0-{seeds - 1}: "
+          f"median planning {park['planning'] * 1e3:.1f} ms, total {park['total'] * 1e3:.1f} ms, "
+          f"solved {park['solved']}/{park['runs']}; CPU of all {park['runs']} plans {park['cpu']:.2f} s "
+          f"({park['iterations']} iterations)", flush=True)
 
 
 if __name__ == "__main__":

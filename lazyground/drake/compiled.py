@@ -26,7 +26,8 @@ _compiled_now = False  # whether that call compiled (no usable cache on this mac
 
 
 def warm_up() -> float:
-    """Compile (or load from numba's on-disk cache) the kernels (the certifier's and the batch IK solver's) once
+    """Compile (or load from numba's on-disk cache) the kernels (the certifier's, the batch IK solver's and the
+    planner's nearest-neighbour and steering kernels: an arm's tree would load those in its first request) once
     per process; the seconds it took (0.0 after the first call). The first call on a machine compiles (~20-60 s), later processes load (~1 s)."""
     global _compile_s, _compiled_now
     if _compile_s is not None:
@@ -41,8 +42,11 @@ def warm_up() -> float:
     edge_kernel.edge_open(fd, idata, work, pairs, np.zeros(1, np.int64), np.zeros((2, 1)), np.zeros(1, np.int64),
                           np.array([0.0, 1.0, 0.0]), 2, np.zeros(1), np.ones(1), 0.3, edge_kernel.BISECTION, 0, -1, 0)
     ik_compiled = ik_kernels.warm_up()  # the batch IK solver's kernels (lazyground.drake.ik.kernels)
+    from lazyground.planning import linear_kernels  # (after the others: numba's compiler is up, ~0.08 s)
+
+    planner_compiled = linear_kernels.warm_up()[1]
     _compile_s = time.perf_counter() - t0
-    _compiled_now = ik_compiled or any(sum(k.stats.cache_misses.values()) for k in (
+    _compiled_now = ik_compiled or planner_compiled or any(sum(k.stats.cache_misses.values()) for k in (
         kernels.certify_rows, kernels.certify_one, kernels.first_open, kernels.sweep_rows, edge_kernel.edge_open,
         edge_kernel.step_order))
     return _compile_s

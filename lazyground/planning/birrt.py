@@ -49,6 +49,7 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
     start_turn = True
     closest: dict[int, float] = {}  # goal sample -> the smallest gap its subtree has left to the start tree
     connects_selected = bool(getattr(s.selector, "connects_selected", False))
+    step = s.settings.step_size
     while s.time_left():
         if not s.have_samples():
             if s.goals.exhausted():
@@ -63,7 +64,7 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
         q_rand = space.sample(rng)
         reached = False
         if start_turn:
-            a = _extend(s, ts, ts.nearest(q_rand), q_rand)
+            _, a = _extend(s, ts, q_rand, step)
             if a >= 0:
                 b, reached = _connect(s, tg, ts.nodes[a])
                 if not reached and connects_selected:
@@ -71,8 +72,7 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
         else:
             # goal turn: the strategy's goal tree grows (with probability goal_bias; credited), else the forest
             gi = s.select() if rng.random() < s.settings.goal_bias else None
-            near = tg.nearest(q_rand, label=gi)
-            b = _extend(s, tg, near, q_rand) if near >= 0 else -1
+            near, b = _extend(s, tg, q_rand, step, gi)
             if b >= 0:
                 a, reached = _connect(s, ts, tg.nodes[b])
             if gi is not None:
@@ -144,8 +144,9 @@ def _credit(s: Search, gi: int, closest: dict[int, float], gap: float) -> None:
         s.penalize(gi, only_if_all_stuck=True)
 
 
-def _extend(s: Search, tree: Tree, near: int, q_towards: np.ndarray) -> int:
-    """One step from node ``near`` towards q_towards: the new node, or -1 if blocked.
+def _extend(s: Search, tree: Tree, q_towards: np.ndarray, step: float, label: int | None = None) -> tuple[int, int]:
+    """One step from the tree's nearest node (in one label's subtree if given) towards q_towards:
+    (that node, or -1 if there is none; the new node, or -1 if blocked).
 
     A goal tree whose step is blocked tries the space's ``straight_step`` instead where it has one (a
     car: straight forwards or backwards, out of a parking bay). A car's goal tree grows out of its spot
@@ -153,14 +154,15 @@ def _extend(s: Search, tree: Tree, near: int, q_towards: np.ndarray) -> int:
     neighbours); on the fixed lot (issue #33, cover-connect, seeds 0-5, 2,000-iteration cap) it cut the
     median iterations from 69 / 791 to 21 / 183 at N = 8 / 64 and solved 5 of 6 at N = 256 (1 before).
     """
-    q_near = tree.nodes[near]
-    q_new, _ = s.space.steer(q_near, q_towards, s.settings.step_size)
+    near, q_new, _ = tree.nearest_steer(q_towards, step, label)
+    if near < 0:
+        return -1, -1
     new = _step(s, tree, near, q_new)
     if new < 0 and tree is not s.trees[0] and s.straight_step is not None:
-        q_new = s.straight_step(q_near, q_towards, s.settings.step_size)
+        q_new = s.straight_step(tree.nodes[near], q_towards, step)
         if q_new is not None:
             new = _step(s, tree, near, q_new)
-    return new
+    return near, new
 
 
 def _step(s: Search, tree: Tree, parent: int, q_new: np.ndarray) -> int:
@@ -181,7 +183,7 @@ def _step(s: Search, tree: Tree, parent: int, q_new: np.ndarray) -> int:
     """
     q_parent = tree.nodes[parent]
     if tree is not s.trees[0]:
-        return tree.add(q_new, parent) if s.motion.edge_free(q_parent, q_new, s.resolution) else -1
+        return tree.add(q_new, parent) if s.edge_free(q_parent, q_new, s.resolution) else -1
     free = s.probe_free
     if not free(q_new):
         return -1  # (most steps end blocked: the probes are computed only past a free end)
@@ -211,7 +213,7 @@ def _connect(s: Search, tree: Tree, q_target: np.ndarray) -> tuple[int, bool]:
 def _greedy(s: Search, tree: Tree, node: int, q_target: np.ndarray) -> tuple[int, bool]:
     """Greedy steps from ``node`` towards q_target: (last node, reached)."""
     while s.time_left():
-        q_new, reached = s.space.steer(tree.nodes[node], q_target, s.settings.step_size)
+        q_new, reached = tree.steer(node, q_target, s.settings.step_size)
         new = _step(s, tree, node, q_new)
         if new < 0:
             return node, False

@@ -31,7 +31,7 @@ class NearestNeighbors:
     """
 
     def __init__(self, dim: int, capacity: int = 1024, buffer: int = 256, recent_fraction: float = 0.25,
-                 brute_limit: int = 32768, buffer_fraction: float = 1 / 64):
+                 brute_limit: int = 32768, buffer_fraction: float = 1 / 64, kernels=None):
         self._points = np.empty((capacity, dim))
         self._sq = np.empty(capacity)  # squared norms of the points
         self._size = 0
@@ -43,6 +43,7 @@ class NearestNeighbors:
         self._buffer_fraction = buffer_fraction  # ... or this fraction of the points, whichever is more
         self._fraction = recent_fraction
         self._brute_limit = brute_limit
+        self.kernels = kernels  # lazyground.planning.linear_kernels: the scans compiled (None: numpy's)
 
     def __len__(self) -> int:
         return self._size
@@ -82,8 +83,25 @@ class NearestNeighbors:
         if len(idx) and self._size > self._brute_limit and idx.min() < self._recent_end:
             self._rebuild_main()
 
+    @property
+    def scans(self) -> bool:
+        """Whether a query is one scan over every point (no k-d tree yet)."""
+        return self._main is None
+
+    def nearest_steer(self, x: np.ndarray, step: float, out: np.ndarray) -> int:
+        """For points that are configurations of a unit-weight linear space, while :attr:`scans` and with
+        ``kernels``: the nearest point's index i, ``out`` set to it steered towards x by at most ``step``
+        (:func:`lazyground.planning.linear_kernels.nearest_steer`): 2 i + 1 if that reached x, 2 i if not;
+        -1 without points."""
+        return self.kernels.nearest_steer(self._points, self._sq, self._size, x, step, out)
+
     def nearest(self, x: np.ndarray) -> int:
         if self._main is None:  # no k-d tree yet: one scan (the answer the general path gives)
+            if self.kernels is not None:
+                try:
+                    return self.kernels.nearest(self._points, self._sq, self._size, x)
+                except TypeError:  # (x not a writable contiguous float vector: numpy's scan)
+                    pass
             return int(self._scan(0, x).argmin()) if self._size else -1
         d, best = self._main.query(x)  # (a recent tree exists only beside a main one)
         best_d2 = d * d
@@ -104,6 +122,12 @@ class NearestNeighbors:
 
         Removed points sort last (they sit at ``FAR``); the caller filters them.
         """
+        if self._main is None and self.kernels is not None:
+            out = np.empty(k, np.int64)
+            try:
+                return out[: self.kernels.nearest_k(self._points, self._sq, self._size, x, k, out)]
+            except TypeError:  # (as in nearest)
+                pass
         idx, d2 = [], []
         for tree, off in ((self._main, 0), (self._recent, self._main_end)):
             if tree is not None:

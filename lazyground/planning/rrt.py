@@ -84,7 +84,7 @@ def solve(
 
 def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
     """Algorithm 1: one tree from the start, goal-biased steps towards the selected goal sample."""
-    space, motion, settings, rng = s.space, s.motion, s.settings, s.rng
+    space, motion, edge_free, settings, rng = s.space, s.motion, s.edge_free, s.settings, s.rng
     tree = Tree(space)
     tree.add_root(start)
     s.trees = [tree]
@@ -104,9 +104,8 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
             q_towards = s.samples[gi].q
         else:
             q_towards = space.sample(rng)
-        near = tree.nearest(q_towards)
+        near, q_new, reached = tree.nearest_steer(q_towards, settings.step_size)
         q_near = tree.nodes[near]
-        q_new, reached = space.steer(q_near, q_towards, settings.step_size)
         if gi is not None and (near, gi) in blocked:
             q_new = None  # the same edge as before: its answer has not changed
         elif gi is not None and settings.goal_extension is GoalExtension.PARTIAL:
@@ -115,7 +114,7 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
             if t < 1.0:
                 reached = False
                 q_new = space.interpolate(q_near, q_new, t) if t > 0.0 else None
-        elif not motion.edge_free(q_near, q_new, resolution):
+        elif not edge_free(q_near, q_new, resolution):
             q_new = None
         if q_new is None:
             if gi is not None:
@@ -128,8 +127,8 @@ def grow_rrt(s: Search, start: np.ndarray) -> PlanResult | None:
             continue
         # "connect" keeps stepping towards the goal sample while the steps are free
         while settings.goal_extension is GoalExtension.CONNECT and not reached and s.time_left():
-            q_next, r = space.steer(q_new, q_towards, settings.step_size)
-            if not motion.edge_free(q_new, q_next, resolution):
+            q_next, r = tree.steer(node, q_towards, settings.step_size)
+            if not edge_free(q_new, q_next, resolution):
                 break
             node, q_new, reached = tree.add(q_next, node, True), q_next, r
         s.reward(gi)

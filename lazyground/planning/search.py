@@ -17,7 +17,7 @@ from lazyground.planning.problem import (
     PlanStatus,
     ValidityChecker,
 )
-from lazyground.planning.motion_validator import samples_free
+from lazyground.planning.motion_validator import MotionValidator, samples_free
 from lazyground.planning.space import ConfigSpace
 from lazyground.planning.stop import StopCondition
 from lazyground.planning.strategies import StrategySettings, make_strategy
@@ -33,18 +33,11 @@ def path_is_valid(space: ConfigSpace, checker: ValidityChecker, path: np.ndarray
     is checked once. ``segments`` restricts the check to those segment indices
     (ascending; default all).
     """
-    todo = range(len(path) - 1) if segments is None else segments
-    chunks, owner, prev = [], [], None
-    for k in todo:
-        qs = space.discretize(path[k], path[k + 1], resolution, skip_first=prev == k - 1)
-        chunks.append(qs)
-        owner.append(np.full(len(qs), k))
-        prev = k
-    if not chunks:
+    qs, owner = space.discretize_path(path, range(len(path) - 1) if segments is None else segments, resolution)
+    if not len(qs):
         return -1
-    free = samples_free(space, checker, np.vstack(chunks))
-    blocked = np.flatnonzero(~free)
-    return int(np.concatenate(owner)[blocked[0]]) if len(blocked) else -1
+    blocked = np.flatnonzero(~samples_free(space, checker, qs))
+    return int(owner[blocked[0]]) if len(blocked) else -1
 
 
 # what one goal-sampling attempt in a region of each kind tries (issue 34: the status said "0/50 valid", not of what)
@@ -73,6 +66,8 @@ class Search:
             stop = StopCondition.after(settings.time_limit, max_iterations=settings.max_iterations)
         self.seed, self.keep_tree, self.stop = seed, keep_tree, stop
         self.motion = space.motion_validator(checker)  # edges as the space moves along them (OMPL's MotionValidator)
+        # the validator of straight edges forwards to the checker's edge check: the loop calls that directly (#31)
+        self.edge_free = checker.edge_free if type(self.motion) is MotionValidator else self.motion.edge_free
         # read once, not per step (#31): the edge spacing and the probe a lazy step asks (penetration only where
         # the checker has it)
         self.resolution = settings.resolution

@@ -48,6 +48,7 @@ class ConfigSpace:
     _span: np.ndarray = field(init=False, repr=False)
     _w2_list: tuple | None = field(init=False, repr=False)  # the squared weights as floats: the float path (below)
     embeds_as_is: bool = field(init=False, repr=False)  # the embedding is the coordinates (no angles, unit weights)
+    unit_linear: bool = field(init=False, repr=False)  # embeds_as_is, < 16 coordinates: lazyground.planning.linear_kernels
 
     def __post_init__(self):
         n = len(self.names)
@@ -76,6 +77,7 @@ class ConfigSpace:
         fast = not wrap.any() and n < FLOAT_PATH_MAX_DIM
         object.__setattr__(self, "_w2_list", tuple((weights**2).tolist()) if fast else None)
         object.__setattr__(self, "embeds_as_is", not wrap.any() and bool(np.all(weights == 1.0)))
+        object.__setattr__(self, "unit_linear", self.embeds_as_is and fast)
 
     @property
     def dim(self) -> int:
@@ -144,6 +146,28 @@ class ConfigSpace:
         n = max(1, int(np.ceil(self.distance(a, b) / resolution)))
         t = np.arange(1 if skip_first else 0, n + 1) / n
         return self.interpolate(a, b, t)
+
+    def discretize_path(self, path: np.ndarray, segments, resolution: float) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`discretize` of the path's segments ``segments`` (ascending) stacked, a vertex shared by two of
+        them once; and each row's segment index.
+
+        Linear straight segments go in a few numpy calls over all of them: the same numbers as segment by
+        segment (a + t (b - a) with t = i / n, elementwise), without a dozen numpy calls per segment (#31)."""
+        segments = list(segments)
+        skips = [i > 0 and segments[i - 1] == k - 1 for i, k in enumerate(segments)]
+        if self._w2_list is None or type(self).discretize is not ConfigSpace.discretize or not segments:
+            chunks = [self.discretize(path[k], path[k + 1], resolution, skip_first=skip) for k, skip in zip(segments, skips)]
+            owner = [np.full(len(qs), k) for k, qs in zip(segments, chunks)]
+            return (np.vstack(chunks), np.concatenate(owner)) if chunks else (np.empty((0, self.dim)), np.empty(0, int))
+        path = np.asarray(path, float)
+        ks = np.array(segments)
+        ns = np.array([max(1, int(np.ceil(self.distance(path[k], path[k + 1]) / resolution))) for k in segments])
+        first = np.array(skips, int)
+        counts = ns + 1 - first
+        rows = np.repeat(np.arange(len(ks)), counts)
+        i = np.arange(len(rows)) - np.repeat(np.cumsum(counts) - counts, counts) + first[rows]
+        a = path[ks][rows]
+        return a + (i / ns[rows])[:, None] * (path[ks + 1][rows] - a), ks[rows]
 
     def steer(self, a: np.ndarray, b: np.ndarray, step: float) -> tuple[np.ndarray, bool]:
         """Move from a towards b by at most ``step``; returns (q, reached_b)."""

@@ -102,16 +102,19 @@ class StopCondition:
 
         The deadline is read first, then the cap, as a planner's loop asks (one clock reading per call).
         """
-        reason = None
-        if self.interrupted():
+        # (interrupted() and timed_out() written out: the planner's loop asks this once or twice an iteration, #31)
+        interrupt, deadline, cap = self.interrupt, self.deadline, self.max_iterations
+        if interrupt is not None and interrupt():
             reason = StopReason.INTERRUPTED
-        elif self.timed_out():
+        elif deadline is not None and self.clock() >= deadline:
             reason = StopReason.TIMEOUT
-        elif self.max_iterations is not None and iterations >= self.max_iterations:
+        elif cap is not None and iterations >= cap:
             reason = StopReason.ITERATIONS
-        if reason is not None and not self._reason:
+        else:
+            return False
+        if not self._reason:
             self._reason.append(reason)
-        return reason is not None
+        return True
 
     @property
     def reason(self) -> StopReason | None:

@@ -18,6 +18,12 @@ def _as_is(q: np.ndarray) -> np.ndarray:
     return np.asarray(q, float)
 
 
+def _linear_kernels():
+    from lazyground.planning import linear_kernels  # (numba: imported only by a linear space's tree)
+
+    return linear_kernels
+
+
 class Tree:
     def __init__(self, space: ConfigSpace, per_label: bool = False):
         self.space = space
@@ -27,7 +33,9 @@ class Tree:
         self.goal_biased: list[bool] = []
         self.alive: list[bool] = []
         self.checked: list[bool] = []  # whether the edge from the node's parent has been collision-checked
-        self.nn = NearestNeighbors(space.embed_dim)
+        # a unit-weight linear space (every arm here): nearest neighbours and steering compiled (#31)
+        self._kernels = _linear_kernels() if getattr(space, "unit_linear", False) else None
+        self.nn = NearestNeighbors(space.embed_dim, kernels=self._kernels)
         self._per_label = per_label
         self._label_nn: dict[int, tuple[NearestNeighbors, list[int]]] = {}
         self._local: list[int] = []  # index of each node in its label's index
@@ -39,7 +47,7 @@ class Tree:
         return len(self.nodes)
 
     def add_root(self, q: np.ndarray, label: int = -1) -> int:
-        return self._add(np.asarray(q, float), -1, label, False, True)
+        return self._add(np.array(q, float), -1, label, False, True)  # (a copy of its own: contiguous, writable)
 
     def add(self, q: np.ndarray, parent: int, goal_biased: bool = False, checked: bool = True) -> int:
         """Add node q below ``parent``; ``checked=False`` leaves the edge between them to be checked later."""
@@ -55,7 +63,9 @@ class Tree:
         x = self._embed(q)
         i = self.nn.add(x)
         if self._per_label:
-            nn, members = self._label_nn.setdefault(label, (NearestNeighbors(self.space.embed_dim, capacity=64), []))
+            nn, members = self._label_nn.get(label, (None, None))
+            if nn is None:
+                nn, members = self._label_nn[label] = (NearestNeighbors(self.space.embed_dim, capacity=64, kernels=self._kernels), [])
             self._local.append(nn.add(x))
             members.append(i)
         return i
@@ -81,6 +91,48 @@ class Tree:
         i = nn.nearest(x)
         i = i if members is None else members[i]
         return i if i >= 0 and self.alive[i] and (members is not None or i not in self._muted) else -1
+
+    def nearest_steer(self, q: np.ndarray, step: float, label: int | None = None) -> tuple[int, np.ndarray | None, bool]:
+        """(the nearest live node (of one label's subtree if given) or -1, the configuration ``step`` from it towards
+        ``q`` (:meth:`ConfigSpace.steer`), whether that reached ``q``); (-1, None, False) without a live node.
+
+        A unit-weight linear space's scan answers it in one compiled call (the same node and numbers as
+        :meth:`nearest` then ``steer``)."""
+        if label is None:
+            nn, members = self.nn, None
+        else:
+            nn, members = self._label_nn.get(label, (None, None))
+            if nn is None:
+                return -1, None, False
+        if self._kernels is not None and nn.scans:
+            out = np.empty(len(q))
+            try:
+                code = nn.nearest_steer(q, step, out)
+            except TypeError:  # (q not a writable contiguous float vector: the general path)
+                code = None
+            if code is not None:
+                if code < 0:
+                    return -1, None, False
+                if members is None:
+                    i = code >> 1
+                    return (i, out, bool(code & 1)) if self.alive[i] and i not in self._muted else (-1, None, False)
+                i = members[code >> 1]
+                return (i, out, bool(code & 1)) if self.alive[i] else (-1, None, False)
+        i = self.nearest(q, label)
+        if i < 0:
+            return -1, None, False
+        q_new, reached = self.space.steer(self.nodes[i], q, step)
+        return i, q_new, reached
+
+    def steer(self, i: int, q: np.ndarray, step: float) -> tuple[np.ndarray, bool]:
+        """:meth:`ConfigSpace.steer` from node i towards ``q`` (compiled in a unit-weight linear space)."""
+        if self._kernels is not None:
+            out = np.empty(len(q))
+            try:
+                return out, self._kernels.steer(self.nodes[i], q, step, out)
+            except TypeError:
+                pass
+        return self.space.steer(self.nodes[i], q, step)
 
     def nearest_k(self, q: np.ndarray, k: int) -> list[int]:
         """Up to k nearest live nodes, nearest first; only :meth:`nearest` in a space that re-ranks

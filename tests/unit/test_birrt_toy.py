@@ -172,8 +172,8 @@ def test_a_goal_turn_credits_the_selected_tree_by_its_own_step(monkeypatch):
 
     events = []
     extend, credit = birrt._extend, birrt._credit
-    monkeypatch.setattr(birrt, "_extend", lambda s, tree, near, q: events.append(
-        ("extend", s.iterations, tree is s.trees[1], extend(s, tree, near, q))) or events[-1][3])
+    monkeypatch.setattr(birrt, "_extend", lambda s, tree, q, step, label=None: events.append(
+        ("extend", s.iterations, tree is s.trees[1], extend(s, tree, q, step, label))) or events[-1][3])
     monkeypatch.setattr(birrt, "_credit", lambda s, gi, closest, gap: events.append(
         ("credit", s.iterations, gap)) or credit(s, gi, closest, gap))
     for seed in range(3):
@@ -182,6 +182,6 @@ def test_a_goal_turn_credits_the_selected_tree_by_its_own_step(monkeypatch):
         credits = [i for i, e in enumerate(events) if e[0] == "credit"]
         assert credits and any(events[i][2] < 0 for i in credits) and any(events[i][2] >= 0 for i in credits)
         for i in credits:
-            kind, iteration, goal_tree, b = events[i - 1]
+            kind, iteration, goal_tree, (_, b) = events[i - 1]
             assert kind == "extend" and iteration == events[i][1] and goal_tree, (seed, events[i - 1], events[i])
             assert (events[i][2] < 0) == (b < 0)

@@ -58,3 +58,20 @@ def test_tree_without_embedding_copies_finds_the_same_nearest():
     for q in [unit.sample(rng) for _ in range(300)]:
         assert t1.nearest(q) == t2.nearest(q)
         assert t1.nearest_k(q, 3) == t2.nearest_k(q, 3)
+
+
+def test_a_path_discretized_at_once_is_segment_by_segment():
+    # discretize_path's numpy calls over every segment give discretize's numbers, a shared vertex once (#31)
+    rng = np.random.default_rng(5)
+    for _ in range(400):
+        d = int(rng.choice([2, 8]))
+        weights = None if rng.random() < 0.5 else rng.uniform(0.5, 2.0, d)
+        space = ConfigSpace(tuple(f"j{i}" for i in range(d)), -3.0 * np.ones(d), 3.0 * np.ones(d), weights)
+        m, res = int(rng.integers(2, 10)), float(rng.choice([0.02, 0.3, 10.0]))
+        path = rng.uniform(-3, 3, (m, d))
+        segments = sorted(rng.choice(m - 1, size=int(rng.integers(1, m)), replace=False).tolist())
+        qs, owner = space.discretize_path(path, segments, res)
+        want = [space.discretize(path[k], path[k + 1], res, skip_first=i > 0 and segments[i - 1] == k - 1)
+                for i, k in enumerate(segments)]
+        assert np.array_equal(qs, np.vstack(want))
+        assert np.array_equal(owner, np.concatenate([np.full(len(w), k) for k, w in zip(segments, want)]))

@@ -1,0 +1,73 @@
+"""The compiled nearest-neighbour scan and steering of unit-weight linear spaces (#31): numpy's answers."""
+
+import numpy as np
+import pytest
+
+from lazyground.planning import linear_kernels as K
+from lazyground.planning.space import ConfigSpace
+from lazyground.planning.tree import Tree
+
+
+def _space(dim: int, weights=None) -> ConfigSpace:
+    return ConfigSpace(tuple(f"j{i}" for i in range(dim)), -3.0 * np.ones(dim), 3.0 * np.ones(dim), weights)
+
+
+@pytest.mark.parametrize("dim", [2, 7, 8])
+def test_steer_is_the_space_s_steer_bit_for_bit(dim):
+    rng, space, out = np.random.default_rng(dim), _space(dim), np.empty(dim)
+    for _ in range(3000):
+        a, b = rng.uniform(-3, 3, dim), rng.uniform(-3, 3, dim)
+        step = float(rng.choice([0.05, 0.5, 10.0]) * rng.random())
+        q, reached = space.steer(a, b, step)
+        assert K.steer(a, b, step, out) == reached and np.array_equal(out, q)
+
+
+def test_scans_rank_as_numpy_s():
+    rng = np.random.default_rng(0)
+    for _ in range(300):
+        dim, n, k = int(rng.choice([2, 8])), int(rng.integers(1, 300)), int(rng.integers(1, 5))
+        pts = rng.uniform(-3, 3, (n + 4, dim))
+        sq, x = np.einsum("ij,ij->i", pts, pts), rng.uniform(-3, 3, dim)
+        g = sq[:n] + pts[:n] @ (-2.0 * x)
+        assert K.nearest(pts, sq, n, x) == int(g.argmin())
+        out = np.empty(k, np.int64)
+        m = K.nearest_k(pts, sq, n, x, k, out)
+        assert list(out[:m]) == list(np.argsort(g, kind="stable")[:k])
+    assert K.nearest(pts, sq, 0, x) == -1
+
+
+def test_a_tree_answers_as_without_kernels():
+    # the same tree grown twice, kernels on and off: the same nearest nodes, steps and k nearest, labels too
+    space, rng = _space(8), np.random.default_rng(3)
+    assert space.unit_linear and not _space(8, np.full(8, 2.0)).unit_linear and not _space(16).unit_linear
+    fast, slow = Tree(space, per_label=True), Tree(space, per_label=True)
+    slow._kernels = slow.nn.kernels = None
+    assert fast._kernels is K
+    for t in (fast, slow):
+        t.add_root(np.zeros(8), label=0)
+        t.add_root(np.ones(8), label=1)
+    for i in range(400):
+        q, parent = rng.uniform(-3, 3, 8), int(rng.integers(0, i + 2))
+        assert fast.add(q.copy(), parent) == slow.add(q.copy(), parent)
+        if i == 200:
+            fast.prune(50), slow.prune(50)
+            fast.mute(1), slow.mute(1)
+    for _ in range(300):
+        x, label = rng.uniform(-3, 3, 8), int(rng.integers(-1, 2))
+        label = None if label < 0 else label
+        (i, q, r), (j, p, s) = fast.nearest_steer(x, 0.3, label), slow.nearest_steer(x, 0.3, label)
+        assert (i, r) == (j, s) and np.array_equal(q, p) and i == slow.nearest(x, label)
+        assert fast.nearest_k(x, 3) == slow.nearest_k(x, 3)
+        q, r = fast.steer(i, x, 0.3)
+        assert (q, r)[1] == slow.steer(i, x, 0.3)[1] and np.array_equal(q, slow.steer(i, x, 0.3)[0])
+
+
+def test_an_array_the_kernels_do_not_take_goes_the_numpy_way():
+    space = _space(3)
+    tree = Tree(space)
+    tree.add_root(np.zeros(3))
+    x = np.full(3, 2.0)
+    x.setflags(write=False)  # (numba types a read-only array apart: no compiled signature takes it)
+    i, q, reached = tree.nearest_steer(x, 0.5)
+    assert i == 0 and not reached and np.array_equal(q, space.steer(np.zeros(3), x, 0.5)[0])
+    assert tree.nearest(x) == 0 and tree.steer(0, x, 10.0)[1]
