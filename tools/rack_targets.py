@@ -78,7 +78,7 @@ def main(argv: list[str]) -> int:
     p.add_argument("robot")
     p.add_argument("n", type=int)
     p.add_argument("layouts", type=_layouts)
-    p.add_argument("--strategies", default="cover,consecutive")
+    p.add_argument("--strategies", default=f"{Strategy.COVER.value},{Strategy.CONSECUTIVE.value}")
     p.add_argument("--limit", type=float, default=30.0, help="our runs' limit, CPU s (unsolved counted at it)")
     p.add_argument("--budget", type=float, default=CALL_BUDGET, help="nearest-first: CPU s per planner call")
     p.add_argument("--eager", action="store_true", help="also run eager all-goal IK (real baseline)")
@@ -89,7 +89,7 @@ def main(argv: list[str]) -> int:
     p.add_argument("--jsonl", help="also append the rows to this file")
     if argv[:1] == ["summary"]:  # summary FILE.jsonl ...: the rows of earlier runs (e.g. layouts split over processes)
         rows = [json.loads(line) for f in argv[1:] for line in open(f) if line.strip()]
-        summary(rows, [m for m in ("cover", "reward-penalty", "cover-connect", "consecutive", "random") if any(m in r for r in rows)])
+        summary(rows, [m.value for m in Strategy if any(m.value in r for r in rows)])
         return 0
     a = p.parse_args(argv)
     stop_module.CLOCK = time.process_time
@@ -103,7 +103,7 @@ def main(argv: list[str]) -> int:
         row = dict(key=key, seed=a.seed, clock="cpu")
         for strat in strategies:
             rep = api.plan(problem.scene, problem.request, seed=a.seed, world=problem.world, strategy=strat,
-                           algorithm="bidirectional", time_limit=a.limit)
+                           algorithm=Algorithm.BIDIRECTIONAL.value, time_limit=a.limit)
             r = rep.result
             row[strat] = dict(solved=r.solved, time=round(rep.grounding_s + r.time_s if r.solved else a.limit, 3),
                               iterations=r.iterations, attempts=sum(st.attempts for st in r.region_stats),

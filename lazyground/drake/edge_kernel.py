@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from lazyground.drake.sphere_kernels import _blocks, _row, _tree, _views
+from lazyground.drake.sphere_kernels import block_views, open_pairs_row, scratch_views, tree_views
 
 SEQUENCE, BISECTION, INTERIOR_FIRST = 0, 1, 2  # the step orders (an edge's free fraction; edge_free; a part of one)
 ALL_FREE = -1  # edge_open's answer: every step asked about is certified free
@@ -138,15 +138,15 @@ def edge_open(fd, idata, work, pairs, state, qab, planned, edata, packet, a, b, 
     state[0] = n
     order = step_order(n, mode)
     end = len(order) if stop < 0 else min(stop, len(order))
-    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = _views(idata, work)
-    tree, blocks = _tree(fd, idata), _blocks(fd, idata)
+    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = scratch_views(idata, work)
+    tree, blocks = tree_views(fd, idata), block_views(fd, idata)
     q = np.empty(nq)
     cap = len(pairs) - 1
     for p in range(first, end):
         t = order[p] / n
         for j in range(nq):
             q[j] = qa[j] + t * (qb[j] - qa[j])
-        c = _row(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap, 0.0)
+        c = open_pairs_row(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap, 0.0)
         if c != 0:
             pairs[-1] = c
             return p

@@ -32,7 +32,7 @@ _FLOAT_BLOCKS = ("K", "F", "gR", "go", "ghalf", "ground", "grad", "sc", "sr", "o
                  "ac", "ah", "env", "self_thr", "ic", "ir", "below", "reach2")
 _INT_BLOCKS = ("parent", "kinds", "index", "slot", "node", "start", "gcyl", "ocyl", "mover", "other", "istart",
                "gexact", "oexact")
-COLLIDES = -2  # a row's code when a pair is proven to collide (see _row)
+COLLIDES = -2  # a row's code when a pair is proven to collide (see open_pairs_row)
 _NF, _NI = len(_FLOAT_BLOCKS), len(_INT_BLOCKS)
 _HEAD = 7 + _NF + _NI
 
@@ -79,7 +79,7 @@ def _offset_distance(vx, vy, vz, R, half, rounding, cylinder):
 
 
 @njit(cache=True, inline="always")
-def _tree(fd, idata):
+def tree_views(fd, idata):
     """Views of the body tree's blocks (joint and body frames, parents, kinds, position indices, slots) for
     :func:`_forward`: made once per kernel call, not per configuration (~20 % of a row's time, #31)."""
     m, n = idata[_M], idata[_N]
@@ -91,7 +91,7 @@ def _tree(fd, idata):
 
 @njit(cache=True)
 def _forward(q, tree, Rs, ps, Rb, pb):
-    """World rotation Rb (n, 3, 3) and position pb (n, 3) of every tree body at plant positions q (``tree``: :func:`_tree`)."""
+    """World rotation Rb (n, 3, 3) and position pb (n, 3) of every tree body at plant positions q (``tree``: :func:`tree_views`)."""
     K, F, parent, kinds, index, slot = tree
     m, n = len(parent), len(slot)
     for j in range(m):
@@ -119,8 +119,8 @@ def _forward(q, tree, Rs, ps, Rb, pb):
 
 
 @njit(cache=True, inline="always")
-def _blocks(fd, idata):
-    """Views of the certifier's blocks in the flat arrays (see :func:`pack`), in the order _row unpacks them."""
+def block_views(fd, idata):
+    """Views of the certifier's blocks in the flat arrays (see :func:`pack`), in the order open_pairs_row unpacks them."""
     G, S, O, P, I = idata[_G], idata[_S], idata[_O], idata[_P], idata[_I]
     f = idata[7:7 + _NF]
     i = idata[7 + _NF:_HEAD]
@@ -165,7 +165,7 @@ def _centres(node, go, Rb, pb, centre):
 
 
 @njit(cache=True)
-def _row(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap, shift):
+def open_pairs_row(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap, shift):
     """Open pairs of one configuration into ``pairs``; returns their count (0: certified; -1: more than ``cap``;
     COLLIDES: a pair proven closer than Drake's padding, by a sphere inside a moving geometry reaching into the
     exact solid of the other side). ``shift``: 0, or the padding for the tentative question whether any pair
@@ -547,13 +547,13 @@ def _gjk(RA, cA, hA, rA, cylA, RB, cB, hB, rB, cylB, free_above, collide_at):
 
 
 def work_size(idata: np.ndarray) -> int:
-    """Floats of scratch space a call needs (see _views)."""
+    """Floats of scratch space a call needs (see scratch_views)."""
     m, n, G, S = idata[_M], idata[_N], idata[_G], idata[_S]
     return int(12 * (m + 1) + 12 * n + 4 * G + 3 * S + 18 + idata[_O])
 
 
 @njit(cache=True)
-def _views(idata, work):
+def scratch_views(idata, work):
     """Scratch arrays over ``work``: slot frames (identity world frame), body poses, centres, spheres, a rotation,
     and per geometry whether its spheres are posed yet."""
     m, n, G, S = idata[_M], idata[_N], idata[_G], idata[_S]
@@ -587,21 +587,21 @@ def _views(idata, work):
 def certify_rows(Q, fd, idata, work, pairs):
     """Per row of plant positions Q: the count of its open pairs (0: certified, -1: more than pairs.shape[1],
     COLLIDES: proven colliding), the pairs in ``pairs[row]``."""
-    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = _views(idata, work)
-    tree, blocks = _tree(fd, idata), _blocks(fd, idata)
+    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = scratch_views(idata, work)
+    tree, blocks = tree_views(fd, idata), block_views(fd, idata)
     out = np.empty(Q.shape[0], np.int64)
     cap = pairs.shape[1]
     for r in range(Q.shape[0]):
-        out[r] = _row(Q[r], idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs[r], cap, 0.0)
+        out[r] = open_pairs_row(Q[r], idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs[r], cap, 0.0)
     return out
 
 
 @njit(cache=True)
 def certify_one(fd, idata, work, pairs, q, shift):
-    """:func:`certify_rows` of one configuration; its open pairs in ``pairs[:-1]``; ``shift``: see :func:`_row`.
+    """:func:`certify_rows` of one configuration; its open pairs in ``pairs[:-1]``; ``shift``: see :func:`open_pairs_row`.
     (The certifier's arrays first: a checker binds them once, functools.partial.)"""
-    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = _views(idata, work)
-    return _row(q, idata, _tree(fd, idata), _blocks(fd, idata), Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs,
+    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = scratch_views(idata, work)
+    return open_pairs_row(q, idata, tree_views(fd, idata), block_views(fd, idata), Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs,
                 len(pairs) - 1, shift)
 
 
@@ -609,15 +609,15 @@ def certify_one(fd, idata, work, pairs, q, shift):
 def first_open(qa, qb, n, order, begin, fd, idata, work, pairs):
     """The first position p >= ``begin`` of ``order`` whose configuration qa + (order[p] / n) (qb - qa) is not
     certified (its code in ``pairs[-1]``, its open pairs before), or -1 when all are."""
-    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = _views(idata, work)
-    tree, blocks = _tree(fd, idata), _blocks(fd, idata)
+    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = scratch_views(idata, work)
+    tree, blocks = tree_views(fd, idata), block_views(fd, idata)
     q = np.empty(len(qa))
     cap = len(pairs) - 1
     for p in range(begin, len(order)):
         t = order[p] / n
         for j in range(len(qa)):
             q[j] = qa[j] + t * (qb[j] - qa[j])
-        c = _row(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap, 0.0)
+        c = open_pairs_row(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap, 0.0)
         if c != 0:
             pairs[-1] = c
             return p
@@ -632,7 +632,7 @@ def first_open(qa, qb, n, order, begin, fd, idata, work, pairs):
 # qa, :func:`_clearance` bounds, per moving geometry, how far its bounding sphere may move
 # before a checked pair with the environment comes within its threshold (the bounding
 # sphere against each obstacle's world box and solid: the first level of
-# :func:`_row`'s test), per self pair how far its two
+# :func:`open_pairs_row`'s test), per self pair how far its two
 # bounding spheres may move relative to each other, and per geometry and joint the lever:
 # the farthest distance of the bounding sphere from the joint's axis (1 for a prismatic joint,
 # 0 for a joint not above it). On the straight line from qa to q = qa + dq no point of the
@@ -642,7 +642,7 @@ def first_open(qa, qb, n, order, begin, fd, idata, work, pairs):
 # (in the frame of the body above both, the joints above it move neither). A configuration where every
 # geometry moved less than its clearance, and every self pair's two geometries less than the
 # pair's, is free for Drake's checker as the anchor is (the same lower bounds, less the
-# distances moved). Any other configuration gets the whole test (``_row``): its answer then
+# distances moved). Any other configuration gets the whole test (``open_pairs_row``): its answer then
 # is the whole test's. A configuration not covered becomes the next anchor when every clearance there
 # is positive; after a failed attempt the next ones wait 4, 8, ... MAX_WAIT rows.
 
@@ -726,8 +726,8 @@ def _clearance(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, W, above, lever, 
 def sweep_rows(Q, fd, idata, work, above, pairs):
     """Per row of plant positions Q (in sequence): its code as ``certify_rows`` gives it (0 certified, open pairs'
     count, -1, COLLIDES) and its open pairs in ``pairs[row]``; a row within reach of the last anchor is 0."""
-    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = _views(idata, work)
-    tree, blocks = _tree(fd, idata), _blocks(fd, idata)
+    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = scratch_views(idata, work)
+    tree, blocks = tree_views(fd, idata), block_views(fd, idata)
     m, G, P = idata[_M], idata[_G], idata[_P]
     i = idata[7 + _NF:_HEAD]
     o_ = 7 + _NF
@@ -807,5 +807,5 @@ def sweep_rows(Q, fd, idata, work, above, pairs):
             wait = backoff
         else:
             wait -= 1
-        out[r] = _row(Q[r], idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs[r], cap, 0.0)
+        out[r] = open_pairs_row(Q[r], idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs[r], cap, 0.0)
     return out
