@@ -52,14 +52,14 @@ def _ik_without_clock() -> None:
     module.DEFAULT_IK_SETTINGS = replace(module.DEFAULT_IK_SETTINGS, attempt_budget=None)
 
 
-def fetch_rows(seeds: int) -> list[dict]:
+def fetch_rows(seeds: int, scenes=FETCH) -> list[dict]:
     from lazyground import api
     from lazyground.drake.world import DrakeWorld
     from lazyground.scene import load_scene
 
     _ik_without_clock()
     rows = []
-    for name in FETCH:
+    for name in scenes:
         scene = load_scene(name)
         exp = scene.expect[0]
         caps = {k: getattr(exp, k) for k in ("max_iterations", "time_limit") if getattr(exp, k) is not None}
@@ -116,6 +116,8 @@ def main() -> int:
     p.add_argument("--recheck", metavar="ROWS.json", help="re-run these Table I rows (scene, strategy, seed) with a long time limit")
     p.add_argument("--time-limit", type=float, default=600.0)
     p.add_argument("--fetch-only", action="store_true", help="only the Fetch scenes through api.plan")
+    p.add_argument("--scenes", default=",".join(FETCH), help="the arm scenes run through api.plan (comma-separated; "
+                   "e.g. panda_tabletop,ur5e_tabletop)")
     args = p.parse_args()
     if args.diff:
         return diff(*args.diff)
@@ -125,7 +127,7 @@ def main() -> int:
         Path(args.out).write_text(json.dumps({"cwd": str(Path.cwd()), "rows": rows}, indent=0))
         print(f"wrote {len(rows)} rows to {args.out}")
         return 0
-    rows = ([] if args.fetch_only else bench_rows(args.runs)) + fetch_rows(args.seeds)
+    rows = ([] if args.fetch_only else bench_rows(args.runs)) + fetch_rows(args.seeds, args.scenes.split(","))
     Path(args.out).write_text(json.dumps({"cwd": str(Path.cwd()), "rows": rows}, indent=0))
     print(f"wrote {len(rows)} rows to {args.out}")
     return 0

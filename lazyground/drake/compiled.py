@@ -15,6 +15,7 @@ import numpy as np
 
 from lazyground.drake import sphere_kernels as kernels
 from lazyground.drake.chain import PRISMATIC
+from lazyground.drake.ik import kernels as ik_kernels
 from lazyground.drake.sphere_kernels import COLLIDES  # noqa: F401  (re-exported: a row's code)
 
 CAP = 16  # open pairs kept per configuration; a configuration with more goes to Drake's whole check
@@ -24,8 +25,8 @@ _compiled_now = False  # whether that call compiled (no usable cache on this mac
 
 
 def warm_up() -> float:
-    """Compile (or load from numba's on-disk cache) the kernels once per process; the seconds it took
-    (0.0 after the first call). The first call on a machine compiles (~20-60 s), later processes load (~1 s)."""
+    """Compile (or load from numba's on-disk cache) the kernels (the certifier's and the batch IK solver's) once
+    per process; the seconds it took (0.0 after the first call). The first call on a machine compiles (~20-60 s), later processes load (~1 s)."""
     global _compile_s, _compiled_now
     if _compile_s is not None:
         return 0.0
@@ -36,9 +37,10 @@ def warm_up() -> float:
     kernels.certify_one(np.zeros(1), fd, idata, work, pairs, 0.0)
     kernels.first_open(np.zeros(1), np.ones(1), 2, np.arange(3), 0, fd, idata, work, pairs)
     kernels.sweep_rows(np.zeros((2, 1)), fd, idata, work, _above(_TOY), np.zeros((2, CAP), np.int64))
+    ik_compiled = ik_kernels.warm_up()  # the batch IK solver's kernels (lazyground.drake.ik.kernels)
     _compile_s = time.perf_counter() - t0
-    _compiled_now = any(sum(k.stats.cache_misses.values()) for k in (kernels.certify_rows, kernels.certify_one,
-                                                                    kernels.first_open, kernels.sweep_rows))
+    _compiled_now = ik_compiled or any(sum(k.stats.cache_misses.values()) for k in (kernels.certify_rows, kernels.certify_one,
+                                                                                   kernels.first_open, kernels.sweep_rows))
     return _compile_s
 
 

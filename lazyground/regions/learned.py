@@ -73,20 +73,19 @@ class RegionLearner:
                 u[rows, axis] = np.interp(u[rows, axis], cdf, edges)
         return np.minimum(u, np.nextafter(1.0, 0.0))
 
-    def unit(self, j: int, v: np.ndarray) -> np.ndarray:
-        """A region point ``v`` back in unit coordinates (angles unwrapped onto the range)."""
-        lo, span, wrapped = self._bounds[j]
-        d = np.asarray(v, float) - lo
-        d = np.where(wrapped, np.mod(d, 2 * np.pi), d)
-        return np.clip(np.divide(d, span, out=np.zeros_like(d), where=span > 0), 0.0, 1.0 - 1e-12)
-
     def record(self, j: int, v: np.ndarray, score: float) -> None:
-        """Score ``score`` (0..1) for the draw ``v`` of region ``j`` on every free axis's bin."""
-        u = self.unit(j, v)
-        for axis, n in self._bins[j].items():
-            b = min(int(u[axis] * n), n - 1)
-            self.score[j][axis][b] += score
-            self.count[j][axis][b] += 1.0
+        """Score ``score`` (0..1) for the draw ``v`` of region ``j`` on every free axis's bin (angles unwrapped onto
+        the range); on Python floats, one axis at a time (the same IEEE operations as numpy's, ~10x cheaper here)."""
+        lo, span, wrapped = self._bounds[j]
+        score_j, count_j = self.score[j], self.count[j]
+        for axis, n in self._bins[j].items():  # a binned axis has span > 0
+            d = float(v[axis]) - float(lo[axis])
+            if wrapped[axis]:
+                d %= 2 * math.pi  # np.mod's result for a positive divisor
+            u = min(max(d / float(span[axis]), 0.0), 1.0 - 1e-12)
+            b = min(int(u * n), n - 1)
+            score_j[axis][b] += score
+            count_j[axis][b] += 1.0
 
 
 def outcome_score(reason: str, reached_reasons=("in collision",)) -> float | None:

@@ -45,7 +45,7 @@ def test_random_reachable_targets_are_met_within_tolerance_and_limits(cans1):
     goals = np.array([world.space.sample(rng) for _ in range(200)])
     targets = problem.chain.forward(goals)  # reachable by construction
     starts = np.array([world.space.sample(rng) for _ in range(200)])
-    q, done = solve_batch(problem, starts, targets, 0.002, 0.01)
+    q, done, _ = solve_batch(problem, starts, targets, 0.002, 0.01)
     assert done.mean() > 0.8  # ~0.9 at the default 15 iterations; SNOPT meets ~0.65-0.8 of real grasp targets
     assert np.all(q >= problem.lower - 1e-12) and np.all(q <= problem.upper + 1e-12)
     plant, context = world.plant, world.plant.CreateDefaultContext()
@@ -60,13 +60,40 @@ def test_random_reachable_targets_are_met_within_tolerance_and_limits(cans1):
         assert np.arccos(np.clip((np.trace(R) - 1) / 2, -1, 1)) <= (1 + SETTLE) * 0.01 + 1e-12
 
 
+def test_the_kernels_pose_jacobian_and_met_verdict_are_the_chains(cans1):
+    """The compiled solver's forward kinematics (a prismatic torso, revolute joints) and its "met" verdict agree
+    with Chain.forward (itself held to Drake's plant) and with pose_errors against the accepted error."""
+    from lazyground.drake.ik import kernels
+    from lazyground.drake.ik.batch import pose_errors
+    _, world, _ = cans1
+    problem = _fetch_problem(world)
+    chain = problem.chain
+    assert kernels.PRISMATIC_KIND in chain.kinds and 0 in chain.kinds
+    rng = np.random.default_rng(3)
+    q = np.array([world.space.sample(rng) for _ in range(50)])
+    X_ref, J_ref = chain.forward(q, jacobian=True)
+    n = chain.n
+    scratch = (np.empty((3, 4)), np.empty((n, 3)), np.empty((n, 3)))
+    for k in range(len(q)):
+        X, J = np.empty((4, 4)), np.empty((6, n))
+        kernels._forward(q[k], chain.X_before, chain.X_after, chain.kinds, *scratch, X, J, True, np.empty(4))
+        assert np.allclose(X, X_ref[k], atol=1e-12) and np.allclose(J, J_ref[k], atol=1e-12)
+    targets = chain.forward(np.array([world.space.sample(rng) for _ in range(200)]))
+    accepted = accepted_error(0.002, 0.01)
+    answers, _, met = solve_batch(problem, np.array([world.space.sample(rng) for _ in range(200)]), targets, 0.002, 0.01,
+                                  accepted=accepted)
+    _, dp, angle = pose_errors(chain.forward(answers), targets)
+    expected = (np.linalg.norm(dp, axis=1) <= accepted[0]) & (angle <= accepted[1])
+    assert 0 < met.sum() < len(met) and np.array_equal(met, expected)
+
+
 def test_restarts_of_one_target_end_at_different_points_of_its_tolerance(cans1):
     """Answers stop on the tolerance's boundary they came to, as SNOPT's: the room a tight grasp needs."""
     _, world, _ = cans1
     problem = _fetch_problem(world)
     rng = np.random.default_rng(5)
     target = problem.chain.forward(world.space.sample(rng)[None])
-    q, done = solve_batch(problem, np.array([world.space.sample(rng) for _ in range(40)]), np.repeat(target, 40, axis=0),
+    q, done, _ = solve_batch(problem, np.array([world.space.sample(rng) for _ in range(40)]), np.repeat(target, 40, axis=0),
                           0.002, 0.01)
     X = problem.chain.forward(q[done])
     dp = X[:, :3, 3] - target[0, :3, 3]
@@ -81,7 +108,7 @@ def test_held_joints_stay_where_the_starts_put_them(cans1):
     rng = np.random.default_rng(1)
     targets = problem.chain.forward(np.array([world.space.sample(rng) for _ in range(30)]))
     starts = np.array([world.space.sample(rng) for _ in range(30)])
-    q, _ = solve_batch(problem, starts, targets, 0.002, 0.01)
+    q, _, _ = solve_batch(problem, starts, targets, 0.002, 0.01)
     assert np.array_equal(q[:, 0], starts[:, 0]) and not np.allclose(q[:, 1:], starts[:, 1:])
 
 

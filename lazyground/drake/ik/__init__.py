@@ -2,7 +2,7 @@
 
 - :mod:`~lazyground.drake.ik.settings`: how hard it tries (:class:`IKSettings`) and its counters.
 - :mod:`~lazyground.drake.ik.solvers`: the solver protocol, the batch least-squares solver and the Drake program.
-- :mod:`~lazyground.drake.ik.batch`: the damped-least-squares math on the numpy chain.
+- :mod:`~lazyground.drake.ik.batch`: the damped-least-squares solve on the chain (compiled: :mod:`~lazyground.drake.ik.kernels`).
 - :mod:`~lazyground.drake.ik.screen`: the target screen (:mod:`~lazyground.drake.ik.reach`, :mod:`~lazyground.drake.ik.hand_probe`).
 - :mod:`~lazyground.drake.ik.attempts`: attempts prepared many at a time for the batch solver.
 - :mod:`~lazyground.drake.ik.source`: :class:`IKGoalSource`, round robin over the regions and the approach.

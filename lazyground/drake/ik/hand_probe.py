@@ -28,8 +28,10 @@ import numpy as np
 from pydrake.geometry import Box, Capsule, Cylinder, HalfSpace, Role, Sphere
 from pydrake.multibody.tree import JointIndex
 
+from lazyground.drake import compiled
 from lazyground.drake.chain import joints_to_world
-from lazyground.drake.solids import solid, solid_distance
+from lazyground.drake.ik import kernels
+from lazyground.drake.solids import solid
 
 PROBE_SLACK = 1e-4  # m: Drake's distances are exact to far less; kept off the padding boundary
 _GRID = (-1.0, 0.0, 1.0)
@@ -59,19 +61,12 @@ class HandProbe:
 
     def blocked(self, X_WT: np.ndarray) -> np.ndarray:
         """Whether every IK answer for each target pose (B, 4, 4) of the frame collides, by the hand alone."""
-        X_WT = np.asarray(X_WT, float).reshape(-1, 4, 4)
+        X_WT = np.ascontiguousarray(X_WT, float).reshape(-1, 4, 4)
         out = np.zeros(len(X_WT), bool)
         obs = self.obstacles
         if obs is None or not len(self.points):
             return out
-        R_WT, p_WT = X_WT[:, :3, :3], X_WT[:, :3, 3]
-        origin = np.einsum("bkj,kji->bki", p_WT[:, None, :] - obs.p_WS, obs.R_WS)  # the hand's origin in each solid's frame
-        b, k = np.nonzero(solid_distance(origin, obs.half, obs.rounding, obs.cylinder) < obs.near)  # pairs close enough to matter
-        if len(b):
-            R_ST = obs.R_WS[k].transpose(0, 2, 1) @ R_WT[b]
-            local = (R_ST @ self.points.T + origin[b, k][:, :, None]).transpose(0, 2, 1)  # (M, P, 3)
-            d = solid_distance(local, obs.half[k][:, None, :], obs.rounding[k][:, None], obs.cylinder[k][:, None])
-            out[b[(d < obs.limit[k]).any(axis=1)]] = True
+        kernels.probe_rows(X_WT, self.points, obs.R_WS, obs.p_WS, obs.half, obs.rounding, obs.cylinder, obs.limit, obs.near, out)
         return out
 
 
@@ -81,6 +76,7 @@ def hand_probe(world, frame: str, max_dp: float, max_angle: float) -> HandProbe:
     probes = _PROBES.setdefault(world, {})
     key = (frame, max_dp, max_angle)
     if key not in probes:
+        compiled.warm_up()  # its test is compiled (lazyground.drake.ik.kernels): once per process, not a request's time
         probes[key] = _build(world, frame, max_dp, max_angle)
     return probes[key]
 
