@@ -7,9 +7,14 @@ tree's ``motion_for_world``, request after request, trees alternating (ABBA), so
 inputs on the same machine load. Sub-phases are the tree's own functions, timed where they exist
 (a "-" where a tree has no such function), in CPU time: greedy pass, random shortcuts, relaxation, the shortcut's
 fine check, TOPP-RA, the timing's dense check, the limits. Every result is re-checked independently:
-the path every resolution / validation_factor and at half that, the trajectory as the tests do.
+the path every resolution / validation_factor and at half that, the trajectory as the tests do, each by
+its own tree's code and again by the first tree's (the last column: independent of the code under test).
+Trees as old as 703386a (the start of #31: ``make_motion`` took a PlannerSettings) run too.
 
+    git -C /work/main worktree add /tmp/base 703386a
+    nice python3 tools/motion_step_bench.py --tree before=/tmp/base --tree now=.
     nice python3 tools/motion_step_bench.py --tree main=/work/main --tree motion=.
+    nice python3 tools/motion_step_bench.py --tree before=/tmp/base --tree main=/work/main --tree now=.  (each against the last)
     python3 tools/motion_step_bench.py --tree main=/work/main --tree motion=. --seeds 5 --scenes fetch_cans_1
 
 Quiet machine: ~2 min for 3 scenes x 20 seeds x 2 trees (world builds included).
@@ -45,6 +50,7 @@ def _worker(scene_name: str) -> None:
     os.dup2(2, 1)  # anything printed goes to stderr, the protocol alone to the pipe
     import importlib
     from dataclasses import replace
+    from types import SimpleNamespace
 
     import numpy as np
 
@@ -84,6 +90,20 @@ def _worker(scene_name: str) -> None:
         return make_motion(space, checker, result, settings, limits, rng, *args, **kwargs)
 
     pipeline.make_motion = capture
+
+    def recheck(result) -> list[int]:
+        """Failed re-checks at the tests' resolution and half of it: the path's + the trajectory's (0-2 each)."""
+        planner = getattr(captured["settings"], "planner", captured["settings"])  # a PlannerSettings in 703386a
+        fine = planner.resolution / planner.validation_factor
+        raw = result["traj"]
+        traj = None if raw is None else SimpleNamespace(t=raw["t"], q=raw["q"], qd=raw["qd"], qdd=raw["qdd"], limits=SimpleNamespace(
+            velocity=raw["velocity"], acceleration=raw["acceleration"]))
+        bad = []
+        for res in (fine, fine / 2):
+            bad.append(int(path_is_valid(world.space, world, result["path"], res) != -1)
+                       + int(traj is None or bool(trajectory_problems(traj, world.space, world, world.start,
+                                                                       result["goal"], res))))
+        return bad
     scene = load_scene(f"yaml_scenes/{scene_name}.yaml")
     world = DrakeWorld(scene, visual=False)
     request = SCENES[scene_name]
@@ -97,7 +117,9 @@ def _worker(scene_name: str) -> None:
             cmd, arg = pickle.load(stdin)
         except EOFError:
             return
-        if cmd == "capture":
+        if cmd == "check":  # another tree's result, re-checked by this tree's code
+            reply = recheck(arg)
+        elif cmd == "capture":
             captured.clear()
             report = api.plan(scene, request, seed=arg, world=world)
             res = captured.get("result")
@@ -115,17 +137,13 @@ def _worker(scene_name: str) -> None:
             shortened, motion = pipeline.motion_for_world(world, result, settings, rng)
             wall, cpu = time.perf_counter() - t0, time.process_time() - c0
             checks, collision = world.checks - checks0, world.check_time - check_s0
-            planner = settings.planner
-            fine = planner.resolution / planner.validation_factor
             traj = motion.trajectory
-            bad = []  # failed re-checks at fine and fine / 2: the path's, the trajectory's
-            for res in (fine, fine / 2):
-                bad.append(int(path_is_valid(world.space, world, shortened.path, res) != -1)
-                           + int(traj is None or bool(trajectory_problems(traj, world.space, world, world.start,
-                                                                           arg["path"][-1], res))))
+            out_arrays = dict(path=np.array(shortened.path), goal=np.array(arg["path"][-1]), traj=None if traj is None else
+                              dict(t=traj.t, q=traj.q, qd=traj.qd, qdd=traj.qdd, velocity=traj.limits.velocity,
+                                   acceleration=traj.limits.acceleration))
             reply = dict(wall=wall, cpu=cpu, phases=dict(spent), checks=checks, collision=collision,
-                         length=float(motion.shortcut.length), raw=float(motion.raw_length), bad=bad,
-                         duration=float(traj.duration) if traj is not None else float("nan"))
+                         length=float(motion.shortcut.length), raw=float(motion.raw_length), bad=recheck(out_arrays),
+                         duration=float(traj.duration) if traj is not None else float("nan"), result=out_arrays)
         pickle.dump(reply, out)
         out.flush()
 
@@ -170,7 +188,8 @@ def main(argv=None) -> int:
     phase_names = list(dict.fromkeys(label for label, _, _ in PHASES))
     print(f"# motion step per request, median ms over seeds 0-{args.seeds - 1} (same raw paths for every tree, "
           f"trees interleaved); load {os.getloadavg()[0]:.1f} at start")
-    header = ["scene", "tree", "motion", "cpu", *phase_names, "collision", "checks", "length", "duration", "bad", "bad/2"]
+    header = ["scene", "tree", "motion", "cpu", *phase_names, "collision", "checks", "length", "duration", "bad", "bad/2",
+              f"bad ({labels[0]}'s check)"]
     print("| " + " | ".join(header) + " |")
     print("|" + "---|" * len(header))
     for scene in args.scenes:
@@ -183,6 +202,10 @@ def main(argv=None) -> int:
             order = workers if k % 2 == 0 else workers[::-1]
             for w in order:
                 rows[w.label].append(w.ask("replay", payload))
+            for w in workers:  # every tree's result re-checked by the first tree's code too (independent of the others)
+                row = rows[w.label][-1]
+                row["bad_first"] = row["bad"] if w is workers[0] else workers[0].ask("check", row.pop("result"))
+                row.pop("result", None)
         for w in workers:
             got = rows[w.label]
             cells = [scene, w.label, f"{_median([r['wall'] for r in got]) * 1e3:.1f}",
@@ -192,19 +215,21 @@ def main(argv=None) -> int:
             cells += [f"{_median([r['collision'] for r in got]) * 1e3:.1f}", f"{_median([r['checks'] for r in got]):.0f}",
                       f"{_median([r['length'] for r in got]):.3f}", f"{_median([r['duration'] for r in got]):.2f}",
                       f"{sum(r['bad'][0] for r in got)}/{len(got)}",
-                      f"{sum(r['bad'][1] for r in got)}/{len(got)}"]
+                      f"{sum(r['bad'][1] for r in got)}/{len(got)}",
+                      f"{sum(r['bad_first'][0] for r in got)}/{len(got)}"]
             print("| " + " | ".join(cells) + " |", flush=True)
             w.close()
-        if len(labels) > 1:
-            base, other = rows[labels[0]], rows[labels[-1]]
+        for first in labels[:-1]:  # every other tree against the last
+            base, other = rows[first], rows[labels[-1]]
             ratio = _median([a["wall"] / b["wall"] for a, b in zip(base, other)])
             cpu = _median([a["cpu"] / b["cpu"] for a, b in zip(base, other)])
-            mean_len = sum(b["length"] / a["length"] for a, b in zip(base, other)) / max(1, len(base))
+            lengths = [b["length"] / a["length"] for a, b in zip(base, other)]
+            mean_len = sum(lengths) / max(1, len(lengths))
             durations = [b["duration"] / a["duration"] for a, b in zip(base, other)
                          if a["duration"] > 0 and b["duration"] == b["duration"]]  # nan: no trajectory
             mean_dur = sum(durations) / max(1, len(durations))
-            print(f"|  | {labels[0]} / {labels[-1]}, median per request | {ratio:.2f}x | {cpu:.2f}x | length "
-                  f"{labels[-1]} / {labels[0]}, mean {mean_len:.4f} | duration, mean {mean_dur:.4f} "
+            print(f"|  | {first} / {labels[-1]}, median per request | {ratio:.2f}x | {cpu:.2f}x | length "
+                  f"{labels[-1]} / {first}, mean {mean_len:.4f} (max {max(lengths, default=float('nan')):.4f}) | duration, mean {mean_dur:.4f} "
                   f"(max {max(durations, default=float('nan')):.4f}) |", flush=True)
     print(f"# load {os.getloadavg()[0]:.1f} at end; phases nest (fine may run inside greedy; dense inside timing); "
           "bad, bad/2 = failed re-checks of path and trajectory at the fine resolution (the tests'), and at half of it")

@@ -116,8 +116,13 @@ class _Path:
         return np.concatenate([[0.0], np.cumsum(self.lengths)])
 
     @functools.cached_property
+    def embedded(self) -> np.ndarray:
+        """The waypoints in the space's embedding (their Euclidean distances are the metric's)."""
+        return self.space.embed(np.array(self.q))
+
+    @functools.cached_property
     def lengths(self) -> np.ndarray:
-        return segment_lengths(self.space, np.array(self.q))
+        return np.linalg.norm(np.diff(self.embedded, axis=0), axis=1)  # (curve.segment_lengths, embedding kept)
 
     def cut(self, i: int, j: int, middle: list, new_middle: list) -> "_Path":
         """Waypoints ..q[i], *middle, q[j].. ; ``new_middle`` flags the len(middle) + 1 segments between."""
@@ -159,8 +164,9 @@ def shortcut_path(
     raw = np.asarray(path, float)
     raw_length = space.path_length(raw)
 
-    def done(status, out, iterations=0, accepted=0):
-        return ShortcutResult(status, out, raw, raw_length, space.path_length(out), iterations, accepted,
+    def done(status, out, iterations=0, accepted=0, length=None):
+        length = (raw_length if out is raw else space.path_length(out)) if length is None else length
+        return ShortcutResult(status, out, raw, raw_length, length, iterations, accepted,
                               stop.now() - t0, space.distance(raw[0], raw[-1]))
 
     if not settings.enabled:
@@ -183,7 +189,8 @@ def shortcut_path(
     length = space.path_length(out)
     if length >= raw_length:
         return done(ShortcutStatus.UNCHANGED, raw, iterations, 0)
-    return done(ShortcutStatus.BACKTRACKED if backtracked else ShortcutStatus.SHORTENED, out, iterations, len(versions) - 1)
+    return done(ShortcutStatus.BACKTRACKED if backtracked else ShortcutStatus.SHORTENED, out, iterations, len(versions) - 1,
+                length)
 
 
 def _segment_key(a: np.ndarray, b: np.ndarray) -> tuple[bytes, bytes]:
@@ -461,10 +468,9 @@ def _drop_redundant(space: ConfigSpace, path: _Path) -> _Path:
     segment from the run's first neighbour to its last, so the whole run goes at once.
     (Wrapping coordinates' chords are not additive: such waypoints stay, which is safe.)
     """
-    q = np.array(path.q)
-    new = np.array(path.new)
     d = path.lengths
     if np.any(d <= 1e-12):  # repeated waypoints (rare): keep the first of each run, and the goal itself
+        q, new = np.array(path.q), np.array(path.new)
         idx = [0]
         for k in range(1, len(q)):
             if space.distance(q[idx[-1]], q[k]) > 1e-12:
@@ -472,14 +478,14 @@ def _drop_redundant(space: ConfigSpace, path: _Path) -> _Path:
             elif k == len(q) - 1:
                 idx[-1:] = [k] if len(idx) > 1 else [0, k]
         return _drop_redundant(space, _Path(space, list(q[idx]), list(np.maximum.reduceat(new, idx[:-1]))))
-    if len(q) < 3:
+    if len(path.q) < 3:
         return path
-    e = space.embed(q)
+    e = path.embedded
     skip = np.linalg.norm(e[2:] - e[:-2], axis=1)  # q[k] -> q[k + 2]
     on_line = np.abs(d[:-1] + d[1:] - skip) <= 1e-9 * np.maximum(1.0, skip)
     if not on_line.any():
         return path
     keep = np.concatenate([[True], ~on_line, [True]])
     starts = np.flatnonzero(keep)[:-1]
-    born = np.maximum.reduceat(new, starts)  # a merged segment is as new as its newest piece
-    return _Path(space, list(q[keep]), list(born))
+    born = np.maximum.reduceat(np.array(path.new), starts)  # a merged segment is as new as its newest piece
+    return _Path(space, list(np.array(path.q)[keep]), list(born))

@@ -381,6 +381,7 @@ def _time_curve(curve: Curve, limits: Limits, dt: float, grid: tuple[int, int]) 
     from pydrake.multibody.optimization import Toppra
 
     path = _drake_bspline(curve)
+    resting = None
     for per_span in (grid, (2 * grid[0], 2 * grid[1])):
         toppra = Toppra(path, _point_plant(len(limits.velocity)), _toppra_grid(curve, per_span))
         toppra.AddJointVelocityLimit(-limits.velocity, limits.velocity)
@@ -389,8 +390,10 @@ def _time_curve(curve: Curve, limits: Limits, dt: float, grid: tuple[int, int]) 
             s_of_t = toppra.SolvePathParameterization()
         # a grid too coarse for the curve can leave TOPP-RA a near-zero speed somewhere (durations of
         # 1e8 s): more than SANE x resting at every control point is no solution
-        if s_of_t is not None and s_of_t.end_time() <= SANE * _resting_time(curve.control, limits):
-            break
+        if s_of_t is not None:
+            resting = _resting_time(curve.control, limits) if resting is None else resting
+            if s_of_t.end_time() <= SANE * resting:
+                break
     else:
         raise RuntimeError("TOPP-RA found no time parameterisation")
     timed = _Timed(curve, _Quadratics.of(s_of_t), 1.0)
@@ -462,17 +465,15 @@ class _Rest:
 
 def _sample(parts: list, dt: float):
     """The pieces played one after another, sampled every dt and at the end: t, q, qd, qdd."""
-    total = sum(p.duration for p in parts)
+    durations = [p.duration for p in parts]  # (read once: a line's is computed on every read)
+    total = sum(durations)
     t = np.arange(0.0, total, dt)
     if not len(t) or total - t[-1] > 1e-9:
         t = np.append(t, total)
-    dim = len(parts[0].evaluate(np.zeros(1))[0][0])
-    q, qd, qdd = (np.empty((len(t), dim)) for _ in range(3))
-    ends = np.cumsum([p.duration for p in parts])
+    ends = np.cumsum(durations)
     which = np.minimum(np.searchsorted(ends, t, side="left"), len(parts) - 1)
-    starts = ends - [p.duration for p in parts]
-    for k, part in enumerate(parts):
-        idx = np.flatnonzero(which == k)
-        if len(idx):
-            q[idx], qd[idx], qdd[idx] = part.evaluate(t[idx] - starts[k])
-    return t, q, qd, qdd
+    starts = ends - durations
+    # the parts play in order: each one's samples are one slice of t
+    cuts = np.searchsorted(which, np.arange(len(parts) + 1), side="left")
+    out = [part.evaluate(t[a:b] - start) for part, start, a, b in zip(parts, starts, cuts[:-1], cuts[1:]) if b > a]
+    return (t, *(np.concatenate([o[i] for o in out]) for i in range(3)))

@@ -209,6 +209,23 @@ class CarSpace(ConfigSpace):
         self._remember(_key(a, q), curves.prefix(word, step))
         return q, False
 
+    @property
+    def drives_straight(self) -> bool:
+        """Whether the bidirectional planner's goal trees take :meth:`straight_step`: a Reeds-Shepp car
+        (a Dubins goal tree is driven in reverse, its edges end to start, and cannot back out)."""
+        return self.kinematics is Kinematics.REEDS_SHEPP
+
+    def straight_step(self, a: np.ndarray, towards: np.ndarray, step: float) -> np.ndarray | None:
+        """The pose ``step`` metres straight along a's heading, forwards or backwards (the side ``towards``
+        lies on), or None if it is out of bounds.
+
+        How a car leaves a tight spot (a parking bay: straight out along its axis, issue #33); the
+        bidirectional planner tries it when a goal tree's curve step is blocked."""
+        c, s = math.cos(float(a[2])), math.sin(float(a[2]))
+        d = step if (towards[0] - a[0]) * c + (towards[1] - a[1]) * s >= 0.0 else -step
+        q = np.array([a[0] + d * c, a[1] + d * s, a[2]], float)
+        return q if self.within_bounds(q) else None
+
     def path_length(self, path: np.ndarray) -> float:
         return float(sum(self.distance(a, b) for a, b in zip(path[:-1], path[1:])))
 

@@ -77,6 +77,8 @@ class Search:
         # the checker has it)
         self.resolution = settings.resolution
         self.probe_free = getattr(checker, "config_unpadded_free", checker.config_free)
+        # a Reeds-Shepp car's straight drive (birrt._extend, birrt._shut_in)
+        self.straight_step = space.straight_step if getattr(space, "drives_straight", False) else None
         self.t0 = stop.now()
         self._check_t0, self._sample_t0 = checker.check_time, goals.sample_time
         self._sampling_checks = 0.0  # collision checks made by the goal sampler count as goal sampling

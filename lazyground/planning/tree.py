@@ -31,6 +31,7 @@ class Tree:
         self._per_label = per_label
         self._label_nn: dict[int, tuple[NearestNeighbors, list[int]]] = {}
         self._local: list[int] = []  # index of each node in its label's index
+        self._muted: set[int] = set()  # nodes left out of the whole tree's queries (:meth:`mute`)
         # (coordinates that are their own embedding are not copied per query: the index copies what it keeps)
         self._embed = _as_is if getattr(space, "embeds_as_is", False) else space.embed
 
@@ -74,11 +75,12 @@ class Tree:
             return -1
         if self.space.nn_candidates > 1:
             near = nn.nearest_k(x, self.space.nn_candidates)
-            near = [j for j in (near if members is None else (members[j] for j in near)) if self.alive[j]]
+            near = [j for j in (near if members is None else (members[j] for j in near))
+                    if self.alive[j] and (members is not None or j not in self._muted)]
             return near[self.space.closest([self.nodes[j] for j in near], q)] if near else -1
         i = nn.nearest(x)
         i = i if members is None else members[i]
-        return i if i >= 0 and self.alive[i] else -1
+        return i if i >= 0 and self.alive[i] and (members is not None or i not in self._muted) else -1
 
     def nearest_k(self, q: np.ndarray, k: int) -> list[int]:
         """Up to k nearest live nodes, nearest first; only :meth:`nearest` in a space that re-ranks
@@ -88,7 +90,12 @@ class Tree:
             return [i] if i >= 0 else []
         if not len(self.nn):
             return []
-        return [j for j in self.nn.nearest_k(self._embed(q), k).tolist() if self.alive[j]]
+        return [j for j in self.nn.nearest_k(self._embed(q), k).tolist() if self.alive[j] and j not in self._muted]
+
+    def mute(self, i: int) -> None:
+        """Leave node i out of the whole tree's nearest-neighbour queries (its label's queries still see it)."""
+        self._muted.add(i)
+        self.nn.remove([i])
 
     def chain(self, i: int) -> list[int]:
         """Node indices from ``i`` up to its root."""

@@ -133,3 +133,37 @@ def test_half_speed_takes_twice_as_long():
     full = time_path(BASE, free, LANE, LIMITS, 0.01, car=CAR)
     half = time_path(BASE, free, LANE, LIMITS, 0.01, TimingSettings(speed=0.5), car=CAR)
     assert half.duration == pytest.approx(2.0 * full.duration, rel=0.01) and half.curve == full.curve
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_a_curves_derivative_splines_are_scipys(seed):
+    """Curve builds its derivatives with scipy's formula, skipping scipy's checks (#31): the same coefficients,
+    knots and values as ``BSpline.derivative``."""
+    from scipy.interpolate import BSpline
+
+    from lazyground.motion.curve import blended_curve
+
+    rng = np.random.default_rng(seed)
+    curve = blended_curve(np.cumsum(rng.uniform(-1.0, 1.0, (2 + seed, 4)), axis=0), 0.2)
+    whole = BSpline(curve.knots, curve.control, 3)
+    u = np.linspace(0.0, 1.0, 301)
+    for nu in (0, 1, 2):
+        ours, scipys = curve.spline(nu), whole.derivative(nu) if nu else whole
+        assert ours.k == scipys.k and np.array_equal(ours.t, scipys.t) and np.array_equal(ours.c, scipys.c)
+        assert np.array_equal(ours(u), scipys(u))
+
+
+def test_sampling_plays_each_part_on_its_own_times():
+    """_sample: parts one after another, a part too short for a sample of its own skipped, the end sampled."""
+    from lazyground.motion.trajectory import _Rest, _time_line
+
+    limits = Limits(np.array([1.0, 2.0]), np.array([1.0, 1.0]))
+    a, b, c = np.zeros(2), np.array([1.0, 0.5]), np.array([1.0, 0.5 + 1e-9])
+    parts = [_time_line(a, b, limits), _time_line(b, c, limits), _Rest(c, 0.25)]
+    t, q, qd, qdd = _sample(parts, 0.01)
+    assert t[-1] == pytest.approx(sum(p.duration for p in parts)) and np.all(np.diff(t) > 0)
+    assert len(q) == len(qd) == len(qdd) == len(t)
+    line = parts[0]
+    inside = t < line.duration
+    assert np.allclose(q[inside], line.evaluate(t[inside])[0])
+    assert np.allclose(q[-1], c) and np.allclose(qd[-1], 0.0)
