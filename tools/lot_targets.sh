@@ -10,7 +10,7 @@
 #   4. tools/lot_baselines.py: nearest-first's rank of the reachable spot (its time >= (rank - 1) x 10 s), eager's
 #      up-front phase alone, and eager's search against the same up-front phase + cover-connect.
 # Usage (from the repository root): tools/lot_targets.sh [OUT] [RUNS] [BASELINE_RUNS]    (defaults: bench_lot_targets 20 10)
-# Quiet 2-core machine, --jobs 2: about 45 min (estimated from loaded runs; see RESULTS.md).
+# Quiet 2-core machine, --jobs 2: about 50 min (estimated from loaded runs; see RESULTS.md).
 set -e
 OUT=${1:-bench_lot_targets}
 RUNS=${2:-20}
