@@ -18,7 +18,6 @@ grounding, goal sampling and every planner call until the first solution.
 from __future__ import annotations
 
 import threading
-import time
 from dataclasses import replace
 
 import numpy as np
@@ -26,6 +25,7 @@ import numpy as np
 from lazyground.goals import goal_source_for
 from lazyground.planning.problem import GoalSample, PlanStatus, RegionStats
 from lazyground.planning.rrt import solve
+from lazyground.planning.stop import default_clock
 from lazyground.settings import Strategy
 
 BASELINES = ("nearest-first", "multiplexer", "eager", "independent")
@@ -104,6 +104,11 @@ def _by_interpretation(regions) -> list[tuple]:
     for r in regions:
         groups.setdefault(r.interpretation, []).append(r)
     return [tuple(g) for g in groups.values()]
+
+
+def nearest_first_order(scene, world, regions) -> list[tuple]:
+    """The regions grouped by interpretation, nearest object (or spot) first: the order nearest-first plans them in."""
+    return sorted(_by_interpretation(regions), key=lambda g: _distance(scene, world, g))
 
 
 def _distance(scene, world, group) -> float:
@@ -188,7 +193,7 @@ def parse_planner(planner: str) -> tuple[str, bool] | None:
 def run_baseline(name: str, scene, world, regions, space, settings, seed: int, call_budget: float = CALL_BUDGET) -> tuple:
     """Run baseline ``name``: (PlanResult of the call that ended it, total seconds, iterations, goal attempts)."""
     rng = np.random.default_rng(seed)
-    t0 = time.perf_counter()
+    t0 = default_clock()
     consecutive = replace(settings, strategy=Strategy.CONSECUTIVE)
     if name == "multiplexer":
         r = solve(space, world, FirstRegionSource(regions, world), world.start, consecutive, rng, seed=seed)
@@ -196,13 +201,12 @@ def run_baseline(name: str, scene, world, regions, space, settings, seed: int, c
     if name == "eager":
         r = solve(space, world, EagerSource(regions, world), world.start, consecutive, rng, seed=seed)
         return r, r.time_s, r.iterations, sum(st.attempts for st in r.region_stats)
-    groups = _by_interpretation(regions)
     if name == "nearest-first":
-        groups.sort(key=lambda g: _distance(scene, world, g))
+        groups = nearest_first_order(scene, world, regions)
         iters = attempts = 0
         r = None
         for g in groups:
-            left = settings.time_limit - (time.perf_counter() - t0)
+            left = settings.time_limit - (default_clock() - t0)
             if left <= 0:
                 break
             call = replace(settings, time_limit=min(call_budget, left))
@@ -211,9 +215,9 @@ def run_baseline(name: str, scene, world, regions, space, settings, seed: int, c
             attempts += sum(st.attempts for st in r.region_stats)
             if r.solved:
                 break
-        return r, time.perf_counter() - t0, iters, attempts
+        return r, default_clock() - t0, iters, attempts
     if name == "independent":
-        return _independent(groups, world, space, settings, rng, seed, t0)
+        return _independent(_by_interpretation(regions), world, space, settings, rng, seed, t0)
     raise ValueError(f"unknown baseline {name!r} (known: {', '.join(BASELINES)})")
 
 
@@ -226,7 +230,7 @@ def _independent(groups, world, space, settings, rng, seed, t0):
         try:
             turns.wait(i)
             checker = _TurnChecker(world, turns, i)
-            left = max(1e-3, settings.time_limit - (time.perf_counter() - t0))  # one clock for all of them
+            left = max(1e-3, settings.time_limit - (default_clock() - t0))  # one clock for all of them
             r = solve(space, checker, goal_source_for(groups[i], checker), world.start, replace(settings, time_limit=left),
                       rngs[i], seed=seed)
             results[i] = r
@@ -247,4 +251,4 @@ def _independent(groups, world, space, settings, rng, seed, t0):
     best = results[turns.winner] if turns.winner is not None else (done[-1] if done else None)
     iters = sum(r.iterations for r in done)
     attempts = sum(sum(st.attempts for st in r.region_stats) for r in done)
-    return best, time.perf_counter() - t0, iters, attempts
+    return best, default_clock() - t0, iters, attempts

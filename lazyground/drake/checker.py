@@ -16,12 +16,20 @@ import time
 import numpy as np
 from pydrake.planning import LinearDistanceAndInterpolationProvider, SceneGraphCollisionChecker
 
-from lazyground.drake.compiled import COLLIDES, CompiledCertifier
+from lazyground.drake.compiled import CAP, COLLIDES, CompiledCertifier
+from lazyground.drake.edge_kernel import (ALL_FREE, BISECTION, INTERIOR_FIRST, SEQUENCE, edge_data, edge_open,
+                                          eigen_packet)
 from lazyground.drake.coordinates import Coordinates
 from lazyground.drake.parallel import parallel_batch
+from lazyground.drake.sphere_kernels import certify_one
 from lazyground.drake.spheres import sphere_certifier
 
 _clock = time.perf_counter
+
+# A batch this long is certified as configurations in sequence (CompiledCertifier.sweep): the search's re-check of
+# a path it returns (~1,000-3,000 rows a few mm apart on Fetch: 1.5-3x cheaper a row); shorter batches (goal
+# samples' approaches, the segments a rejected path left unchecked: 2-200 rows) cost more that way (#31).
+SWEEP_ROWS = 512
 
 # Drake needs a positive step at construction; a checker built without a resolution
 # replaces this once, before its first edge check, and never again.
@@ -69,6 +77,18 @@ class DrakeChecker:
         # bound once: an edge check's glue is a fifth of its cost on Fetch (#31)
         self._difference = coordinates.space.difference
         self._distance = self.drake.ComputeConfigurationDistance
+        if self.compiled is not None:  # an edge's glue and steps in one compiled call (edge_kernel.edge_open)
+            self._ends = np.empty((2, len(coordinates.q_full)))  # its ends' plant positions, the step count
+            self._steps = np.zeros(1, np.int64)
+            self._open = np.zeros(CAP + 1, np.int64)
+            self._certify_one = functools.partial(certify_one, self.compiled.fd, self.compiled.idata, self.compiled.work,
+                                                  self._open)  # (q_full, shift) -> code, open pairs in _open
+            # how this Drake sums its distance (0: unknown; then Drake gives each step count): a fixed seed
+            self._packet = eigen_packet(self._distance, coordinates.plant_weights(), np.random.default_rng(0))
+            self._edge_open = functools.partial(
+                edge_open, self.compiled.fd, self.compiled.idata, self.compiled.work, self._open, self._steps,
+                self._ends, np.asarray(coordinates.planned, np.int64),
+                edge_data(coordinates.q_full, coordinates.plant_weights(), coordinates.space.wrap), self._packet)
         self.certified = 0  # configurations the certifier proved free
         self._pairs = {}  # the certifier's pairs as SceneGraph's (id, id, padding), as they come up (_pair)
 
@@ -88,7 +108,7 @@ class DrakeChecker:
         if self.compiled is None:
             free = self._free(q_full)
         else:
-            free = self._decide(q_full, *self.compiled.certify_one(q_full))
+            free = self._decide(q_full, self._certify_one(q_full, 0.0))
         self.check_time += _clock() - t0
         self.checks += 1
         return free
@@ -109,9 +129,9 @@ class DrakeChecker:
             free = not self.penetrates(q_full)
         else:  # the certifier's test for penetration (thresholds less the padding; COLLIDES: a padded collision,
             # False here as before), then the open pairs' penetration (every other pair is proven apart)
-            code, pairs = self.compiled.certify_one(q_full, self.unpadded_shift)
+            code = self._certify_one(q_full, self.unpadded_shift)
             free = code == 0 or code != COLLIDES and (
-                self._open_free(q_full, pairs, unpadded=True) if code > 0 else not self.penetrates(q_full))
+                self._open_free(q_full, self._open[:code].copy(), unpadded=True) if code > 0 else not self.penetrates(q_full))
         self.check_time += _clock() - t0
         self.checks += 1
         return free
@@ -162,11 +182,13 @@ class DrakeChecker:
         return free
 
     def _batch(self, configs: np.ndarray, along: bool = False) -> np.ndarray:
-        """The batch's answers: the certifier proves what it can (``along``: rows in sequence, :meth:`configs_free_along`)
+        """The batch's answers: the certifier proves what it can (``along``: rows in sequence, :meth:`configs_free_along`,
+        or a batch of SWEEP_ROWS or more)
         and SceneGraph measures the pairs it leaves open (:meth:`_open_free`); a world without certifier goes to
         Drake's batch check, on several threads when that is many (lazyground.drake.parallel)."""
         if self.compiled is None:
             return np.asarray(self.drake.CheckConfigsCollisionFree(list(configs), parallelize=parallel_batch(len(configs))), bool)
+        along = along or len(configs) >= SWEEP_ROWS
         count, pairs = (self.compiled.sweep if along else self.compiled.certify)(configs)
         free = count == 0
         self.certified += int(free.sum())
@@ -176,14 +198,14 @@ class DrakeChecker:
             free[i] = self._free(configs[i])
         return free
 
-    def _decide(self, q_full: np.ndarray, code: int, pairs: np.ndarray | None) -> bool:
-        """Drake's answer at ``q_full`` from the certifier's ``code`` for it (and its open ``pairs``)."""
+    def _decide(self, q_full: np.ndarray, code: int) -> bool:
+        """Drake's answer at ``q_full`` from the certifier's ``code`` for it (its open pairs in ``_open``)."""
         if code == 0:
             self.certified += 1
             return True
         if code == COLLIDES:
             return False
-        return self._open_free(q_full, pairs)
+        return self._open_free(q_full, self._open[:code].copy() if code > 0 else None)
 
     def _open_free(self, q_full: np.ndarray, pairs: np.ndarray | None, unpadded: bool = False) -> bool:
         """Drake's answer at ``q_full``, which the certifier left open, from SceneGraph's signed distance of its
@@ -283,37 +305,49 @@ class DrakeChecker:
         ``resolution``, with the certifier: the same steps (q_k = qa + k / n (qb - qa), k = 0..n, n =
         max(1, ceil(Drake's distance / resolution)); the certifier's margin covers the last bit by which Drake's
         interpolation may differ, and a step it leaves open is Drake's interpolation), certified in one compiled
-        call in bisection order (sequentially for the fraction) up to the first one it cannot prove, which
+        call (:func:`lazyground.drake.edge_kernel.edge_open`: the ends, the step count, the order and the steps)
+        in bisection order (sequentially for the fraction) up to the first one it cannot prove, which
         SceneGraph decides (:meth:`_open_free`) unless it proves a collision there; then on from there. So the answer is Drake's: a step is
         called colliding by Drake or by a proof of it, and every other step is proven free."""
         if self._resolution is None:
             self._resolution = resolution
         t0 = _clock()
-        a = np.asarray(a, float)
+        mode = SEQUENCE if fraction else BISECTION if part is None else INTERIOR_FIRST
+        first, stop = (0, -1) if part is None else (part[0], -1 if part[1] is None else part[1])
+        a, b = np.ascontiguousarray(a, float), np.ascontiguousarray(b, float)
+        p = self._edge_open(a, b, resolution, mode, first, stop, 0 if self._packet else self._drake_steps(a, b, resolution))
+        if p == ALL_FREE:
+            out = 1.0 if fraction else True
+        elif not fraction and self._open[-1] == COLLIDES:  # a step proven colliding: most of a planner's edges
+            out = False
+        else:
+            out = self._open_steps(p, mode, stop, fraction)
+        self.check_time += _clock() - t0
+        self.checks += 1
+        return out
+
+    def _drake_steps(self, a: np.ndarray, b: np.ndarray, resolution: float) -> int:
+        """The step count of a -> b from Drake's own distance (where edge_kernel cannot sum as this Drake does)."""
         full = self.coordinates.full
-        qa = full(a)
-        qb = full(a + self._difference(a, b))
-        # Drake's own distance: a sum in another order can differ in the last bit, and so the step count
-        # (math.ceil: np.ceil's number, without a numpy scalar)
-        n = max(1, math.ceil(self._distance(qa, qb) / resolution))
-        order = (sequence_order(n) if fraction else bisection_order(n) if part is None
-                 else interior_first_order(n)[slice(*part)])
-        begin, out = 0, (1.0 if fraction else True)
-        first_open = self.compiled.first_open
+        return max(1, math.ceil(self._distance(full(a), full(a + self._difference(a, b))) / resolution))
+
+    def _open_steps(self, p: int, mode: int, stop: int, fraction: bool):
+        """The rest of :meth:`_certified_edge` from the first step the certifier left open (position p of the
+        order; the ends in ``_ends``, the count in ``_steps``): SceneGraph decides it, then on from there."""
+        (qa, qb), n = self._ends, int(self._steps[0])
+        order = _ORDERS[mode](n)
+        order = order if stop < 0 else order[:stop]
+        code = int(self._open[-1])
+        pairs = self._open[:code].copy() if code > 0 else None
         while True:
-            p, code, pairs = first_open(qa, qb, n, order, begin)
-            if p < 0:
-                break
             k = int(order[p])
             # Drake's own interpolation: ours differs in the last bit, which decides a step on the boundary
             q = qa if k == 0 else qb if k == n else self.drake.InterpolateBetweenConfigurations(qa, qb, k / n)
             if code == COLLIDES or not self._open_free(q, pairs):
-                out = max(0.0, (k - 1) / n) if fraction else False
-                break
-            begin = p + 1
-        self.check_time += _clock() - t0
-        self.checks += 1
-        return out
+                return max(0.0, (k - 1) / n) if fraction else False
+            p, code, pairs = self.compiled.first_open(qa, qb, n, order, p + 1)
+            if p < 0:
+                return 1.0 if fraction else True
 
     def _edge(self, check, a, b, resolution: float):
         if self._resolution is None:
@@ -375,6 +409,9 @@ def interior_first_order(n: int) -> np.ndarray:
     """Steps 0..n of an edge, the middles of ever finer halvings first, the ends last (0, then n)."""
     ends_first = bisection_order(n)
     return np.concatenate([ends_first[2:], ends_first[1::-1]])
+
+
+_ORDERS = {SEQUENCE: sequence_order, BISECTION: bisection_order, INTERIOR_FIRST: interior_first_order}
 
 
 def _candidates_all_checked(checker) -> bool:

@@ -13,6 +13,7 @@ import time
 
 import numpy as np
 
+from lazyground.drake import edge_kernel
 from lazyground.drake import sphere_kernels as kernels
 from lazyground.drake.chain import PRISMATIC
 from lazyground.drake.ik import kernels as ik_kernels
@@ -34,13 +35,16 @@ def warm_up() -> float:
     fd, idata = kernels.pack(_TOY)
     work, pairs = np.zeros(kernels.work_size(idata)), np.zeros(CAP + 1, np.int64)
     kernels.certify_rows(np.zeros((1, 1)), fd, idata, work, np.zeros((1, CAP), np.int64))
-    kernels.certify_one(np.zeros(1), fd, idata, work, pairs, 0.0)
+    kernels.certify_one(fd, idata, work, pairs, np.zeros(1), 0.0)
     kernels.first_open(np.zeros(1), np.ones(1), 2, np.arange(3), 0, fd, idata, work, pairs)
     kernels.sweep_rows(np.zeros((2, 1)), fd, idata, work, _above(_TOY), np.zeros((2, CAP), np.int64))
+    edge_kernel.edge_open(fd, idata, work, pairs, np.zeros(1, np.int64), np.zeros((2, 1)), np.zeros(1, np.int64),
+                          np.array([0.0, 1.0, 0.0]), 2, np.zeros(1), np.ones(1), 0.3, edge_kernel.BISECTION, 0, -1, 0)
     ik_compiled = ik_kernels.warm_up()  # the batch IK solver's kernels (lazyground.drake.ik.kernels)
     _compile_s = time.perf_counter() - t0
-    _compiled_now = ik_compiled or any(sum(k.stats.cache_misses.values()) for k in (kernels.certify_rows, kernels.certify_one,
-                                                                                   kernels.first_open, kernels.sweep_rows))
+    _compiled_now = ik_compiled or any(sum(k.stats.cache_misses.values()) for k in (
+        kernels.certify_rows, kernels.certify_one, kernels.first_open, kernels.sweep_rows, edge_kernel.edge_open,
+        edge_kernel.step_order))
     return _compile_s
 
 
@@ -60,13 +64,13 @@ class CompiledCertifier:
         self.fd, self.idata = kernels.pack(blocks)
         self._above = _above(blocks)
         self._open = np.zeros(CAP + 1, np.int64)
-        self._work = np.zeros(kernels.work_size(self.idata))
+        self.work = np.zeros(kernels.work_size(self.idata))
 
     def certify_one(self, q_full: np.ndarray, shift: float = 0.0) -> tuple[int, np.ndarray | None]:
         """(the code of one configuration (:meth:`certify`), its open pairs when it has some). ``shift``: the
         padding, to ask whether any pair penetrates instead (0 and the open pairs: against every pair's threshold
         less it; COLLIDES is still a padded collision), where every checked pair has that one padding."""
-        code = kernels.certify_one(q_full, self.fd, self.idata, self._work, self._open, shift)
+        code = kernels.certify_one(self.fd, self.idata, self.work, self._open, q_full, shift)
         return code, (self._open[:code].copy() if code > 0 else None)
 
     def certify(self, q_full: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -74,7 +78,7 @@ class CompiledCertifier:
         COLLIDES proven colliding; (rows, CAP) the open pairs, indices into SphereCertifier.pair_geometries)."""
         q = np.ascontiguousarray(np.atleast_2d(q_full), float)
         pairs = np.empty((len(q), CAP), np.int64)
-        return kernels.certify_rows(q, self.fd, self.idata, self._work, pairs), pairs
+        return kernels.certify_rows(q, self.fd, self.idata, self.work, pairs), pairs
 
     def sweep(self, q_full: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`certify` of rows in sequence, each close to the one before (a densely checked path): a row
@@ -82,13 +86,13 @@ class CompiledCertifier:
         (lazyground.drake.sphere_kernels.sweep_rows); the others get the whole test. The same codes where those are 0."""
         q = np.ascontiguousarray(np.atleast_2d(q_full), float)
         pairs = np.empty((len(q), CAP), np.int64)
-        return kernels.sweep_rows(q, self.fd, self.idata, self._work, self._above, pairs), pairs
+        return kernels.sweep_rows(q, self.fd, self.idata, self.work, self._above, pairs), pairs
 
     def first_open(self, qa: np.ndarray, qb: np.ndarray, steps: int, order: np.ndarray, begin: int = 0):
         """The first position p >= begin of ``order`` whose configuration qa + order[p] / steps (qb - qa) is not
         certified, and its code (:meth:`certify`) and open pairs (None: too many to list or colliding);
         (-1, 0, None) when all are."""
-        p = kernels.first_open(qa, qb, steps, order, begin, self.fd, self.idata, self._work, self._open)
+        p = kernels.first_open(qa, qb, steps, order, begin, self.fd, self.idata, self.work, self._open)
         if p < 0:
             return -1, 0, None
         count = int(self._open[-1])

@@ -53,3 +53,17 @@ def test_eager_samples_every_region_first():
 def test_independent_planners_take_turns_and_stop_at_the_first_solution(algorithm):
     solved = [_run("independent", (UNREACHABLE, INVALID, REACHABLE), seed, cap=20000, algorithm=algorithm)[0] for seed in range(2)]
     assert all(r is not None and r.solved and r.goal_region.id == "open" for r in solved)
+
+
+def test_nearest_first_counts_its_budgets_and_total_on_the_stop_clock(monkeypatch):
+    """The per-call budget and the reported total both read the stop module's clock (a CPU or fake clock applies)."""
+    from lazyground.planning import stop
+
+    clock = stop.FakeClock(tick=1e-4)
+    monkeypatch.setattr(stop, "CLOCK", clock)
+    settings = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=10**6, algorithm="bidirectional")
+    t0 = clock.t
+    result, seconds, iterations, _ = run_baseline("nearest-first", _scene((REACHABLE, UNREACHABLE)), World(WALLS),
+                                                  (REACHABLE, UNREACHABLE), SPACE, settings, 0, call_budget=0.5)
+    assert result.solved and iterations < 10**6  # the pocket's call ended at its 0.5 s on the fake clock
+    assert seconds >= 0.5 and abs(seconds - (clock.t - t0)) < 1e-3

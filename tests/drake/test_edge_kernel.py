@@ -1,0 +1,91 @@
+"""An edge's glue in one compiled call (lazyground.drake.edge_kernel, #31): the same ends, step count and step
+orders as the checker's Python code and Drake, so the same steps and answers."""
+
+import math
+
+import numpy as np
+import pytest
+
+pytest.importorskip("pydrake")
+
+from lazyground.drake import checker as ck  # noqa: E402
+from lazyground.drake import edge_kernel as ek  # noqa: E402
+from lazyground.drake.compiled import _TOY, CAP  # noqa: E402
+from lazyground.drake.sphere_kernels import pack, work_size  # noqa: E402
+from lazyground.drake.world import DrakeWorld  # noqa: E402
+from lazyground.geometry import wrap_angle  # noqa: E402
+from lazyground.scene import load_scene  # noqa: E402
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 7, 20, 21, 64, 100, 1000, 1025])
+def test_the_compiled_step_orders_are_the_checkers(n):
+    for mode, order in ((ek.SEQUENCE, ck.sequence_order), (ek.BISECTION, ck.bisection_order),
+                        (ek.INTERIOR_FIRST, ck.interior_first_order)):
+        assert np.array_equal(ek.step_order(n, mode), order(n))
+
+
+def test_the_sum_follows_eigens_packets():
+    """Eigen's reduction order (Redux.h) written out for 8 and 7 squares; sequential sums differ from it."""
+    rng = np.random.default_rng(2)
+    differ = 0
+    for _ in range(200):
+        v = rng.uniform(-3, 3, 8) * 10.0 ** rng.integers(-4, 4, 8)
+        s = v * v
+        assert ek.squared_norm(v, 2) == ((s[0] + s[4]) + (s[2] + s[6])) + ((s[1] + s[5]) + (s[3] + s[7]))
+        assert ek.squared_norm(v, 4) == ek.squared_norm(v, 2)  # for 8: two packets of 4 sum as four of 2
+        assert ek.squared_norm(v[:7], 2) == ((s[0] + s[2]) + s[4]) + ((s[1] + s[3]) + s[5]) + s[6]
+        assert ek.squared_norm(v[:7], 4) == (s[0] + s[2]) + (s[1] + s[3]) + s[4] + s[5] + s[6]
+        seq = s[0]
+        for x in s[1:]:
+            seq += x
+        assert ek.squared_norm(v, 1) == seq
+        differ += seq != ek.squared_norm(v, 2)
+    assert differ > 20
+
+
+@pytest.mark.parametrize("scene", ["fetch_boxes_3", "panda_tabletop"])
+def test_the_step_count_is_drakes_on_edges_an_exact_number_of_steps_long(scene):
+    """A planner's steps end exactly k resolutions away, where the distance's last bit decides the count."""
+    world = DrakeWorld(load_scene(scene), visual=False)
+    c = world.checker
+    assert c._packet in ek.PACKETS  # this Drake's sum is known
+    rng = np.random.default_rng(3)
+    res, same = 0.05, 0
+    for _ in range(3000):
+        a = world.space.sample(rng)
+        d = rng.normal(size=len(a))
+        b = a + d / world.space.distance(a, a + d) * res * rng.integers(1, 30)
+        c._edge_open(a, b, res, ek.BISECTION, 0, 0, 0)  # ends and count only (no step asked about)
+        full = c.coordinates.full
+        qa, qb = full(a), full(a + c.coordinates.space.difference(a, b))
+        assert np.array_equal(c._ends[0], qa) and np.array_equal(c._ends[1], qb)
+        n = max(1, math.ceil(c.drake.ComputeConfigurationDistance(qa, qb) / res))
+        assert c._steps[0] == n
+        same += c._steps[0] == math.ceil(np.linalg.norm(qb - qa) / res)
+    assert same < 3000  # some counts hang on the last bit (numpy's sum gives another count): the test can fail
+
+
+def test_the_far_end_wraps_as_the_space_does():
+    """b on the shorter arc from a, bit for bit as a + space.difference(a, b) (lazyground.geometry.wrap_angle)."""
+    fd, idata = pack(_TOY)
+    work, pairs = np.zeros(work_size(idata)), np.zeros(CAP + 1, np.int64)
+    steps, ends = np.zeros(1, np.int64), np.zeros((2, 1))
+    edata = ek.edge_data(np.zeros(1), np.ones(1), np.ones(1, bool))
+    rng = np.random.default_rng(0)
+    values = np.concatenate([rng.uniform(-20, 20, (4000, 2)), [[0.0, np.pi], [np.pi, -np.pi], [-3.0, 3.2]]])
+    for a, b in values:
+        ek.edge_open(fd, idata, work, pairs, steps, ends, np.zeros(1, np.int64), edata, 2, np.array([a]), np.array([b]),
+                     0.1, ek.BISECTION, 0, 0, 0)
+        assert ends[1, 0] == a + wrap_angle(np.array([b - a]))[0]
+
+
+def test_where_the_sum_is_unknown_drake_gives_each_step_count(monkeypatch):
+    """A Drake whose distance no packet width reproduces: the checker asks Drake for every count, same answers."""
+    from lazyground.drake import checker as checker_module
+    from lazyground.drake.certify_check import compare_edges
+
+    monkeypatch.setattr(checker_module, "eigen_packet", lambda *a, **k: 0)
+    world = DrakeWorld(load_scene("panda_tabletop"), visual=False)
+    assert world.checker._packet == 0
+    e = compare_edges(world, np.random.default_rng(4), 40)
+    assert e.mismatches == 0 and 0 < e.free < e.edges
