@@ -64,7 +64,7 @@ def main(argv=None) -> int:
         settings = planner_settings(scene, strategy=Strategy.CONSECUTIVE.value, algorithm=Algorithm.BIDIRECTIONAL,
                                     time_limit=a.time_limit)
         space = planning_space(scene, world.space, settings.kinematics)
-        groups = sorted(baselines._by_interpretation(regions), key=lambda g: baselines._distance(scene, world, g))
+        groups = baselines.nearest_first_order(scene, world, regions)
         rank = next(i + 1 for i, g in enumerate(groups) if g[0].object in reach)
         upfront, states = [], []
         for seed in range(a.upfront_seeds):
