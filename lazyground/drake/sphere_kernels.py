@@ -26,7 +26,7 @@ from numba import njit
 from numba.core import cgutils, types
 from numba.core.imputils import impl_ret_borrowed
 from numba.extending import intrinsic
-from numba.np.arrayobj import make_array, populate_array
+from numba.np.arrayobj import make_array
 
 PRISMATIC_KIND = 1  # lazyground.drake.chain.PRISMATIC (checked in pack)
 
@@ -95,7 +95,6 @@ def _c_view(typingctx, flat, lo, shape):
     def codegen(context, builder, sig, args):
         aryty, loty, shapety = sig.args
         src = make_array(aryty)(context, builder, args[0])
-        dst = make_array(retty)(context, builder)
         shapes = [context.cast(builder, v, t, types.intp)
                   for v, t in zip(cgutils.unpack_tuple(builder, args[2], nd), shapety)]
         itemsize = context.get_constant(types.intp, context.get_abi_sizeof(context.get_data_type(aryty.dtype)))
@@ -103,10 +102,19 @@ def _c_view(typingctx, flat, lo, shape):
         for d in reversed(range(nd)):
             strides[d] = acc
             acc = builder.mul(acc, shapes[d])
+        nitems = context.get_constant(types.intp, 1)
+        for v in shapes:
+            nitems = builder.mul(nitems, v)
         data = builder.gep(src.data, [context.cast(builder, args[1], loty, types.intp)])
-        populate_array(dst, data=data, shape=shapes, strides=strides, itemsize=itemsize, meminfo=src.meminfo,
-                       parent=src.parent)
-        return impl_ret_borrowed(context, builder, retty, dst._getvalue())
+        # the array's fields by the data model's names (populate_array's, without the struct proxy's private
+        # accessors): the source's memory and owner, so the view keeps the flat array alive
+        model = context.data_model_manager[retty]
+        value = cgutils.get_null_value(context.get_value_type(retty))
+        for name, field in (("meminfo", src.meminfo), ("parent", src.parent), ("nitems", nitems),
+                            ("itemsize", itemsize), ("data", data), ("shape", cgutils.pack_array(builder, shapes)),
+                            ("strides", cgutils.pack_array(builder, strides))):
+            value = builder.insert_value(value, field, model.get_field_position(name))
+        return impl_ret_borrowed(context, builder, retty, value)
 
     return retty(flat, lo, shape), codegen
 
