@@ -23,6 +23,10 @@ from __future__ import annotations
 
 import numpy as np
 from numba import njit
+from numba.core import cgutils, types
+from numba.core.imputils import impl_ret_borrowed
+from numba.extending import intrinsic
+from numba.np.arrayobj import make_array
 
 PRISMATIC_KIND = 1  # lazyground.drake.chain.PRISMATIC (checked in pack)
 
@@ -78,13 +82,62 @@ def _offset_distance(vx, vy, vz, R, half, rounding, cylinder):
                            R[0, 2] * vx + R[1, 2] * vy + R[2, 2] * vz, half[0], half[1], half[2], rounding, cylinder)
 
 
+@intrinsic
+def _c_view(typingctx, flat, lo, shape):
+    """flat[lo:lo + prod(shape)] as a C-contiguous view of that shape, without numba's reshape, which calls a
+    helper checking the layout (~35 ns a view; a call makes ~30 of them: ~1 µs of an edge's ~8, #31), nor
+    ``as_strided``, whose any-layout views make a row ~2x slower. The caller keeps the block inside ``flat``."""
+    if not (isinstance(flat, types.Array) and flat.ndim == 1 and flat.layout == "C"):
+        return None  # only a contiguous flat array's blocks are contiguous
+    nd = len(shape)
+    retty = types.Array(flat.dtype, nd, "C")
+
+    def codegen(context, builder, sig, args):
+        aryty, loty, shapety = sig.args
+        src = make_array(aryty)(context, builder, args[0])
+        shapes = [context.cast(builder, v, t, types.intp)
+                  for v, t in zip(cgutils.unpack_tuple(builder, args[2], nd), shapety)]
+        itemsize = context.get_constant(types.intp, context.get_abi_sizeof(context.get_data_type(aryty.dtype)))
+        strides, acc = [None] * nd, itemsize
+        for d in reversed(range(nd)):
+            strides[d] = acc
+            acc = builder.mul(acc, shapes[d])
+        nitems = context.get_constant(types.intp, 1)
+        for v in shapes:
+            nitems = builder.mul(nitems, v)
+        data = builder.gep(src.data, [context.cast(builder, args[1], loty, types.intp)])
+        # the array's fields by the data model's names (populate_array's, without the struct proxy's private
+        # accessors): the source's memory and owner, so the view keeps the flat array alive
+        model = context.data_model_manager[retty]
+        value = cgutils.get_null_value(context.get_value_type(retty))
+        for name, field in (("meminfo", src.meminfo), ("parent", src.parent), ("nitems", nitems),
+                            ("itemsize", itemsize), ("data", data), ("shape", cgutils.pack_array(builder, shapes)),
+                            ("strides", cgutils.pack_array(builder, strides))):
+            value = builder.insert_value(value, field, model.get_field_position(name))
+        return impl_ret_borrowed(context, builder, retty, value)
+
+    return retty(flat, lo, shape), codegen
+
+
+@njit(cache=True, inline="always")
+def _grid(flat, lo, rows, cols):
+    """flat[lo:lo + rows * cols] as a (rows, cols) view (:func:`_c_view`)."""
+    return _c_view(flat, lo, (rows, cols))
+
+
+@njit(cache=True, inline="always")
+def _stack(flat, lo, count, rows, cols):
+    """flat[lo:lo + count * rows * cols] as a (count, rows, cols) view (:func:`_c_view`)."""
+    return _c_view(flat, lo, (count, rows, cols))
+
+
 @njit(cache=True, inline="always")
 def tree_views(fd, idata):
     """Views of the body tree's blocks (joint and body frames, parents, kinds, position indices, slots) for
     :func:`_forward`: made once per kernel call, not per configuration (~20 % of a row's time, #31)."""
     m, n = idata[_M], idata[_N]
     o = 7 + _NF
-    return (fd[idata[7]:idata[7] + 12 * m].reshape((m, 3, 4)), fd[idata[8]:idata[8] + 12 * n].reshape((n, 3, 4)),
+    return (_stack(fd, idata[7], m, 3, 4), _stack(fd, idata[8], n, 3, 4),
             idata[idata[o]:idata[o] + m], idata[idata[o + 1]:idata[o + 1] + m], idata[idata[o + 2]:idata[o + 2] + m],
             idata[idata[o + 3]:idata[o + 3] + n])
 
@@ -124,22 +177,22 @@ def block_views(fd, idata):
     G, S, O, P, I = idata[_G], idata[_S], idata[_O], idata[_P], idata[_I]
     f = idata[7:7 + _NF]
     i = idata[7 + _NF:_HEAD]
-    gR = fd[f[2]:f[2] + 9 * G].reshape((G, 3, 3))
-    go = fd[f[3]:f[3] + 3 * G].reshape((G, 3))
-    ghalf = fd[f[4]:f[4] + 3 * G].reshape((G, 3))
+    gR = _stack(fd, f[2], G, 3, 3)
+    go = _grid(fd, f[3], G, 3)
+    ghalf = _grid(fd, f[4], G, 3)
     ground, grad = fd[f[5]:f[5] + G], fd[f[6]:f[6] + G]
-    sc = fd[f[7]:f[7] + 3 * S].reshape((S, 3))
+    sc = _grid(fd, f[7], S, 3)
     sr = fd[f[8]:f[8] + S]
-    oR = fd[f[9]:f[9] + 9 * O].reshape((O, 3, 3))
-    oo = fd[f[10]:f[10] + 3 * O].reshape((O, 3))
-    ohalf = fd[f[11]:f[11] + 3 * O].reshape((O, 3))
+    oR = _stack(fd, f[9], O, 3, 3)
+    oo = _grid(fd, f[10], O, 3)
+    ohalf = _grid(fd, f[11], O, 3)
     oround = fd[f[12]:f[12] + O]
-    ac = fd[f[13]:f[13] + 3 * O].reshape((3, O))
-    ah = fd[f[14]:f[14] + 3 * O].reshape((3, O))
-    reach2 = fd[f[20]:f[20] + G * O].reshape((G, O))
-    env = fd[f[15]:f[15] + G * O].reshape((G, O))
+    ac = _grid(fd, f[13], 3, O)
+    ah = _grid(fd, f[14], 3, O)
+    reach2 = _grid(fd, f[20], G, O)
+    env = _grid(fd, f[15], G, O)
     sthr = fd[f[16]:f[16] + P]
-    ic = fd[f[17]:f[17] + 3 * I].reshape((I, 3))
+    ic = _grid(fd, f[17], I, 3)
     ir = fd[f[18]:f[18] + I]
     below = fd[f[19]]
     node = idata[i[4]:i[4] + G]
@@ -558,23 +611,23 @@ def scratch_views(idata, work):
     and per geometry whether its spheres are posed yet."""
     m, n, G, S = idata[_M], idata[_N], idata[_G], idata[_S]
     a = 0
-    Rs = work[a:a + 9 * (m + 1)].reshape((m + 1, 3, 3))
+    Rs = _stack(work, a, m + 1, 3, 3)
     a += 9 * (m + 1)
-    ps = work[a:a + 3 * (m + 1)].reshape((m + 1, 3))
+    ps = _grid(work, a, m + 1, 3)
     a += 3 * (m + 1)
-    Rb = work[a:a + 9 * n].reshape((n, 3, 3))
+    Rb = _stack(work, a, n, 3, 3)
     a += 9 * n
-    pb = work[a:a + 3 * n].reshape((n, 3))
+    pb = _grid(work, a, n, 3)
     a += 3 * n
-    centre = work[a:a + 3 * G].reshape((G, 3))
+    centre = _grid(work, a, G, 3)
     a += 3 * G
-    sph = work[a:a + 3 * S].reshape((S, 3))
+    sph = _grid(work, a, S, 3)
     a += 3 * S
     done = work[a:a + G]
     a += G
-    W = work[a:a + 9].reshape((3, 3))
+    W = _grid(work, a, 3, 3)
     a += 9
-    A = work[a:a + 9].reshape((3, 3))
+    A = _grid(work, a, 3, 3)
     a += 9
     gap = work[a:a + idata[_O]]
     Rs[0] = 0.0
