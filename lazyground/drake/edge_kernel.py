@@ -23,6 +23,9 @@ import numpy as np
 from numba import njit
 
 from lazyground.drake.sphere_kernels import block_views, open_pairs_row, scratch_views, tree_views
+from lazyground.user_cache import use_kernel_cache
+
+use_kernel_cache()  # before any kernel is defined: caches keyed by every kernel file's text
 
 SEQUENCE, BISECTION, INTERIOR_FIRST = 0, 1, 2  # the step orders (an edge's free fraction; edge_free; a part of one)
 ALL_FREE = -1  # edge_open's answer: every step asked about is certified free

@@ -28,6 +28,10 @@ from numba.core.imputils import impl_ret_borrowed
 from numba.extending import intrinsic
 from numba.np.arrayobj import make_array
 
+from lazyground.user_cache import use_kernel_cache
+
+use_kernel_cache()  # before any kernel is defined: caches keyed by every kernel file's text
+
 PRISMATIC_KIND = 1  # lazyground.drake.chain.PRISMATIC (checked in pack)
 
 # int header: counts, then offsets of each float and int block

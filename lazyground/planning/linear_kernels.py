@@ -23,6 +23,10 @@ import time
 import numpy as np
 from numba import njit
 
+from lazyground.user_cache import use_kernel_cache
+
+use_kernel_cache()  # before any kernel is defined: caches keyed by every kernel file's text
+
 _T0 = time.perf_counter()
 _warm_s: float | None = None
 

@@ -19,6 +19,10 @@ import math
 import numpy as np
 from numba import njit
 
+from lazyground.user_cache import use_kernel_cache
+
+use_kernel_cache()  # before any kernel is defined: caches keyed by every kernel file's text
+
 PRISMATIC_KIND = 1  # lazyground.drake.chain.PRISMATIC (the caller checks)
 
 
