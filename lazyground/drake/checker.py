@@ -18,7 +18,7 @@ from pydrake.planning import LinearDistanceAndInterpolationProvider, SceneGraphC
 
 from lazyground.drake.compiled import CAP, COLLIDES, CompiledCertifier
 from lazyground.drake.edge_kernel import (ALL_FREE, BISECTION, INTERIOR_FIRST, SEQUENCE, edge_data, edge_open,
-                                          eigen_packet)
+                                          eigen_packet, step_order)
 from lazyground.drake.coordinates import Coordinates
 from lazyground.drake.parallel import parallel_batch
 from lazyground.drake.sphere_kernels import certify_one
@@ -91,7 +91,7 @@ class DrakeChecker:
             self._packet = eigen_packet(self._distance, coordinates.plant_weights(), np.random.default_rng(0))
             self._edge_open = functools.partial(
                 edge_open, self.compiled.fd, self.compiled.idata, self.compiled.work, self._open, self._steps,
-                self._ends, np.asarray(coordinates.planned, np.int64),
+                self._ends, self._planned,
                 edge_data(coordinates.q_full, coordinates.plant_weights(), coordinates.space.wrap), self._packet)
         self.certified = 0  # configurations the certifier proved free
         self._pairs = {}  # the certifier's pairs as SceneGraph's (id, id, padding), as they come up (_pair)
@@ -298,7 +298,7 @@ class DrakeChecker:
     def edge_part_free(self, a: np.ndarray, b: np.ndarray, resolution: float, first: int = 0,
                        stop: int | None = None) -> bool:
         """Whether the steps at positions ``first`` .. ``stop`` - 1 of a → b, in interior-first bisection order
-        (:func:`interior_first_order`), are free at ``resolution``: the whole edge by default, in one compiled call with
+        (:func:`lazyground.drake.edge_kernel.step_order`, INTERIOR_FIRST), are free at ``resolution``: the whole edge by default, in one compiled call with
         early exit (a shortcut's candidate edges, whose ends lie on a checked path; a search probing a few steps
         first). The steps and answers are :meth:`edge_free`'s (Drake's); only the order and the part differ.
 
@@ -345,7 +345,7 @@ class DrakeChecker:
         """The rest of :meth:`_certified_edge` from the first step the certifier left open (position p of the
         order; the ends in ``_ends``, the count in ``_steps``): SceneGraph decides it, then on from there."""
         (qa, qb), n = self._ends, int(self._steps[0])
-        order = _ORDERS[mode](n)
+        order = step_order(n, mode)  # (the kernel's order: rebuilt only when a step is left open)
         order = order if stop < 0 else order[:stop]
         code = int(self._open[-1])
         pairs = self._open[:code].copy() if code > 0 else None
@@ -386,42 +386,6 @@ class DrakeChecker:
                 continue
             pairs.append((_geometry_name(plant, inspector, p.id_A), _geometry_name(plant, inspector, p.id_B)))
         return sorted(set(pairs))
-
-
-# An edge's steps 0..n in the orders the checks visit them: pure functions of the step count, kept once per process.
-
-@functools.lru_cache(maxsize=4096)
-def sequence_order(n: int) -> np.ndarray:
-    """Steps 0..n in order (an edge's free fraction is measured from its start)."""
-    return np.arange(n + 1)
-
-
-@functools.lru_cache(maxsize=4096)
-def bisection_order(n: int) -> np.ndarray:
-    """Steps 0..n of an edge in the order to check them: the end n first (a planner's extension usually
-    fails there, as Drake checks it first), the start, then the middles of ever finer halvings."""
-    out, seen, level = [n, 0], {0, n}, [(0, n)]
-    while level:
-        nxt = []
-        for lo, hi in level:
-            if hi - lo > 1:
-                mid = (lo + hi) // 2
-                if mid not in seen:
-                    seen.add(mid)
-                    out.append(mid)
-                nxt += [(lo, mid), (mid, hi)]
-        level = nxt
-    return np.array(out, np.int64)
-
-
-@functools.lru_cache(maxsize=4096)
-def interior_first_order(n: int) -> np.ndarray:
-    """Steps 0..n of an edge, the middles of ever finer halvings first, the ends last (0, then n)."""
-    ends_first = bisection_order(n)
-    return np.concatenate([ends_first[2:], ends_first[1::-1]])
-
-
-_ORDERS = {SEQUENCE: sequence_order, BISECTION: bisection_order, INTERIOR_FIRST: interior_first_order}
 
 
 def _candidates_all_checked(checker) -> bool:

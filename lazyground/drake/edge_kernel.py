@@ -3,9 +3,8 @@
 :func:`edge_open` does what :meth:`lazyground.drake.checker.DrakeChecker` did in Python around
 :func:`lazyground.drake.sphere_kernels.first_open` (~10 µs an edge on Fetch, as much as the kernel): the
 plant positions of both ends (b on the shorter arc from a), the step count from the weighted distance, the
-steps' order (:func:`step_order`, the checker's ``sequence_order`` / ``bisection_order`` /
-``interior_first_order``), and the certifier's test of each step with early exit at the first one it does not
-prove free. The checker decides that step (SceneGraph) and goes on with ``first_open``, as before.
+steps' order (:func:`step_order`, which the checker also reads past a step left open), and the certifier's
+test of each step with early exit at the first one it does not prove free. The checker decides that step (SceneGraph) and goes on with ``first_open``, as before.
 
 The step count must be Drake's: ``ceil(d / resolution)`` with d Drake's weighted distance (a planner's
 steps end exactly one step length away, so d / resolution sits on an integer and its last bit decides the

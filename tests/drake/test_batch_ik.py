@@ -12,6 +12,7 @@ import grounding  # noqa: E402
 from lazyground.drake.ik.batch import SETTLE, BatchIKProblem, pose_errors, solve_batch  # noqa: E402
 from lazyground.drake.chain import chain_to_frame  # noqa: E402
 from lazyground.drake.ik import IKGoalSource, IKSettings  # noqa: E402
+from lazyground.drake.ik import kernels as ik_kernels  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.geometry import Pose  # noqa: E402
 from lazyground.planning.stop import StopCondition  # noqa: E402
@@ -127,7 +128,8 @@ def test_pose_errors_take_the_short_way_and_see_half_turns():
 def test_continuous_joints_wrap_and_bounded_ones_clip(cans1):
     _, world, _ = cans1
     problem = _fetch_problem(world)
-    q = problem.limit(np.array([[1.0, 5.0, 0.0, 3.5, 0.0, -4.0, 0.0, 7.0]]))[0]
+    q = np.empty(8)
+    ik_kernels.limit_row(np.array([1.0, 5.0, 0.0, 3.5, 0.0, -4.0, 0.0, 7.0]), problem.lower, problem.upper, problem.wrap, q)
     assert q[0] == problem.upper[0] and q[1] == problem.upper[1]  # torso and shoulder pan: clipped
     np.testing.assert_allclose(q[[3, 5, 7]], [3.5 - 2 * np.pi, -4.0 + 2 * np.pi, 7.0 - 2 * np.pi])  # the rolls: wrapped
 

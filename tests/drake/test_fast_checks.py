@@ -17,7 +17,8 @@ import pytest
 pytest.importorskip("pydrake")
 
 from lazyground.drake import parallel  # noqa: E402
-from lazyground.drake.checker import DrakeChecker, bisection_order  # noqa: E402
+from lazyground.drake.checker import DrakeChecker  # noqa: E402
+from lazyground.drake.edge_kernel import BISECTION, step_order  # noqa: E402
 from lazyground.drake.diagram import build_diagram  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
@@ -139,7 +140,7 @@ def test_each_single_check_counts_once(world):
 def test_the_bisection_order_visits_every_step_once_end_first(n):
     """Steps 0..n of an edge, each exactly once, the end n first and the start 0 next (else a step goes
     unchecked, or is checked twice); worked from the docstring's rule, not from the code."""
-    order = bisection_order(n).tolist()
+    order = step_order(n, BISECTION).tolist()
     assert sorted(order) == list(range(n + 1))
     assert order[:2] == [n, 0]
     if n >= 2:

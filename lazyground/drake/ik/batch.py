@@ -42,15 +42,7 @@ class BatchIKProblem:
     free: np.ndarray  # (n,) bool
     lower: np.ndarray  # (n,)
     upper: np.ndarray  # (n,)
-    wrap: np.ndarray  # (n,) bool
-
-    def limit(self, q: np.ndarray) -> np.ndarray:
-        """Rows ``q`` (B, n) brought within the limits: clipped, continuous joints wrapped."""
-        out = np.clip(q, self.lower, self.upper)
-        if self.wrap.any():
-            span = self.upper - self.lower
-            out[:, self.wrap] = self.lower[self.wrap] + np.mod(q[:, self.wrap] - self.lower[self.wrap], span[self.wrap])
-        return out
+    wrap: np.ndarray  # (n,) bool (the solver keeps rows within the limits: kernels.limit_row)
 
 
 def pose_errors(X: np.ndarray, T: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

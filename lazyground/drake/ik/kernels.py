@@ -163,7 +163,8 @@ def _weigh(J, weight):
 
 
 @njit(cache=True)
-def _limit(q, lower, upper, wrap, out):
+def limit_row(q, lower, upper, wrap, out):
+    """q (n,) brought within the limits into ``out``: bounded joints clipped, continuous ones wrapped."""
     for k in range(len(q)):
         if wrap[k]:
             span = upper[k] - lower[k]
@@ -190,7 +191,7 @@ def solve_rows(q0, targets, X_before, X_after, kinds, free, lower, upper, wrap, 
     for k in range(n):
         held[k] = not free[k]
     for b in range(B):
-        _limit(q0[b], lower, upper, wrap, q)
+        limit_row(q0[b], lower, upper, wrap, q)
         target = targets[b]
         _forward(q, X_before, X_after, kinds, T, axes, origins, X, J, True, tmp)
         _weigh(J, weight)
@@ -209,7 +210,7 @@ def solve_rows(q0, targets, X_before, X_after, kinds, free, lower, upper, wrap, 
                 _step(J, e, d, blocked, step, A, L, y)
             for k in range(n):
                 raw[k] = q[k] + step[k]
-            _limit(raw, lower, upper, wrap, q_try)
+            limit_row(raw, lower, upper, wrap, q_try)
             _forward(q_try, X_before, X_after, kinds, T, axes, origins, X_t, J_t, True, tmp)
             _weigh(J_t, weight)
             cost_t, done_t = _excess(X_t, target, ptol, otol, settle, weight, e_t, R)
