@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from lazyground.planning.region_bandit import StagedBandit
 from lazyground.planning.problem import (
     GoalSample,
     GoalSource,
@@ -85,10 +84,9 @@ class Search:
         self._verified: set[bytes] = set()  # segments (endpoint bytes) that passed the fine re-check
         self.selector = make_strategy(settings.strategy, StrategySettings(resample_threshold=settings.resample_threshold))
         self._covers = bool(getattr(self.selector, "covers_regions", False))
-        # the strategy picks the regions goal samples come from, where the source tells hopeless attempts apart (IK:
-        # out of reach; a parking source's attempt is one collision check: it keeps its order)
-        if getattr(self.selector, "chooses_regions", False) and getattr(goals, "hopeless_reasons", ()):
-            goals.chooser = StagedBandit(goals.stats, goals.hopeless_reasons)
+        chooser = getattr(self.selector, "region_chooser", None)  # the strategy picks the regions samples come from
+        if chooser is not None and hasattr(goals, "chooser"):
+            goals.chooser = chooser(goals)
         self._attempts0: int | None = None  # the goal source's attempt count when coverage began
         self.trees: list[Tree] = []  # the planner's trees, start tree first (for the result)
         self.failed_from: list[tuple[int, int]] = []  # (tree, node) of failed goal-directed extensions

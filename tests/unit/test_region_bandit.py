@@ -94,10 +94,23 @@ def test_cover_sets_the_chooser_only_on_a_source_with_hopeless_reasons_and_conse
 
 
 def test_progress_holds_the_ik_allowance():
+    free, rate = Cover.ik_free_attempts, Cover.ik_attempts_per_iteration
     c = Cover()
+    assert c.region_chooser(Rack(_regions(3), near=3, rate=[0.0] * 3)) is not None
     c.add([0, 1])
-    assert c.ik_allowance(10) == Cover.free_attempts + 10 * Cover.attempts_per_iteration  # nothing progressed yet
+    assert c.ik_allowance(10) == free + 10 * rate  # nothing progressed yet
     c.reward(0)
-    assert c.ik_allowance(110) == Cover.free_attempts + 10 * Cover.attempts_per_iteration  # sample 0 progressing
+    assert c.ik_allowance(110) == free + 10 * rate  # sample 0 progressing
     c.penalize(0)
-    assert c.ik_allowance(120) == Cover.free_attempts + 20 * Cover.attempts_per_iteration
+    assert c.ik_allowance(120) == free + 20 * rate
+
+
+def test_without_a_chosen_order_the_allowance_is_the_plain_one():
+    """A parking source (no hopeless reasons): round robin, and the budget per iteration whatever the progress."""
+    c = Cover()
+    source = Rack(_regions(3), near=3, rate=[0.0] * 3)
+    source.hopeless_reasons = ()
+    assert c.region_chooser(source) is None
+    c.add([0])
+    c.reward(0)
+    assert c.ik_allowance(100) == Cover.free_attempts + 100 * Cover.attempts_per_iteration
