@@ -91,7 +91,8 @@ def main(argv: list[str]) -> int:
                    "once per process: 0.5 CPU s, charged to whichever strategy ran first on the first layout)")
     if argv[:1] == ["summary"]:  # summary FILE.jsonl ...: the rows of earlier runs (e.g. layouts split over processes)
         rows = [json.loads(line) for f in argv[1:] for line in open(f) if line.strip()]
-        summary(rows, [m.value for m in Strategy if any(m.value in r for r in rows)])
+        names = {m.value for m in Strategy}
+        summary(rows, list(dict.fromkeys(k for r in rows for k in r if k in names)))  # as run: ours first
         return 0
     a = p.parse_args(argv)
     stop_module.CLOCK = time.process_time
