@@ -7,6 +7,10 @@ Run from the checkout's root (cwd comes first on sys.path)::
     # checkouts compared in one interleaved run (A B B A), each in its own process from its own root;
     # runs on the issue's base 703386a too (its solve() has no stop condition: the replay lifts time_limit)
     nice python3 tools/loop_replay.py --checkouts /tmp/base_703386a,. --rounds 2 --seeds 10 --replays 10 --profile
+    # per-iteration overhead apart from the per-run fixed cost: loop CPU per run = fixed + slope x iterations
+    nice python3 tools/loop_replay.py --checkouts /tmp/base_703386a,. --seeds 20 --replays 5 --fit
+    # the same scene with longer runs (any api.plan override, on every checkout): the one-tree planner
+    nice python3 tools/loop_replay.py --checkouts /tmp/base_703386a,. --scenes fetch_cans_2 --set algorithm=rrt --fit
 
 Each seed is planned once for real (``api.plan`` on a prebuilt world) while the checker's answers and the
 goal source's samples (with the generator's state after each draw) are recorded; the search is then run
@@ -19,6 +23,10 @@ real run did is reported (the record would not fit the code). ``us/it pooled`` i
 their iterations summed (short runs weigh less than in the median). ``--profile`` adds one cProfiled replay per
 seed, its own time by planner file (numpy and builtins count for the planner file that called them), scaled
 to the unprofiled CPU (cProfile inflates Python calls ~5x, so the shares lean towards call-heavy parts).
+``--fit`` fits each seed's loop CPU (its fastest replay over the rounds) as fixed + slope x iterations (Theil-Sen;
+least squares beside it), with 95 % bootstrap intervals over seeds for each checkout's slope and fixed part and
+for their ratios to the first checkout's: the slope is the per-iteration overhead, free of the per-run costs
+(set-up, goal roots, the path's re-check) that dominate a scene whose runs are a few iterations long.
 """
 
 from __future__ import annotations
@@ -90,8 +98,8 @@ class GoalRecorder(Recorder):
         return out
 
 
-def record(scene_name: str, seed: int, world, scene) -> dict:
-    """One real plan, its solve() call's arguments and logs."""
+def record(scene_name: str, seed: int, world, scene, overrides: dict | None = None) -> dict:
+    """One real plan (with the API's setting ``overrides``), its solve() call's arguments and logs."""
     from lazyground import api
     from lazyground.planning import rrt
 
@@ -112,7 +120,7 @@ def record(scene_name: str, seed: int, world, scene) -> dict:
     for m in targets:
         m.solve = recording
     try:
-        report = api.plan(scene, scene.expect[0].request, seed=seed, world=world)
+        report = api.plan(scene, scene.expect[0].request, seed=seed, world=world, **(overrides or {}))
     finally:
         for m in targets:
             m.solve = real_solve
@@ -198,7 +206,7 @@ def breakdown(stats) -> dict[str, float]:
     return got
 
 
-def measure(scenes, seeds: int, replays: int, profile: bool) -> dict:
+def measure(scenes, seeds: int, replays: int, profile: bool, overrides: dict | None = None) -> dict:
     """Per scene, per seed: iterations, the fastest replay's CPU seconds, replays that matched, search less IK;
     with ``profile`` also one cProfiled replay per seed broken down by category (seconds)."""
     import cProfile
@@ -211,10 +219,10 @@ def measure(scenes, seeds: int, replays: int, profile: bool) -> dict:
     for name in scenes:
         scene = load_scene(name)
         world = DrakeWorld(scene, visual=False)
-        record(name, 1000, world, scene)  # warm-up
+        record(name, 1000, world, scene, overrides)  # warm-up
         rows = []
         for seed in range(seeds):
-            rec = record(name, seed, world, scene)
+            rec = record(name, seed, world, scene, overrides)
             r = rec["report"].result
             best, ok = float("inf"), 0
             for _ in range(replays):
@@ -241,6 +249,63 @@ def summary(rows: list[dict]) -> dict:
                 ok=sum(r["ok"] for r in rows))
 
 
+def theil_sen(x, y) -> tuple[float, float]:
+    """(fixed, slope) of y = fixed + slope x: the median of the pairwise slopes, then the median intercept."""
+    import numpy as np
+
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    i, j = np.triu_indices(len(x), 1)
+    keep = x[i] != x[j]
+    slope = float(np.median((y[j] - y[i])[keep] / (x[j] - x[i])[keep])) if keep.any() else 0.0
+    return float(np.median(y - slope * x)), slope
+
+
+def least_squares(x, y) -> tuple[float, float]:
+    import numpy as np
+
+    slope, fixed = np.polyfit(np.asarray(x, float), np.asarray(y, float), 1)
+    return float(fixed), float(slope)
+
+
+def per_seed(runs: list[dict], name: str) -> tuple[list[int], list[float]]:
+    """Each seed's iterations and its fastest replay over the rounds (seconds)."""
+    rows = [run[name] for run in runs]
+    return ([r["iterations"] for r in rows[0]],
+            [min(rr[k]["best_s"] for rr in rows) for k in range(len(rows[0]))])
+
+
+def print_fit(name: str, fits: dict[str, tuple[list[int], list[float]]], base: str, resamples: int = 2000) -> None:
+    """Loop CPU per run = fixed + slope x iterations, per checkout (Theil-Sen over seeds; least squares beside it),
+    with 95 % bootstrap intervals (seeds resampled) of the slope, the fixed part and their ratios to ``base``'s."""
+    import numpy as np
+
+    rng = np.random.default_rng(0)
+    boot: dict[str, np.ndarray] = {}
+    print(f"  fit, loop CPU per run = fixed + slope x iterations (Theil-Sen over {len(fits[base][0])} seeds, "
+          f"[95 % bootstrap], least squares after /):")
+    for c, (x, y) in fits.items():
+        x, y = np.asarray(x, float), np.asarray(y, float) * 1e3
+        fixed, slope = theil_sen(x, y)
+        lf, ls = least_squares(x, y) if len(set(x.tolist())) > 1 else (float("nan"), float("nan"))
+        draws = []
+        for _ in range(resamples):
+            k = rng.integers(len(x), size=len(x))
+            draws.append(theil_sen(x[k], y[k]))
+        boot[c] = np.array(draws)
+        lo, hi = np.percentile(boot[c], [2.5, 97.5], axis=0)
+        print(f"    {c[-30:]:30} slope {slope * 1e3:6.1f} us/it [{lo[1] * 1e3:.1f}, {hi[1] * 1e3:.1f}] / {ls * 1e3:.1f}, "
+              f"fixed {fixed:6.2f} ms [{lo[0]:.2f}, {hi[0]:.2f}] / {lf:.2f}; iterations {int(x.min())}-{int(x.max())}")
+    for c in fits:
+        if c == base:
+            continue
+        fixed_b, slope_b = theil_sen(*[np.asarray(v, float) for v in fits[base]])
+        fixed_c, slope_c = theil_sen(*[np.asarray(v, float) for v in fits[c]])
+        r = boot[c] / boot[base]
+        lo, hi = np.percentile(r, [2.5, 97.5], axis=0)
+        print(f"    {c[-30:]} / {base[-30:]}: slope {slope_c / slope_b:.2f} [{lo[1]:.2f}, {hi[1]:.2f}], "
+              f"fixed {fixed_c / fixed_b:.2f} [{lo[0]:.2f}, {hi[0]:.2f}]")
+
+
 def print_profile(name: str, rows: list[dict]) -> None:
     its = max(sum(r["iterations"] for r in rows), 1)
     got: dict[str, float] = {}
@@ -265,6 +330,7 @@ def interleaved(args) -> int:
         for c in (checkouts if rnd % 2 == 0 else checkouts[::-1]):
             cmd = [sys.executable, str(Path(__file__).resolve()), "--json", "--scenes", args.scenes,
                    "--seeds", str(args.seeds), "--replays", str(args.replays)] + (["--profile"] if args.profile else [])
+            cmd += [a for kv in args.set for a in ("--set", kv)]
             t0 = time.strftime("%H:%M:%S", time.gmtime())
             done = subprocess.run(cmd, cwd=c, capture_output=True, text=True, check=True)
             runs[c].append(json.loads(done.stdout))
@@ -284,6 +350,8 @@ def interleaved(args) -> int:
                   f"{min(s['ok'] for s in ss)}/{args.seeds * args.replays}")
         for c in checkouts[1:]:
             print(f"  pooled us/it, median over rounds: {c[-30:]} / {base[-30:]} = {pooled[c] / pooled[base]:.2f}")
+        if args.fit:
+            print_fit(name, {c: per_seed(runs[c], name) for c in checkouts}, base)
         if args.profile:
             for c in checkouts:
                 print_profile(c[-30:], runs[c][-1][name])
@@ -299,13 +367,17 @@ def main() -> int:
     p.add_argument("--json", action="store_true", help="per-seed figures as JSON (for --checkouts)")
     p.add_argument("--checkouts", help="comma-separated checkout roots: run each in turn, interleaved")
     p.add_argument("--rounds", type=int, default=2, help="with --checkouts: runs per checkout (A B B A ...)")
+    p.add_argument("--fit", action="store_true",
+                   help="fit loop CPU per run = fixed + slope x iterations over the seeds (Theil-Sen, bootstrap intervals)")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                   help="a setting for every plan, as api.plan's overrides (e.g. algorithm=rrt for long runs); repeatable")
     args = p.parse_args()
     if args.checkouts:
         return interleaved(args)
     sys.path.insert(0, str(Path.cwd()))
     import json
 
-    got = measure(args.scenes.split(","), args.seeds, args.replays, args.profile)
+    got = measure(args.scenes.split(","), args.seeds, args.replays, args.profile, dict(_setting(kv) for kv in args.set))
     if args.json:
         print(json.dumps(got))
         return 0
@@ -314,9 +386,22 @@ def main() -> int:
         s = summary(rows)
         print(f"{name:15} {s['iterations']:6.0f} {s['us_it']:10.1f} {s['pooled_us_it']:12.1f} {s['ms_run']:11.2f} "
               f"{s['search_ms']:12.1f} {s['ok']:>5}/{args.seeds * args.replays}", flush=True)
+        if args.fit:
+            print_fit(name, {".": ([r["iterations"] for r in rows], [r["best_s"] for r in rows])}, ".")
         if args.profile:
             print_profile(name, rows)
     return 0
+
+
+def _setting(kv: str) -> tuple[str, object]:
+    """``key=value`` with the value as an int, a float or a string."""
+    key, _, value = kv.partition("=")
+    for kind in (int, float):
+        try:
+            return key, kind(value)
+        except ValueError:
+            pass
+    return key, value
 
 
 if __name__ == "__main__":
