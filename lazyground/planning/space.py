@@ -80,6 +80,16 @@ class ConfigSpace:
         object.__setattr__(self, "unit_linear", self.embeds_as_is and fast)
 
     @property
+    def kernels(self):
+        """:mod:`lazyground.planning.linear_kernels` in a unit-weight linear space (every arm here), else None
+        (numba: imported only by such a space; a car never loads it)."""
+        if not self.unit_linear:
+            return None
+        from lazyground.planning import linear_kernels
+
+        return linear_kernels
+
+    @property
     def dim(self) -> int:
         return len(self.names)
 
@@ -152,8 +162,15 @@ class ConfigSpace:
         them once; and each row's segment index.
 
         Linear straight segments go in a few numpy calls over all of them: the same numbers as segment by
-        segment (a + t (b - a) with t = i / n, elementwise), without a dozen numpy calls per segment (#31)."""
+        segment (a + t (b - a) with t = i / n, elementwise), without a dozen numpy calls per segment (#31);
+        in a unit-weight space in one compiled call (:attr:`kernels`), the same numbers again."""
         segments = list(segments)
+        kernels = self.kernels if type(self).discretize is ConfigSpace.discretize else None
+        if kernels is not None and segments:
+            try:
+                return kernels.discretize_path(path, np.array(segments, np.int64), resolution)
+            except TypeError:  # (path not a contiguous float array: numpy's calls below)
+                pass
         skips = [i > 0 and segments[i - 1] == k - 1 for i, k in enumerate(segments)]
         if self._w2_list is None or type(self).discretize is not ConfigSpace.discretize or not segments:
             chunks = [self.discretize(path[k], path[k + 1], resolution, skip_first=skip) for k, skip in zip(segments, skips)]
