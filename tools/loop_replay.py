@@ -42,6 +42,10 @@ FETCH = ("fetch_cans_1", "fetch_cans_2", "fetch_boxes_3")
 ANSWERS = ("config_free", "config_unpadded_free", "configs_free", "edge_free", "edge_fraction")
 
 
+class OffRecord(Exception):
+    """A replay asked more than the record holds: it did not run as the recorded plan."""
+
+
 class Recorder:
     """A checker or goal source whose answers are logged in call order (record) or read back (replay)."""
 
@@ -52,6 +56,8 @@ class Recorder:
 
     def _answer(self, name, *args):
         if self._replay:
+            if self._at == len(self._log):
+                raise OffRecord(name)
             out = self._log[self._at]
             self._at += 1
             return out
@@ -89,6 +95,8 @@ class GoalRecorder(Recorder):
 
     def draw(self, n, rng, stop):
         if self._replay:  # (the log is a fresh copy per replay: nothing is copied while the replay is timed)
+            if self._at == len(self._log):
+                raise OffRecord("draw")
             samples, state = self._log[self._at]
             self._at += 1
             rng.bit_generator.state = state
@@ -152,10 +160,14 @@ def replay(rec: dict, prof=None) -> tuple[float, bool]:
     if prof is not None:
         prof.enable()
     t0 = time.process_time()
-    r = rrt.solve(rec["space"], ck, gs, rec["start"], settings, rng, rec["seed"], False, **stop)
+    try:
+        r = rrt.solve(rec["space"], ck, gs, rec["start"], settings, rng, rec["seed"], False, **stop)
+    except OffRecord:
+        return time.process_time() - t0, False
+    finally:
+        if prof is not None:
+            prof.disable()
     dt = time.process_time() - t0
-    if prof is not None:
-        prof.disable()
     same = r.iterations == rec["iterations"] and (
         (r.path is None) == (rec["path"] is None) and (r.path is None or np.array_equal(r.path, rec["path"])))
     return dt, same
@@ -228,7 +240,7 @@ def measure(scenes, seeds: int, replays: int, profile: bool, overrides: dict | N
             for _ in range(replays):
                 dt, same = replay(rec)
                 best, ok = min(best, dt), ok + same
-            row = dict(seed=seed, iterations=rec["iterations"], best_s=best, ok=ok,
+            row = dict(seed=seed, iterations=rec["iterations"], best_s=best, ok=ok, replays=replays,
                        search_ms=(r.time_s - r.goal_sampling_s) * 1e3)
             if profile:
                 prof = cProfile.Profile(time.process_time)
@@ -268,10 +280,11 @@ def least_squares(x, y) -> tuple[float, float]:
 
 
 def per_seed(runs: list[dict], name: str) -> tuple[list[int], list[float]]:
-    """Each seed's iterations and its fastest replay over the rounds (seconds)."""
+    """Each seed's iterations and its fastest replay over the rounds (seconds); seeds whose replays did not all
+    end as the recorded run are left out."""
     rows = [run[name] for run in runs]
-    return ([r["iterations"] for r in rows[0]],
-            [min(rr[k]["best_s"] for rr in rows) for k in range(len(rows[0]))])
+    keep = [k for k in range(len(rows[0])) if all(rr[k]["ok"] == rr[k]["replays"] for rr in rows)]
+    return [rows[0][k]["iterations"] for k in keep], [min(rr[k]["best_s"] for rr in rows) for k in keep]
 
 
 def print_fit(name: str, fits: dict[str, tuple[list[int], list[float]]], base: str, resamples: int = 2000) -> None:
@@ -281,8 +294,8 @@ def print_fit(name: str, fits: dict[str, tuple[list[int], list[float]]], base: s
 
     rng = np.random.default_rng(0)
     boot: dict[str, np.ndarray] = {}
-    print(f"  fit, loop CPU per run = fixed + slope x iterations (Theil-Sen over {len(fits[base][0])} seeds, "
-          f"[95 % bootstrap], least squares after /):")
+    print("  fit, loop CPU per run = fixed + slope x iterations (Theil-Sen over the seeds whose replays matched, "
+          "[95 % bootstrap], least squares after /):")
     for c, (x, y) in fits.items():
         x, y = np.asarray(x, float), np.asarray(y, float) * 1e3
         fixed, slope = theil_sen(x, y)
@@ -294,7 +307,7 @@ def print_fit(name: str, fits: dict[str, tuple[list[int], list[float]]], base: s
         boot[c] = np.array(draws)
         lo, hi = np.percentile(boot[c], [2.5, 97.5], axis=0)
         print(f"    {c[-30:]:30} slope {slope * 1e3:6.1f} us/it [{lo[1] * 1e3:.1f}, {hi[1] * 1e3:.1f}] / {ls * 1e3:.1f}, "
-              f"fixed {fixed:6.2f} ms [{lo[0]:.2f}, {hi[0]:.2f}] / {lf:.2f}; iterations {int(x.min())}-{int(x.max())}")
+              f"fixed {fixed:6.2f} ms [{lo[0]:.2f}, {hi[0]:.2f}] / {lf:.2f}; {len(x)} seeds, iterations {int(x.min())}-{int(x.max())}")
     for c in fits:
         if c == base:
             continue
@@ -332,7 +345,9 @@ def interleaved(args) -> int:
                    "--seeds", str(args.seeds), "--replays", str(args.replays)] + (["--profile"] if args.profile else [])
             cmd += [a for kv in args.set for a in ("--set", kv)]
             t0 = time.strftime("%H:%M:%S", time.gmtime())
-            done = subprocess.run(cmd, cwd=c, capture_output=True, text=True, check=True)
+            done = subprocess.run(cmd, cwd=c, capture_output=True, text=True)
+            if done.returncode:
+                raise SystemExit(f"{c}: {' '.join(cmd[1:])} failed:\n{done.stderr[-2000:]}")
             runs[c].append(json.loads(done.stdout))
             print(f"# round {rnd + 1} {c} {t0}-{time.strftime('%H:%M:%S', time.gmtime())} UTC, "
                   f"load {open('/proc/loadavg').read().split()[0] if Path('/proc/loadavg').exists() else '?'}", flush=True)
@@ -387,7 +402,7 @@ def main() -> int:
         print(f"{name:15} {s['iterations']:6.0f} {s['us_it']:10.1f} {s['pooled_us_it']:12.1f} {s['ms_run']:11.2f} "
               f"{s['search_ms']:12.1f} {s['ok']:>5}/{args.seeds * args.replays}", flush=True)
         if args.fit:
-            print_fit(name, {".": ([r["iterations"] for r in rows], [r["best_s"] for r in rows])}, ".")
+            print_fit(name, {".": per_seed([got], name)}, ".")
         if args.profile:
             print_profile(name, rows)
     return 0

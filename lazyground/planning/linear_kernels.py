@@ -144,6 +144,17 @@ def discretize_path(path, ks, resolution):
     return qs, owner
 
 
+@njit(f"void({_P}, {_V})", cache=True)
+def segment_lengths(path, out):
+    """out[k] = |path[k + 1] - path[k]| summed in coordinate order (ConfigSpace.distance, unit weights)."""
+    for k in range(path.shape[0] - 1):
+        s = 0.0
+        for j in range(path.shape[1]):
+            v = path[k + 1, j] - path[k, j]
+            s += v * v
+        out[k] = np.sqrt(s)
+
+
 @njit(f"boolean({_P}, {_V}, {_V})", cache=True)
 def all_inside(qs, lower, upper):
     """Whether every row lies within [lower - 1e-9, upper + 1e-9] (motion_validator.samples_free's test)."""
@@ -168,4 +179,4 @@ def warm_up() -> tuple[float, bool]:
 
 _IMPORT_S = time.perf_counter() - _T0
 _COMPILED = any(sum(k.stats.cache_misses.values()) for k in (nearest, nearest_k, steer, nearest_steer,
-                                                                    discretize_path, all_inside))
+                                                                    discretize_path, segment_lengths, all_inside))

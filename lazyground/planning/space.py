@@ -24,6 +24,14 @@ from lazyground.geometry import wrap_angle
 from lazyground.planning.motion_validator import MotionValidator
 
 FLOAT_PATH_MAX_DIM = 16  # OpenBLAS's dot sums 16 or more entries in blocks: numpy's rounding, not a loop's
+_KERNELS: list = []  # lazyground.planning.linear_kernels once loaded (ConfigSpace.kernels; not on the space: it pickles)
+
+
+def _load_kernels():
+    from lazyground.planning import linear_kernels
+
+    _KERNELS.append(linear_kernels)
+    return linear_kernels
 
 
 @dataclass(frozen=True)
@@ -82,12 +90,10 @@ class ConfigSpace:
     @property
     def kernels(self):
         """:mod:`lazyground.planning.linear_kernels` in a unit-weight linear space (every arm here), else None
-        (numba: imported only by such a space; a car never loads it)."""
+        (numba: imported at the first ask by such a space; a car never loads it)."""
         if not self.unit_linear:
             return None
-        from lazyground.planning import linear_kernels
-
-        return linear_kernels
+        return _KERNELS[0] if _KERNELS else _load_kernels()
 
     @property
     def dim(self) -> int:
@@ -217,6 +223,14 @@ class ConfigSpace:
         return bool((q >= self.lower - tol).all() and (q <= self.upper + tol).all())  # methods: np.all costs ~2x here
 
     def path_length(self, path: np.ndarray) -> float:
+        kernels = self.kernels
+        if kernels is not None and len(path) > 1:  # (the segments' distances in one compiled call, then the same sum)
+            out = np.empty(len(path) - 1)
+            try:
+                kernels.segment_lengths(path, out)
+                return float(sum(out.tolist()))
+            except TypeError:  # (not a contiguous float array)
+                pass
         return float(sum(self.distance(a, b) for a, b in zip(path[:-1], path[1:])))
 
     def motion_validator(self, checker) -> MotionValidator:

@@ -91,6 +91,7 @@ def test_a_path_s_samples_and_bounds_are_numpy_s():
         assert qs.tobytes() == qs_ref.tobytes() and np.array_equal(owner, owner_ref)
         inside = np.all((qs >= space.lower - 1e-9) & (qs <= space.upper + 1e-9), axis=1)
         assert K.all_inside(qs, space.lower, space.upper) == bool(inside.all())
+        assert space.path_length(path) == ref.path_length(path)
 
 
 @pytest.mark.parametrize("kernels", [True, False], ids=["compiled", "numpy"])
