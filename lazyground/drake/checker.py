@@ -9,7 +9,6 @@ checker per resolution.
 
 from __future__ import annotations
 
-import functools
 import math
 import time
 
@@ -90,7 +89,6 @@ class DrakeChecker:
             self._F, self._I = F, I
             # what the kernels write: open pairs then the code, an edge's step count and ends, a single check's q
             self._open, self._steps, self._ends, self._one = call_blocks(F, I)
-            self._edge_open = functools.partial(edge_call, F, I)  # (a, b, resolution, mode, first, stop, steps)
         self.certified = 0  # configurations the certifier proved free
         self._pairs = {}  # the certifier's pairs as SceneGraph's (id, id, padding), as they come up (_pair)
 
@@ -270,7 +268,7 @@ class DrakeChecker:
             ValueError: ``resolution`` is not this checker's fixed resolution.
         """
         if self.compiled is not None:
-            return bool(self._certified_edge(a, b, resolution, fraction=False))
+            return self._certified_edge(a, b, resolution, BISECTION)
         return bool(self._edge(self._edge_free, a, b, resolution))
 
     def _edge_free(self, qa: np.ndarray, qb: np.ndarray) -> bool:
@@ -298,7 +296,7 @@ class DrakeChecker:
             ValueError: ``resolution`` is not this checker's fixed resolution.
         """
         if self.compiled is not None:
-            return self._certified_edge(a, b, resolution, fraction=True)
+            return self._certified_edge(a, b, resolution, SEQUENCE)
         measure = self._edge(self.drake.MeasureEdgeCollisionFree, a, b, resolution)
         return max(0.0, measure.alpha_or(0.0))
 
@@ -314,44 +312,36 @@ class DrakeChecker:
         """
         if self.compiled is None:
             raise ValueError("edge_part_free needs the compiled certifier")
-        return bool(self._certified_edge(a, b, resolution, fraction=False, part=(first, stop)))
+        return self._certified_edge(a, b, resolution, INTERIOR_FIRST, first, -1 if stop is None else stop)
 
-    def _certified_edge(self, a: np.ndarray, b: np.ndarray, resolution: float, fraction: bool,
-                        part: tuple[int, int | None] | None = None):
-        """Drake's ``CheckEdgeCollisionFree`` (``fraction``: ``MeasureEdgeCollisionFree``'s free fraction) at
+    def _certified_edge(self, a: np.ndarray, b: np.ndarray, resolution: float, mode: int, first: int = 0,
+                        stop: int = -1):
+        """Drake's ``CheckEdgeCollisionFree`` (``mode`` SEQUENCE: ``MeasureEdgeCollisionFree``'s free fraction) at
         ``resolution``, with the certifier: the same steps (q_k = qa + k / n (qb - qa), k = 0..n, n =
         max(1, ceil(Drake's distance / resolution)); the certifier's margin covers the last bit by which Drake's
         interpolation may differ, and a step it leaves open is Drake's interpolation), certified in one compiled
-        call (:func:`lazyground.drake.edge_kernel.edge_open`: the ends, the step count, the order and the steps)
+        call (:func:`lazyground.drake.edge_kernel.edge_call`: the ends, the step count, the order and the steps)
         in bisection order (sequentially for the fraction) up to the first one it cannot prove, which
         SceneGraph decides (:meth:`_open_free`) unless it proves a collision there; then on from there. So the answer is Drake's: a step is
         called colliding by Drake or by a proof of it, and every other step is proven free."""
         if self._resolution is None:
             self._resolution = resolution
         t0 = _clock()
-        mode = SEQUENCE if fraction else BISECTION if part is None else INTERIOR_FIRST
-        first, stop = (0, -1) if part is None else (part[0], -1 if part[1] is None else part[1])
-        p = self._edge_call(a, b, resolution, mode, first, stop)
+        steps = 0 if self._packet else self._drake_steps(a, b, resolution)
+        try:  # a and b as they come (contiguous float arrays from a planner: the call's one signature, warm_up)
+            p = edge_call(self._F, self._I, a, b, resolution, mode, first, stop, steps)
+        except TypeError:  # anything else as such arrays
+            p = edge_call(self._F, self._I, np.array(a, float), np.array(b, float), float(resolution), mode, int(first),
+                          int(stop), steps)
         if p == ALL_FREE:
-            out = 1.0 if fraction else True
-        elif p < ALL_FREE and not fraction:  # a step proven colliding: most of a planner's edges
+            out = 1.0 if mode == SEQUENCE else True
+        elif p < ALL_FREE and mode != SEQUENCE:  # a step proven colliding: most of a planner's edges
             out = False
         else:
-            out = self._open_steps(p if p >= 0 else -2 - p, mode, stop, fraction)
+            out = self._open_steps(p if p >= 0 else -2 - p, mode, stop, mode == SEQUENCE)
         self.check_time += _clock() - t0
         self.checks += 1
         return out
-
-    def _edge_call(self, a, b, resolution: float, mode: int, first: int, stop: int) -> int:
-        """:func:`lazyground.drake.edge_kernel.edge_call` on a -> b: one compiled call, a and b as they come
-        (contiguous float arrays from the planner: the call's only signature, :func:`lazyground.drake.compiled.warm_up`),
-        else as such arrays."""
-        steps = 0 if self._packet else self._drake_steps(a, b, resolution)
-        try:
-            return edge_call(self._F, self._I, a, b, resolution, mode, first, stop, steps)
-        except TypeError:
-            return edge_call(self._F, self._I, np.array(a, float), np.array(b, float), float(resolution), mode,
-                             int(first), int(stop), steps)
 
     def _drake_steps(self, a: np.ndarray, b: np.ndarray, resolution: float) -> int:
         """The step count of a -> b from Drake's own distance (where edge_kernel cannot sum as this Drake does)."""
