@@ -16,6 +16,8 @@ from lazyground.planning.problem import (
     PlanResult,
     PlanStatus,
     ValidityChecker,
+    proven_unreachable,
+    unreachable_note,
 )
 from lazyground.planning.motion_validator import MotionValidator, samples_free
 from lazyground.planning.space import ConfigSpace
@@ -219,13 +221,20 @@ class Search:
     def region_summary(self) -> str:
         """Each goal region's tries (grasps, placements or configurations), valid ones, and why the others failed."""
         parts = []
+        proven = unreachable_note(self.goals.regions, self.goals.stats)
         for region, st in zip(self.goals.regions, self.goals.stats):
+            if st.unreachable:
+                continue
             why = ", ".join(f"{k} x{v}" for k, v in sorted(st.failures.items()))
             tried = f"{st.attempts} {TRIED.get(region.kind, 'configurations')} tried, {st.valid} valid"
             parts.append(f"{region.id}: {tried} ({why})" if why else f"{region.id}: {tried}" if st.attempts else f"{region.id}: not tried")
-        return "; ".join(parts)
+        return "; ".join(parts + ([proven] if proven else []))
 
     def no_goal(self) -> PlanResult:
+        _, n, why = proven_unreachable(self.goals.regions, self.goals.stats)
+        if why and all(st.unreachable for st in self.goals.stats):  # one line, not a list of untried regions
+            return self.result(PlanStatus.NO_VALID_GOAL, f"no reachable goal: all {n} interpretation(s) proven unreachable "
+                               f"by the {why} (the disc inscribed in the robot's footprint has no way there from the start)")
         return self.result(PlanStatus.NO_VALID_GOAL, "no valid goal configuration in any goal region: " + self.region_summary())
 
     def _offsets(self) -> list[int]:
