@@ -60,12 +60,14 @@ def planar_reach(world) -> PlanarReach | None:
         elif s is not None:
             solids.append(s)
     space = world.space
+    # the planner holds every configuration it checks to the limits (motion_validator.samples_free), so the disc
+    # centre stays within them, widened by the disc's offset from the body frame
     reach = float(np.hypot(*offset))
     lower = np.array([space.lower[index[0]], space.lower[index[1]]]) - reach
     upper = np.array([space.upper[index[0]], space.upper[index[1]]]) + reach
     r = radius + padding
     cell = max(r / CELLS_PER_RADIUS, math.sqrt(float(np.prod(upper - lower)) / MAX_CELLS))
-    grid = reach_grid(lower, upper, r, solids, cell)
+    grid = reach_grid(lower, upper, r, solids, cell, bounded=True)
     prior = PlanarReach(grid, frozenset(), index, offset, tuple(left_out))
     c = prior.centres(world.start)[0]
     start = frozenset(grid.components(c - 1e-9, c + 1e-9))

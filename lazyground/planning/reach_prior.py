@@ -9,13 +9,18 @@ The prior answers this on a grid of cells of side ``h``, in any number of dimens
   into an obstacle, so that the ball of radius ``r`` about every point of the cell does: a blocked
   cell holds no ball centre of a valid configuration (obstacles are under-approximated: a shape
   the caller cannot represent soundly is left out, which only frees cells);
-* the grid has a ring of free cells around the bounds, so whatever leaves them is one component;
+* the grid has a ring of cells around the bounds: free, so that whatever leaves the bounds is one
+  component; or blocked, for a robot whose planner holds every configuration it checks to its
+  limits (``bounded``; :func:`lazyground.planning.motion_validator.samples_free` does for a car's
+  curves);
 * free cells are labelled in components, each cell joined to every neighbour it touches, corners
   included (``scipy.ndimage.label``): any continuous motion of a ball centre passes through
   cells that touch one after another, so a goal box none of whose cells shares a component with
   the start is unreachable.
 
-Sound, not complete: a goal the prior keeps may still be unreachable. :class:`PlanarReach` maps
+Sound, not complete: a goal the prior keeps may still be unreachable. A planner's path is a sequence of
+checked configurations; when they lie closer than a cell apart (a car's: 0.1 m, the cells 0.11 m), the
+cells of consecutive ones touch, so the argument holds for the path as checked, not only for continuous motion. :class:`PlanarReach` maps
 a planar robot's (x, y, heading) configuration boxes onto the grid of its disc centre.
 """
 
@@ -28,7 +33,7 @@ import numpy as np
 from scipy import ndimage
 
 EPS = 1e-6  # metres: a cell is blocked only if its ball reaches this far into an obstacle (float slack)
-TOLERANCE = 1e-6  # a goal box is widened by this before it is looked up (ConfigRegion.contains' tolerance)
+TOLERANCE = 1e-6  # goal boxes and bounds are widened by this (ConfigRegion.contains' tolerance, limits held to 1e-9)
 
 
 @dataclass(frozen=True)
@@ -89,19 +94,24 @@ class ReachGrid:
         return self.labels[tuple(idx.T)] == 0
 
 
-def reach_grid(lower, upper, radius: float, solids: list[Solid], cell: float) -> ReachGrid:
-    """The grid of cells of side ``cell`` over [lower, upper], with a free ring around it.
+def reach_grid(lower, upper, radius: float, solids: list[Solid], cell: float, bounded: bool = False) -> ReachGrid:
+    """The grid of cells of side ``cell`` over [lower, upper] and a ring of cells around it.
 
     Args:
         lower, upper: the bounds of the ball centres (n values each).
         radius: the ball's radius (a cell is blocked for ``radius - cell sqrt(n) / 2``).
         solids: the obstacles (under-approximations of them).
         cell: the cells' side.
+        bounded: the ball centre never leaves [lower, upper] (a planner that holds every configuration
+            to its limits): the ring is blocked. Otherwise it is free, one component with everything
+            beyond the bounds (the obstacles there are not on the grid).
     """
-    lower, upper = np.asarray(lower, float), np.asarray(upper, float)
+    # the bounds widened by TOLERANCE (a planner holds configurations to its limits within a float margin), each
+    # point of them in an inner cell (floor + 1 cells: the upper bound too), one ring of cells outside
+    lower, upper = np.asarray(lower, float) - TOLERANCE, np.asarray(upper, float) + TOLERANCE
     n = len(lower)
-    origin = lower - cell  # one ring of cells outside the bounds
-    shape = tuple(int(k) for k in np.ceil((upper - lower) / cell).astype(int) + 2)
+    origin = lower - cell
+    shape = tuple(int(k) for k in np.floor((upper - lower) / cell).astype(int) + 3)
     free = np.ones(shape, bool)
     rho = radius - cell * math.sqrt(n) / 2 - EPS
     if rho > 0:
@@ -110,7 +120,7 @@ def reach_grid(lower, upper, radius: float, solids: list[Solid], cell: float) ->
     ring = np.zeros(shape, bool)
     for axis in range(n):
         ring[(slice(None),) * axis + (0,)] = ring[(slice(None),) * axis + (-1,)] = True
-    free |= ring
+    free = free & ~ring if bounded else free | ring
     labels, _ = ndimage.label(free, structure=np.ones((3,) * n, bool))
     return ReachGrid(origin, cell, radius, labels)
 

@@ -132,3 +132,17 @@ def test_an_offset_disc_keeps_a_region_whose_turned_disc_reaches_the_start_side(
     facing_on = ConfigRegion("g", "park:g", "g", (10.2, 4.9, -0.1), (10.3, 5.1, 0.1), wrap=(2,))
     assert prior.keeps(facing_back) and not prior.keeps(facing_on)
     assert np.allclose(prior.centres(np.array([[1.0, 2.0, math.pi / 2]])), [[1.0, 3.5]])
+
+
+def test_a_wall_from_bound_to_bound_closes_the_far_side_only_for_a_bounded_ball():
+    """A wall across the whole bounds: a ball held to the bounds (a car: the planner holds every checked
+    configuration to its limits) cannot pass; one that may leave them goes round through the free ring."""
+    wall = [Solid((15.0, 12.0), (15.0, 0.15))]
+    for bounded in (True, False):
+        grid = reach_grid((0.0, 0.0), (30.0, 20.0), R, wall, 0.1, bounded=bounded)
+        prior = _prior(grid, (3.0, 3.0))
+        assert prior.keeps(_region(20.0, 17.0)) is not bounded
+        assert prior.keeps(_region(20.0, 5.0))
+    bounded = reach_grid((0.0, 0.0), (30.0, 20.0), R, [], 0.1, bounded=True)
+    assert not bounded.blocked([[30.0, 20.0], [0.0, 0.0], [30.0, 0.0]]).any()  # the bounds themselves are free cells
+    assert bounded.blocked([[30.2, 20.0], [-0.2, 0.0]]).all()  # beyond them: the blocked ring
