@@ -132,15 +132,11 @@ def footprint(shape, X_WG: np.ndarray, z0: float, z1: float):
         represented soundly here (left out).
     """
     R, p = X_WG[:3, :3], X_WG[:3, 3]
-    if isinstance(shape, Sphere):
-        d = max(z0 - p[2], p[2] - z1, 0.0)
-        r = shape.radius()
-        return Solid((p[0], p[1]), (0.0, 0.0), math.sqrt(r * r - d * d)) if d < r else None
-    if isinstance(shape, Capsule):
-        if _vertical_axis(R) != 2:
+    if isinstance(shape, (Sphere, Capsule)):  # a sphere: a capsule of length 0
+        h = shape.length() / 2 if isinstance(shape, Capsule) else 0.0
+        if h and _vertical_axis(R) != 2:
             return False
-        h = shape.length() / 2
-        d = max(z0 - (p[2] + h), (p[2] - h) - z1, 0.0)
+        d = max(z0 - (p[2] + h), (p[2] - h) - z1, 0.0)  # from the band to the nearest point of its axis
         r = shape.radius()
         return Solid((p[0], p[1]), (0.0, 0.0), math.sqrt(r * r - d * d)) if d < r else None
     if isinstance(shape, Cylinder):
