@@ -65,13 +65,13 @@ def _patch() -> None:
         STATE["search"] = s
         return grow(s, start)
 
-    def extend_(s, tree, near, q):
-        b = extend(s, tree, near, q)
-        if tree is not s.trees[0]:
+    def extend_(s, tree, q, step, label=None):
+        near, b = extend(s, tree, q, step, label)
+        if tree is not s.trees[0] and near >= 0:
             STATE["counts"]["goal steps", "reachable" if _reachable(s, tree.labels[near]) else "blocked", b >= 0] += 1
-        else:
+        elif tree is s.trees[0]:
             STATE["counts"]["start steps", b >= 0] += 1
-        return b
+        return near, b
 
     def add_(self, q, parent, label, goal_biased, checked):
         s = STATE["search"]

@@ -86,6 +86,8 @@ class Search:
         self._verified: set[bytes] = set()  # segments (endpoint bytes) that passed the fine re-check
         self.selector = make_strategy(settings.strategy, StrategySettings(resample_threshold=settings.resample_threshold))
         self._covers = bool(getattr(self.selector, "covers_regions", False))
+        # the regions coverage paces samples for: those not proven unreachable before the search (a reach prior)
+        self._coverable = sum(not st.unreachable for st in goals.stats)
         self._attempts0: int | None = None  # the goal source's attempt count when coverage began
         self.trees: list[Tree] = []  # the planner's trees, start tree first (for the result)
         self.failed_from: list[tuple[int, int]] = []  # (tree, node) of failed goal-directed extensions
@@ -111,10 +113,10 @@ class Search:
         """Whether any goal sample exists yet; draws a batch when none does.
 
         A strategy that paces coverage (``covers_regions``) gets one more sample each iteration
-        until there are as many samples as goal regions (lazyground.planning.cover)."""
+        until there are as many samples as goal regions not proven unreachable (lazyground.planning.cover)."""
         if not self.samples:
             self.draw(self.settings.initial_goal_samples)
-        elif self._covers and len(self.samples) < len(self.goals.regions) and self._ik_in_budget():
+        elif self._covers and len(self.samples) < self._coverable and self._ik_in_budget():
             self.draw(1)
         return bool(self.samples)
 
