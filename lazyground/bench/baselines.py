@@ -92,8 +92,11 @@ class EagerSource:
             return []
         out: list[GoalSample] = []
         todo = lambda: [j for j, st in enumerate(self.stats) if st.valid == 0 and not self._inner.region_exhausted(j)]
+        # as many draws per round as regions, less those the reach prior dropped (they yield none): with the
+        # prior on, 4 open regions of 512 at N = 256 got 128 goal states each, and eager 4-5 s instead of ~1 s
+        n = sum(not st.unreachable for st in self.stats)
         while todo() and not stop.should_stop():
-            out += self._inner.draw(len(self.regions), rng, stop)
+            out += self._inner.draw(n, rng, stop)
         self._done = not todo()
         return out
 
