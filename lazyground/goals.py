@@ -76,6 +76,9 @@ class RoundRobinGoalSource:
         # kept as attempts are made, so that no draw scans every region (issue #33: hundreds of regions)
         self.total_attempts = self.total_valid = 0
         self._open = sorted(j for j in range(len(self.regions)) if not self.region_exhausted(j))  # not given up yet
+        # the strategy's choice of regions (the search sets it: lazyground.planning.region_bandit); None: round robin
+        self.chooser = None
+        self._schedule: list[int] = []  # with a chooser: the region of each attempt counter, blocks appended as needed
 
     def seed_near(self) -> bool:
         """Solve goals from the step's start from now on (the branch nearest it); False: this source cannot."""
@@ -126,6 +129,8 @@ class RoundRobinGoalSource:
         else:
             st.valid += 1
             self.total_valid += 1
+        if self.chooser is not None:
+            self.chooser.observe(j, sample is not None, reason in self.hopeless_reasons)
 
     def draw(self, n: int, rng: np.random.Generator, stop: StopCondition) -> list[GoalSample]:
         """Up to n new valid samples, round-robin over the regions; fewer if attempts run out or ``stop``
@@ -162,6 +167,8 @@ class RoundRobinGoalSource:
         more planned attempts than it has left before it is given up (as if each
         planned attempt failed). Fewer than ``k`` when no region can take one.
         """
+        if self.chooser is not None:
+            return self._chosen(position, k)
         m, open_ = len(self.regions), self._open
         left: dict[int, int] = {}  # attempts each visited region has left (only those visited: no scan)
         out: list[tuple[int, int]] = []
@@ -177,6 +184,29 @@ class RoundRobinGoalSource:
             if j not in left:
                 st = self.stats[j]
                 left[j] = self.region_budget(j) - st.attempts if st.valid == 0 else k
+            if left[j] > 0:
+                left[j] -= 1
+                out.append((j, position))
+                idle = 0
+            else:
+                idle += 1
+        return out
+
+    def _chosen(self, position: int, k: int) -> list[tuple[int, int]]:
+        """:meth:`plan` in the chooser's order: counter ``position`` is the schedule's entry ``position``; the schedule
+        grows by the chooser's blocks as the counters pass its end (so a plan made again from a counter is the same,
+        as the batch solver's look-ahead needs). Exhausted regions and those out of attempts are passed over."""
+        out: list[tuple[int, int]] = []
+        left: dict[int, int] = {}
+        idle = 0  # entries passed over in a row
+        while len(out) < k and self._open and idle <= len(self.regions):
+            while position >= len(self._schedule):
+                self._schedule += self.chooser.block(self._open)
+            j = self._schedule[position]
+            position += 1
+            if j not in left:
+                st = self.stats[j]
+                left[j] = 0 if self.region_exhausted(j) else self.region_budget(j) - st.attempts if st.valid == 0 else k
             if left[j] > 0:
                 left[j] -= 1
                 out.append((j, position))

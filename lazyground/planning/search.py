@@ -86,6 +86,9 @@ class Search:
         self._verified: set[bytes] = set()  # segments (endpoint bytes) that passed the fine re-check
         self.selector = make_strategy(settings.strategy, StrategySettings(resample_threshold=settings.resample_threshold))
         self._covers = bool(getattr(self.selector, "covers_regions", False))
+        chooser = getattr(self.selector, "region_chooser", None)  # the strategy picks the regions samples come from
+        if chooser is not None and hasattr(goals, "chooser"):
+            goals.chooser = chooser(goals)
         # the regions coverage paces samples for: those not proven unreachable before the search (a reach prior)
         self._coverable = sum(not st.unreachable for st in goals.stats)
         self._attempts0: int | None = None  # the goal source's attempt count when coverage began
@@ -121,18 +124,17 @@ class Search:
         return bool(self.samples)
 
     def _ik_in_budget(self) -> bool:
-        """Whether goal sampling is within the strategy's budget: ``free_attempts`` plus ``attempts_per_iteration``
-        per search iteration (goal-sampling attempts counted since the first sample; a source that does not
-        count them: always).
+        """Whether goal sampling is within the strategy's budget: the goal source's attempts since the first
+        sample at most the strategy's ``ik_allowance(iterations)`` (a strategy or source without one: always).
 
         Counted, not timed, so that a seed gives the same run on any machine."""
         total = getattr(self.goals, "total_attempts", None)
-        ratio = getattr(self.selector, "attempts_per_iteration", None)
-        if total is None or ratio is None:
+        allowance = getattr(self.selector, "ik_allowance", None)
+        if total is None or allowance is None:
             return True
         if self._attempts0 is None:
             self._attempts0 = total
-        return total - self._attempts0 <= ratio * self.iterations + getattr(self.selector, "free_attempts", 0)
+        return total - self._attempts0 <= allowance(self.iterations)
 
     def select(self) -> int | None:
         """The strategy's goal sample (skipping dead ones), its attempt counted; None if all are dead."""
