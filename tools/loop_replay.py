@@ -7,6 +7,8 @@ Run from the checkout's root (cwd comes first on sys.path)::
     # checkouts compared in one interleaved run (A B B A), each in its own process from its own root;
     # runs on the issue's base 703386a too (its solve() has no stop condition: the replay lifts time_limit)
     nice python3 tools/loop_replay.py --checkouts /tmp/base_703386a,. --rounds 2 --seeds 10 --replays 10 --profile
+    # a generated lot (family key, #33), iteration-capped so that a run is the same on any machine
+    nice python3 tools/loop_replay.py --scenes lot:256:2:0:576 --seeds 10 --replays 3 --cap 2000 --profile
 
 Each seed is planned once for real (``api.plan`` on a prebuilt world) while the checker's answers and the
 goal source's samples (with the generator's state after each draw) are recorded; the search is then run
@@ -66,18 +68,22 @@ class GoalRecorder(Recorder):
         self.stats = inner.stats if inner is not None else stats
         self.sample_time = 0.0
 
-    @property
-    def total_attempts(self):
-        return self._answer("total_attempts_")
+    def _logged(self, read):
+        """read() of the goal source, logged in call order (record) or read back (replay)."""
+        if self._replay:
+            out = self._log[self._at]
+            self._at += 1
+            return out
+        out = read()
+        self._log.append(copy.deepcopy(out))
+        return out
 
-    def total_attempts_(self):
-        return getattr(self._inner, "total_attempts", None)
+    @property
+    def total_attempts(self):  # (the covering strategies' IK budget reads it)
+        return self._logged(lambda: getattr(self._inner, "total_attempts", None))
 
     def exhausted(self):
-        return self._answer("exhausted_")
-
-    def exhausted_(self):
-        return self._inner.exhausted()
+        return self._logged(self._inner.exhausted)
 
     def draw(self, n, rng, stop):
         if self._replay:  # (the log is a fresh copy per replay: nothing is copied while the replay is timed)
@@ -90,7 +96,7 @@ class GoalRecorder(Recorder):
         return out
 
 
-def record(scene_name: str, seed: int, world, scene) -> dict:
+def record(scene_name: str, seed: int, world, scene, cap: int | None = None) -> dict:
     """One real plan, its solve() call's arguments and logs."""
     from lazyground import api
     from lazyground.planning import rrt
@@ -102,7 +108,8 @@ def record(scene_name: str, seed: int, world, scene) -> dict:
         if "space" in rec:  # (a later search of the same request, e.g. an anytime improvement: the first is replayed)
             return real_solve(space, checker, goals, start, settings, rng, seed, keep_tree, **stop)
         ck, gs = Recorder(checker), GoalRecorder(goals)
-        rec.update(space=space, start=start.copy(), settings=settings, state=copy.deepcopy(rng.bit_generator.state),
+        # (a copy as the search found it: a car space caches recent curves, and the search reads them)
+        rec.update(space=copy.deepcopy(space), start=start.copy(), settings=settings, state=copy.deepcopy(rng.bit_generator.state),
                    seed=seed, checks=ck._log, goals=gs._log, regions=goals.regions, stats=copy.deepcopy(goals.stats))
         r = real_solve(space, ck, gs, start, settings, rng, seed, keep_tree, **stop)
         rec["iterations"], rec["path"] = r.iterations, r.path
@@ -112,7 +119,8 @@ def record(scene_name: str, seed: int, world, scene) -> dict:
     for m in targets:
         m.solve = recording
     try:
-        report = api.plan(scene, scene.expect[0].request, seed=seed, world=world)
+        limits = {} if cap is None else dict(max_iterations=cap, time_limit=1e6)  # (a capped run ends the same anywhere)
+        report = api.plan(scene, scene.expect[0].request, seed=seed, world=world, **limits)
     finally:
         for m in targets:
             m.solve = real_solve
@@ -141,10 +149,11 @@ def replay(rec: dict, prof=None) -> tuple[float, bool]:
         stop["stop"] = StopCondition.after(1e9, max_iterations=settings.max_iterations)
     else:  # (703386a, the issue's base: the search's deadline is settings.time_limit)
         settings = dataclasses.replace(settings, time_limit=1e9)
+    space = copy.deepcopy(rec["space"])
     if prof is not None:
         prof.enable()
     t0 = time.process_time()
-    r = rrt.solve(rec["space"], ck, gs, rec["start"], settings, rng, rec["seed"], False, **stop)
+    r = rrt.solve(space, ck, gs, rec["start"], settings, rng, rec["seed"], False, **stop)
     dt = time.process_time() - t0
     if prof is not None:
         prof.disable()
@@ -153,7 +162,8 @@ def replay(rec: dict, prof=None) -> tuple[float, bool]:
     return dt, same
 
 
-CATEGORIES = (("nn", ("planning/nn.py",)), ("space", ("planning/space.py",)), ("tree", ("planning/tree.py",)),
+CATEGORIES = (("nn", ("planning/nn.py",)), ("car", ("planning/car.py", "planning/curves.py", "planning/car_kernels.py",
+                                                     "planning/motion_validator.py")), ("space", ("planning/space.py",)), ("tree", ("planning/tree.py",)),
               ("strategy", ("planning/strategies.py", "planning/weights.py", "planning/cover.py")),
               ("search", ("planning/search.py", "planning/stop.py")), ("loop", ("planning/birrt.py", "planning/rrt.py")),
               ("stand-ins", ("loop_replay.py",)))
@@ -198,23 +208,24 @@ def breakdown(stats) -> dict[str, float]:
     return got
 
 
-def measure(scenes, seeds: int, replays: int, profile: bool) -> dict:
+def measure(scenes, seeds: int, replays: int, profile: bool, cap: int | None = None) -> dict:
     """Per scene, per seed: iterations, the fastest replay's CPU seconds, replays that matched, search less IK;
     with ``profile`` also one cProfiled replay per seed broken down by category (seconds)."""
     import cProfile
     import pstats
 
     from lazyground.drake.world import DrakeWorld
+    from lazyground.bench.families import load_family_scene, parse_key
     from lazyground.scene import load_scene
 
     out = {}
     for name in scenes:
-        scene = load_scene(name)
+        scene = load_family_scene(name) if parse_key(name) is not None else load_scene(name)
         world = DrakeWorld(scene, visual=False)
-        record(name, 1000, world, scene)  # warm-up
+        record(name, 1000, world, scene, cap)  # warm-up
         rows = []
         for seed in range(seeds):
-            rec = record(name, seed, world, scene)
+            rec = record(name, seed, world, scene, cap)
             r = rec["report"].result
             best, ok = float("inf"), 0
             for _ in range(replays):
@@ -264,7 +275,8 @@ def interleaved(args) -> int:
     for rnd in range(args.rounds):
         for c in (checkouts if rnd % 2 == 0 else checkouts[::-1]):
             cmd = [sys.executable, str(Path(__file__).resolve()), "--json", "--scenes", args.scenes,
-                   "--seeds", str(args.seeds), "--replays", str(args.replays)] + (["--profile"] if args.profile else [])
+                   "--seeds", str(args.seeds), "--replays", str(args.replays)] + (["--profile"] if args.profile else []) \
+                + (["--cap", str(args.cap)] if args.cap else [])
             t0 = time.strftime("%H:%M:%S", time.gmtime())
             done = subprocess.run(cmd, cwd=c, capture_output=True, text=True, check=True)
             runs[c].append(json.loads(done.stdout))
@@ -296,6 +308,7 @@ def main() -> int:
     p.add_argument("--seeds", type=int, default=5)
     p.add_argument("--replays", type=int, default=20)
     p.add_argument("--profile", action="store_true", help="also one cProfiled replay per seed, by category")
+    p.add_argument("--cap", type=int, help="plan with this iteration cap and no time limit (a run the same on any machine)")
     p.add_argument("--json", action="store_true", help="per-seed figures as JSON (for --checkouts)")
     p.add_argument("--checkouts", help="comma-separated checkout roots: run each in turn, interleaved")
     p.add_argument("--rounds", type=int, default=2, help="with --checkouts: runs per checkout (A B B A ...)")
@@ -305,7 +318,7 @@ def main() -> int:
     sys.path.insert(0, str(Path.cwd()))
     import json
 
-    got = measure(args.scenes.split(","), args.seeds, args.replays, args.profile)
+    got = measure(args.scenes.split(","), args.seeds, args.replays, args.profile, args.cap)
     if args.json:
         print(json.dumps(got))
         return 0
