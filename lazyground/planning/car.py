@@ -131,6 +131,32 @@ class CarSpace(ConfigSpace):
         self._remember(_key(nodes[best], q), out[:n])
         return best
 
+    @property
+    def compiled_nearest(self) -> bool:
+        """Whether a tree's nearest-node queries go through :meth:`nearest_node` (a Reeds-Shepp car)."""
+        return self.kinematics is Kinematics.REEDS_SHEPP
+
+    def nearest_node(self, points: np.ndarray, sq: np.ndarray, n: int, ids: np.ndarray | None, nodes: np.ndarray,
+                     q: np.ndarray, step: float = 0.0) -> tuple[int, np.ndarray | None, bool]:
+        """A tree's node nearest q (:meth:`closest` of the ``nn_candidates`` nearest in the embedding) in one compiled
+        call (:func:`lazyground.planning.car_kernels.nearest`): (its index or -1, with ``step`` the pose :meth:`steer`
+        gives from it towards q, whether that reached q). ``points``, ``sq``, ``n``: a scanning nearest-neighbour
+        index's arrays over ``nodes[ids]`` (``ids`` None: over ``nodes``). The words are remembered as
+        :meth:`closest` and :meth:`steer` remember them."""
+        q = _vec(q)
+        out, head, q_new = np.empty((curves.MAX_SEGMENTS, 2)), np.empty((curves.MAX_SEGMENTS, 2)), np.empty(3)
+        i, nw, nh, reached = car_kernels.nearest(points, sq, n, _NO_IDS if ids is None else ids, ids is not None, nodes,
+                                                 q, self.weights, self.nn_candidates, self.radius, self.offset, step,
+                                                 out, head, q_new)
+        if i < 0:
+            return -1, None, False
+        a = nodes[i]
+        self._remember(_key(a, q), out[:nw])
+        if step <= 0.0 or reached:
+            return i, q_new if reached else None, reached
+        self._remember(_key(a, q_new), head[:nh])
+        return i, q_new, False
+
     def _closest_dubins(self, nodes, q: np.ndarray) -> int:
         """:meth:`closest` for a Dubins car, in scalar Python (its solver is not compiled)."""
         end, r = self._ref(q), self.radius
@@ -222,6 +248,9 @@ class CarSpace(ConfigSpace):
 def _key(a, b) -> tuple[bytes, bytes]:
     """The curve cache's key of a -> b."""
     return np.asarray(a, float).tobytes(), np.asarray(b, float).tobytes()
+
+
+_NO_IDS = np.zeros(0, np.int64)
 
 
 def _vec(q) -> np.ndarray:

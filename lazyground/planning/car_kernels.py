@@ -18,6 +18,7 @@ import numpy as np
 from numba import njit
 
 from lazyground.planning import curves
+from lazyground.planning.nn import FAR
 from lazyground.user_cache import use_kernel_cache
 
 use_kernel_cache()  # before any kernel is defined: caches keyed by every kernel file's text
@@ -222,6 +223,57 @@ def discretize(a, b, w, resolution, skip_first, stretch, dense_spacing, r, off):
     return out
 
 
+@njit(cache=True)
+def nearest(points, sq, n, ids, use_ids, nodes, q, weights, k, r, off, step, out, head, q_new):
+    """A car tree's node nearest q, in one call: (its index or -1, its word's segments, the head's segments,
+    whether the step reaches q).
+
+    The ``k`` nearest of the first ``n`` points of a nearest-neighbour index (:class:`lazyground.planning.nn.
+    NearestNeighbors`, while it scans: points are embeddings (x, y, r cos, r sin) of ``nodes[ids[i]]``, or of
+    ``nodes[i]`` without ``use_ids``; removed ones sit at FAR and are skipped) ranked as its ``nearest_k`` ranks
+    them (|p|^2 + p.(-2 x), the product summed as numpy's BLAS sums four terms, then + |x|^2; equal values:
+    lower index first), re-ranked by :func:`closest` (its word into ``out``). With ``step`` > 0 the pose
+    ``step`` metres along that word into ``q_new`` (q itself when the word is no longer) and the word's head
+    into ``head`` (:func:`steer`)."""
+    th = q[2]
+    x0, x1 = q[0] * weights[0], q[1] * weights[1]
+    x2, x3 = weights[2] * math.cos(th), weights[2] * math.sin(th)
+    xx = ((x0 * x0 + x1 * x1) + x2 * x2) + x3 * x3
+    m0, m1, m2, m3 = -2.0 * x0, -2.0 * x1, -2.0 * x2, -2.0 * x3
+    vals = np.empty(k)
+    best_k = np.empty(k, np.int64)
+    m = 0
+    for i in range(n):
+        if points[i, 0] == FAR:
+            continue
+        g = (sq[i] + ((points[i, 0] * m0 + points[i, 2] * m2) + (points[i, 1] * m1 + points[i, 3] * m3))) + xx
+        if m == k and not g < vals[m - 1]:
+            continue
+        p = m if m < k else k - 1  # insertion: vals sorted, equal values in index order
+        while p > 0 and g < vals[p - 1]:
+            vals[p] = vals[p - 1]
+            best_k[p] = best_k[p - 1]
+            p -= 1
+        vals[p] = g
+        best_k[p] = i
+        if m < k:
+            m += 1
+    if m == 0:
+        return -1, 0, 0, False
+    cands = np.empty((m, 3))
+    for c in range(m):
+        j = ids[best_k[c]] if use_ids else best_k[c]
+        best_k[c] = j
+        cands[c, 0], cands[c, 1], cands[c, 2] = nodes[j, 0], nodes[j, 1], nodes[j, 2]
+    best, nw = closest(cands, q, r, off, out)
+    if step <= 0.0:
+        return best_k[best], nw, 0, False
+    if length(out[:nw]) <= step:
+        q_new[0], q_new[1], q_new[2] = q[0], q[1], q[2]
+        return best_k[best], nw, 0, True
+    return best_k[best], nw, steer(cands[best], out[:nw], step, r, off, q_new, head), False
+
+
 _loaded: bool | None = None
 
 
@@ -237,5 +289,8 @@ def warm_up() -> bool:
     length(w[:n])
     steer(a, w[:n], 0.1, 1.0, -0.5, np.empty(3), np.empty((curves.MAX_SEGMENTS, 2)))
     discretize(a, b, w[:n], 0.05, True, 1.1, 0.1, 1.0, -0.5)
-    _loaded = any(sum(k.stats.cache_misses.values()) for k in (solve, closest, length, steer, poses, discretize))
+    points = np.zeros((1, 4))
+    nearest(points, np.zeros(1), 1, np.zeros(1, np.int64), False, np.zeros((1, 3)), b, np.ones(3), 5, 1.0, -0.5, 0.5,
+            w, np.empty((curves.MAX_SEGMENTS, 2)), np.empty(3))
+    _loaded = any(sum(k.stats.cache_misses.values()) for k in (solve, closest, length, steer, poses, discretize, nearest))
     return _loaded
