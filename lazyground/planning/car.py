@@ -74,6 +74,12 @@ class CarSpace(ConfigSpace):
         object.__setattr__(self, "_words", {})
         # the origin moves faster than the reference point on arcs: hypot(1, offset / radius) times
         object.__setattr__(self, "_stretch", math.hypot(1.0, self.offset / self.radius))
+        # the embedding's weights (x, y, then the heading's, ConfigSpace.embed) and the bounds with
+        # within_bounds' tolerance, as floats and arrays (the numbers numpy's tests compare with)
+        object.__setattr__(self, "_embed_w", (*self._w_lin.tolist(), float(self._w_ang[0])))
+        lo, hi = self.lower - 1e-9, self.upper + 1e-9
+        object.__setattr__(self, "_bounds", (tuple(lo.tolist()), tuple(hi.tolist())))
+        object.__setattr__(self, "_bounds_arrays", (lo, hi))
         if self.kinematics is Kinematics.HOLONOMIC:
             raise ValueError("a holonomic car is a plain ConfigSpace")
 
@@ -223,6 +229,23 @@ class CarSpace(ConfigSpace):
         d = step if (towards[0] - a[0]) * c + (towards[1] - a[1]) * s >= 0.0 else -step
         q = np.array([a[0] + d * c, a[1] + d * s, a[2]], float)
         return q if self.within_bounds(q) else None
+
+    def embed(self, q: np.ndarray) -> np.ndarray:
+        """:meth:`ConfigSpace.embed`; one pose in scalar maths (the same products: numpy's overhead would dominate)."""
+        if np.ndim(q) != 1:
+            return super().embed(q)
+        th, w = float(q[2]), self._embed_w
+        return np.array((float(q[0]) * w[0], float(q[1]) * w[1], w[2] * math.cos(th), w[2] * math.sin(th)))
+
+    def within_bounds(self, q: np.ndarray, tol: float = 1e-9) -> bool:
+        if tol != 1e-9 or np.ndim(q) != 1:
+            return super().within_bounds(q, tol)
+        lo, hi = self._bounds
+        return lo[0] <= q[0] <= hi[0] and lo[1] <= q[1] <= hi[1] and lo[2] <= q[2] <= hi[2]
+
+    def all_inside(self, qs: np.ndarray) -> bool:
+        """Whether every row of qs is within the bounds (1e-9 of them: :func:`samples_free`'s test)."""
+        return car_kernels.inside(qs, *self._bounds_arrays)
 
     def path_length(self, path: np.ndarray) -> float:
         return float(sum(self.distance(a, b) for a, b in zip(path[:-1], path[1:])))

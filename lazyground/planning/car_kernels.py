@@ -224,6 +224,16 @@ def discretize(a, b, w, resolution, skip_first, stretch, dense_spacing, r, off):
 
 
 @njit(cache=True)
+def inside(qs, lo, hi):
+    """Whether every row of qs lies within [lo, hi] (the bounds with their tolerance)."""
+    for i in range(qs.shape[0]):
+        for j in range(qs.shape[1]):
+            if not (qs[i, j] >= lo[j] and qs[i, j] <= hi[j]):
+                return False
+    return True
+
+
+@njit(cache=True)
 def nearest(points, sq, n, ids, use_ids, nodes, q, weights, k, r, off, step, out, head, q_new):
     """A car tree's node nearest q, in one call: (its index or -1, its word's segments, the head's segments,
     whether the step reaches q).
@@ -288,9 +298,9 @@ def warm_up() -> bool:
     closest(np.zeros((1, 3)), b, 1.0, -0.5, w)
     length(w[:n])
     steer(a, w[:n], 0.1, 1.0, -0.5, np.empty(3), np.empty((curves.MAX_SEGMENTS, 2)))
-    discretize(a, b, w[:n], 0.05, True, 1.1, 0.1, 1.0, -0.5)
+    inside(discretize(a, b, w[:n], 0.05, True, 1.1, 0.1, 1.0, -0.5), np.zeros(3), np.ones(3))
     points = np.zeros((1, 4))
     nearest(points, np.zeros(1), 1, np.zeros(1, np.int64), False, np.zeros((1, 3)), b, np.ones(3), 5, 1.0, -0.5, 0.5,
             w, np.empty((curves.MAX_SEGMENTS, 2)), np.empty(3))
-    _loaded = any(sum(k.stats.cache_misses.values()) for k in (solve, closest, length, steer, poses, discretize, nearest))
+    _loaded = any(sum(k.stats.cache_misses.values()) for k in (solve, closest, length, steer, poses, discretize, inside, nearest))
     return _loaded
