@@ -310,7 +310,10 @@ def cusp_indices(path: np.ndarray) -> tuple[int, ...]:
 def car_space(base: ConfigSpace, kinematics: Kinematics, radius: float, offset: float = 0.0) -> CarSpace:
     """A CarSpace over ``base``'s bounds (registered in :data:`lazyground.planning.kinematics.SPACES`).
 
-    Nearest neighbours weigh the heading by the turning radius (see the module docstring).
+    Nearest neighbours weigh the heading by the turning radius (see the module docstring). A Reeds-Shepp car's
+    compiled queries are loaded here, once per process, rather than in its first search (car_kernels.warm_up).
     """
+    if Kinematics(kinematics) is Kinematics.REEDS_SHEPP:
+        car_kernels.warm_up()
     return CarSpace(base.names, base.lower, base.upper, np.array([1.0, 1.0, radius]), base.wrap,
                     kinematics=kinematics, radius=float(radius), offset=float(offset))

@@ -288,19 +288,21 @@ _loaded: bool | None = None
 
 
 def warm_up() -> bool:
-    """Load (or compile, once per machine) the kernels now rather than in a request; whether this call compiled
-    them. Idempotent."""
+    """Load (or compile, once per machine) the kernels a car's planner calls, now rather than in its search
+    (:func:`lazyground.planning.car.car_space` calls it): whether this call compiled them. Idempotent.
+
+    Loading them from numba's cache takes ~1-2 s at load 16 on 2 cores (most of it numba's own start-up, paid once
+    per process by the first cached kernel it loads); compiling them ~64 s there."""
     global _loaded
     if _loaded is not None:
         return False
     a, b, w = np.zeros(3), np.array([1.0, 0.5, 0.3]), np.empty((curves.MAX_SEGMENTS, 2))
     n = solve(a, b, 1.0, -0.5, w)
-    closest(np.zeros((1, 3)), b, 1.0, -0.5, w)
     length(w[:n])
     steer(a, w[:n], 0.1, 1.0, -0.5, np.empty(3), np.empty((curves.MAX_SEGMENTS, 2)))
+    poses(a, w[:n], np.zeros(1), 1.0, -0.5, np.empty((1, 3)))
     inside(discretize(a, b, w[:n], 0.05, True, 1.1, 0.1, 1.0, -0.5), np.zeros(3), np.ones(3))
-    points = np.zeros((1, 4))
-    nearest(points, np.zeros(1), 1, np.zeros(1, np.int64), False, np.zeros((1, 3)), b, np.ones(3), 5, 1.0, -0.5, 0.5,
-            w, np.empty((curves.MAX_SEGMENTS, 2)), np.empty(3))
-    _loaded = any(sum(k.stats.cache_misses.values()) for k in (solve, closest, length, steer, poses, discretize, inside, nearest))
+    nearest(np.zeros((1, 4)), np.zeros(1), 1, np.zeros(1, np.int64), False, np.zeros((1, 3)), b, np.ones(3), 5, 1.0,
+            -0.5, 0.5, w, np.empty((curves.MAX_SEGMENTS, 2)), np.empty(3))
+    _loaded = any(sum(k.stats.cache_misses.values()) for k in (solve, length, steer, poses, discretize, inside, nearest))
     return _loaded
