@@ -174,7 +174,8 @@ class Search:
         (a rejected join leaves most of its segments valid, and the next candidate
         path usually shares them).
         """
-        keys = [path[k].tobytes() + path[k + 1].tobytes() for k in range(len(path) - 1)]
+        rows = [q.tobytes() for q in path]  # (each vertex once: it ends one segment and starts the next)
+        keys = [rows[k] + rows[k + 1] for k in range(len(path) - 1)]
         todo = [k for k, key in enumerate(keys) if key not in self._verified]
         bad = path_is_valid(self.space, self.checker, path, self.settings.resolution / self.settings.validation_factor, todo)
         self._verified.update(keys[k] for k in todo if bad < 0 or k < bad)

@@ -100,7 +100,7 @@ def test_a_car_trees_compiled_nearest_is_the_general_paths():
             label = None if rng.random() < 0.5 else int(rng.integers(21))  # (label 20 has no tree)
             step = float(rng.choice([0.0, 0.5, 2.0, 50.0]))
             got = tree._car_nearest(q, label, step)
-            nn, members = (tree.nn, None) if label is None else tree._label_nn.get(label, (None, None))
+            nn, members = (tree.nn, None) if label is None else tree._label_index(label)
             want = -1 if nn is None else tree._general_nearest(q, nn, members)
             assert got[0] == want, (trial, label)
             if want >= 0 and step > 0.0:
