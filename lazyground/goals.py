@@ -56,15 +56,19 @@ class RoundRobinGoalSource:
     screened_reasons: tuple[str, ...] = ()  # failures before any solve: a region failing nearly only so is deferred
 
     def __init__(self, regions: tuple[GoalRegion, ...], give_up_after: int | None = None,
-                 attempts_per_sample: int | None = None, sampling: GoalSamplingSettings | None = None):
+                 attempts_per_sample: int | None = None, sampling: GoalSamplingSettings | None = None,
+                 unreachable: dict[int, str] | None = None):
         """Args:
             regions: the goal regions.
             give_up_after, attempts_per_sample: override ``sampling``'s (for tools and tests).
             sampling: the run's goal-sampling settings (default: their declared defaults).
+            unreachable: regions proven unreachable (index -> by what): never sampled, given up from the start.
         """
         sampling = GoalSamplingSettings() if sampling is None else sampling
         self.regions = tuple(regions)
         self.stats = [RegionStats() for _ in self.regions]
+        for j, why in (unreachable or {}).items():
+            self.stats[j].unreachable = why
         self._give_up_after = sampling.give_up_after if give_up_after is None else give_up_after
         self.attempts_per_sample = sampling.attempts_per_sample if attempts_per_sample is None else attempts_per_sample
         self.next_region = 0
@@ -102,7 +106,7 @@ class RoundRobinGoalSource:
 
     def region_exhausted(self, j: int) -> bool:
         st = self.stats[j]
-        return st.valid == 0 and st.attempts >= self.region_budget(j)
+        return bool(st.unreachable) or (st.valid == 0 and st.attempts >= self.region_budget(j))
 
     def exhausted(self) -> bool:
         return not self._open
@@ -264,7 +268,23 @@ def goal_source_for(regions: tuple[GoalRegion, ...], world,
 
 
 def _config_source(regions, world, sampling: GoalSamplingSettings | None = None) -> ConfigGoalSource:
-    return ConfigGoalSource(regions, world.space, world, sampling=sampling)
+    """The config source over ``world``, without the regions its reach prior proves unreachable (``reach_prior``)."""
+    return ConfigGoalSource(regions, world.space, world, sampling=sampling, unreachable=reach_prior_drops(regions, world, sampling))
+
+
+REACH_PRIOR = "reach prior"  # the reason RegionStats.unreachable gives for the regions the reach prior drops
+
+
+def reach_prior_drops(regions, world, sampling: GoalSamplingSettings | None = None) -> dict[int, str]:
+    """The regions ``world``'s reach prior (a car's disc, :mod:`lazyground.planning.reach_prior`) proves
+    unreachable from its start, index -> REACH_PRIOR; none when ``sampling.reach_prior`` is off or the world
+    has no prior for its robot (``world.reach_prior()`` None or missing)."""
+    sampling = GoalSamplingSettings() if sampling is None else sampling
+    build = getattr(world, "reach_prior", None)
+    prior = build() if sampling.reach_prior and callable(build) else None
+    if prior is None:
+        return {}
+    return {j: REACH_PRIOR for j, r in enumerate(regions) if not prior.keeps(r)}
 
 
 register_goal_source((ConfigRegion.kind,), _config_source)

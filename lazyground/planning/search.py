@@ -16,6 +16,8 @@ from lazyground.planning.problem import (
     PlanResult,
     PlanStatus,
     ValidityChecker,
+    proven_unreachable,
+    unreachable_note,
 )
 from lazyground.planning.motion_validator import MotionValidator, samples_free
 from lazyground.planning.space import ConfigSpace
@@ -84,6 +86,8 @@ class Search:
         self._verified: set[bytes] = set()  # segments (endpoint bytes) that passed the fine re-check
         self.selector = make_strategy(settings.strategy, StrategySettings(resample_threshold=settings.resample_threshold))
         self._covers = bool(getattr(self.selector, "covers_regions", False))
+        # the regions coverage paces samples for: those not proven unreachable before the search (a reach prior)
+        self._coverable = sum(not st.unreachable for st in goals.stats)
         self._attempts0: int | None = None  # the goal source's attempt count when coverage began
         self.trees: list[Tree] = []  # the planner's trees, start tree first (for the result)
         self.failed_from: list[tuple[int, int]] = []  # (tree, node) of failed goal-directed extensions
@@ -109,10 +113,10 @@ class Search:
         """Whether any goal sample exists yet; draws a batch when none does.
 
         A strategy that paces coverage (``covers_regions``) gets one more sample each iteration
-        until there are as many samples as goal regions (lazyground.planning.cover)."""
+        until there are as many samples as goal regions not proven unreachable (lazyground.planning.cover)."""
         if not self.samples:
             self.draw(self.settings.initial_goal_samples)
-        elif self._covers and len(self.samples) < len(self.goals.regions) and self._ik_in_budget():
+        elif self._covers and len(self.samples) < self._coverable and self._ik_in_budget():
             self.draw(1)
         return bool(self.samples)
 
@@ -220,13 +224,20 @@ class Search:
     def region_summary(self) -> str:
         """Each goal region's tries (grasps, placements or configurations), valid ones, and why the others failed."""
         parts = []
+        proven = unreachable_note(self.goals.regions, self.goals.stats)
         for region, st in zip(self.goals.regions, self.goals.stats):
+            if st.unreachable:
+                continue
             why = ", ".join(f"{k} x{v}" for k, v in sorted(st.failures.items()))
             tried = f"{st.attempts} {TRIED.get(region.kind, 'configurations')} tried, {st.valid} valid"
             parts.append(f"{region.id}: {tried} ({why})" if why else f"{region.id}: {tried}" if st.attempts else f"{region.id}: not tried")
-        return "; ".join(parts)
+        return "; ".join(parts + ([proven] if proven else []))
 
     def no_goal(self) -> PlanResult:
+        _, n, why = proven_unreachable(self.goals.regions, self.goals.stats)
+        if why and all(st.unreachable for st in self.goals.stats):  # one line, not a list of untried regions
+            return self.result(PlanStatus.NO_VALID_GOAL, f"no reachable goal: all {n} interpretation(s) proven unreachable "
+                               f"by the {why} (the disc inscribed in the robot's footprint has no way there from the start)")
         return self.result(PlanStatus.NO_VALID_GOAL, "no valid goal configuration in any goal region: " + self.region_summary())
 
     def _offsets(self) -> list[int]:
