@@ -56,7 +56,10 @@ def ground(request: str, scene: Scene, lexicon: Lexicon | None = None) -> Ground
     if action == "park":
         spots = res.choice(target, "park")
         notes += _ambiguity(target, spots, "free parking spots")
-        interps = [_interpretation("park", s, None, scene, clause.manner) for s in spots]  # a manner only shapes parking
+        # (the robot's end effector read once, not per spot: its files' paths resolved 512 times were most of
+        # grounding a 512-spot lot, #33)
+        park_ee = end_effector_of(scene.robot) if spots else None
+        interps = [_interpretation("park", s, None, scene, clause.manner, ee=park_ee) for s in spots]  # a manner only shapes parking
         if clause.manner:
             notes.append(f"{clause.manner} into the spot only")
     else:
@@ -216,7 +219,7 @@ def _interpretation(action: str, obj: SceneObject, target: SceneObject | None, s
                     ee=None, memo: dict | None = None) -> Interpretation:
     iid = f"{action}:{obj.id}" + (f":{target.id}" if target is not None else "")
     if action == "park":
-        regions = regions_for(obj, "park", iid, scene)
+        regions = regions_for(obj, "park", iid, scene, ee)
         if manner:  # "reverse into spot 4": only the goal regions with that heading
             regions = tuple(r for r in regions if r.label == manner) or regions
         return Interpretation(iid, action, (obj.id,), None, regions)

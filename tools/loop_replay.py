@@ -11,6 +11,9 @@ Run from the checkout's root (cwd comes first on sys.path)::
     nice python3 tools/loop_replay.py --checkouts /tmp/base_703386a,. --seeds 20 --replays 5 --fit
     # the same scene with longer runs (any api.plan override, on every checkout): the one-tree planner
     nice python3 tools/loop_replay.py --checkouts /tmp/base_703386a,. --scenes fetch_cans_2 --set algorithm=rrt --fit
+    # a generated lot (family key, #33), iteration-capped so that a run is the same on any machine
+    nice python3 tools/loop_replay.py --scenes lot:256:2:0:576 --seeds 10 --replays 3 --set max_iterations=2000 \
+        --set time_limit=1e6 --profile
 
 Each seed is planned once for real (``api.plan`` on a prebuilt world) while the checker's answers and the
 goal source's samples (with the generator's state after each draw) are recorded; the search is then run
@@ -80,18 +83,24 @@ class GoalRecorder(Recorder):
         self.stats = inner.stats if inner is not None else stats
         self.sample_time = 0.0
 
-    @property
-    def total_attempts(self):
-        return self._answer("total_attempts_")
+    def _logged(self, read):
+        """read() of the goal source, logged in call order (record) or read back (replay)."""
+        if self._replay:
+            if self._at == len(self._log):
+                raise OffRecord("goal source")
+            out = self._log[self._at]
+            self._at += 1
+            return out
+        out = read()
+        self._log.append(copy.deepcopy(out))
+        return out
 
-    def total_attempts_(self):
-        return getattr(self._inner, "total_attempts", None)
+    @property
+    def total_attempts(self):  # (the covering strategies' IK budget reads it)
+        return self._logged(lambda: getattr(self._inner, "total_attempts", None))
 
     def exhausted(self):
-        return self._answer("exhausted_")
-
-    def exhausted_(self):
-        return self._inner.exhausted()
+        return self._logged(self._inner.exhausted)
 
     def draw(self, n, rng, stop):
         if self._replay:  # (the log is a fresh copy per replay: nothing is copied while the replay is timed)
@@ -118,7 +127,8 @@ def record(scene_name: str, seed: int, world, scene, overrides: dict | None = No
         if "space" in rec:  # (a later search of the same request, e.g. an anytime improvement: the first is replayed)
             return real_solve(space, checker, goals, start, settings, rng, seed, keep_tree, **stop)
         ck, gs = Recorder(checker), GoalRecorder(goals)
-        rec.update(space=space, start=start.copy(), settings=settings, state=copy.deepcopy(rng.bit_generator.state),
+        # (a copy as the search found it: a car space caches recent curves, and the search reads them)
+        rec.update(space=copy.deepcopy(space), start=start.copy(), settings=settings, state=copy.deepcopy(rng.bit_generator.state),
                    seed=seed, checks=ck._log, goals=gs._log, regions=goals.regions, stats=copy.deepcopy(goals.stats))
         r = real_solve(space, ck, gs, start, settings, rng, seed, keep_tree, **stop)
         rec["iterations"], rec["path"] = r.iterations, r.path
@@ -157,11 +167,12 @@ def replay(rec: dict, prof=None) -> tuple[float, bool]:
         stop["stop"] = StopCondition.after(1e9, max_iterations=settings.max_iterations)
     else:  # (703386a, the issue's base: the search's deadline is settings.time_limit)
         settings = dataclasses.replace(settings, time_limit=1e9)
+    space = copy.deepcopy(rec["space"])  # (as the search found it: a car space caches recent curves)
     if prof is not None:
         prof.enable()
     t0 = time.process_time()
     try:
-        r = rrt.solve(rec["space"], ck, gs, rec["start"], settings, rng, rec["seed"], False, **stop)
+        r = rrt.solve(space, ck, gs, rec["start"], settings, rng, rec["seed"], False, **stop)
     except OffRecord:
         return time.process_time() - t0, False
     finally:
@@ -173,7 +184,8 @@ def replay(rec: dict, prof=None) -> tuple[float, bool]:
     return dt, same
 
 
-CATEGORIES = (("nn", ("planning/nn.py",)), ("space", ("planning/space.py",)), ("tree", ("planning/tree.py",)),
+CATEGORIES = (("nn", ("planning/nn.py",)), ("car", ("planning/car.py", "planning/curves.py", "planning/car_kernels.py",
+                                                     "planning/motion_validator.py")), ("space", ("planning/space.py",)), ("tree", ("planning/tree.py",)),
               ("strategy", ("planning/strategies.py", "planning/weights.py", "planning/cover.py")),
               ("search", ("planning/search.py", "planning/stop.py")), ("loop", ("planning/birrt.py", "planning/rrt.py")),
               ("stand-ins", ("loop_replay.py",)))
@@ -225,11 +237,12 @@ def measure(scenes, seeds: int, replays: int, profile: bool, overrides: dict | N
     import pstats
 
     from lazyground.drake.world import DrakeWorld
+    from lazyground.bench.families import load_family_scene, parse_key
     from lazyground.scene import load_scene
 
     out = {}
     for name in scenes:
-        scene = load_scene(name)
+        scene = load_family_scene(name) if parse_key(name) is not None else load_scene(name)
         world = DrakeWorld(scene, visual=False)
         record(name, 1000, world, scene, overrides)  # warm-up
         rows = []

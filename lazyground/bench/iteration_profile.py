@@ -34,7 +34,8 @@ def _targets():
     from lazyground.planning.space import ConfigSpace
     from lazyground.planning.tree import Tree
 
-    out = [(Tree, m, "nn") for m in ("nearest", "nearest_k")]
+    # (a Reeds-Shepp car's nearest-node query and its step are one compiled call: _car_nearest, #33)
+    out = [(Tree, m, "nn") for m in ("nearest", "nearest_k", "_car_nearest")]
     out += [(Tree, m, "tree") for m in ("add", "add_root", "chain", "prune")]
     out += [(ConfigSpace, m, "space") for m in ("sample", "steer", "interpolate", "distance", "within_bounds")]
     out += [(MotionValidator, m, "checks") for m in ("edge_free", "edge_fraction")]

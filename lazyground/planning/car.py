@@ -25,7 +25,8 @@ Reeds-Shepp curve is a Reeds-Shepp curve, but a Dubins car cannot reverse, so th
 its returned path (curves between the same waypoints, forwards) may fail the fine
 re-check more often; the one-tree planner is the one to use with ``dubins``.
 
-The curves themselves are in :mod:`lazyground.planning.curves`.
+The curves themselves are in :mod:`lazyground.planning.curves`; the queries along them (solve, rank, steer,
+sample) run compiled (:mod:`lazyground.planning.car_kernels`, #33), on words as rows (turn, signed metres).
 """
 
 from __future__ import annotations
@@ -36,12 +37,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from lazyground.geometry import wrap_angle
-from lazyground.planning import curves
+from lazyground.planning import car_kernels, curves
 from lazyground.planning.motion_validator import SampledMotionValidator
 from lazyground.planning.space import ConfigSpace
 from lazyground.settings import Kinematics
 
-_TURN = {"L": 1.0, "R": -1.0, "S": 0.0}  # heading change per radian of arc
 DENSE_SPACING = 0.1  # m: the largest gap between consecutive samples of a returned car path
 NN_CANDIDATES = 5  # nearest neighbours: the embedding's nearest nodes re-ranked by curve length (see above)
 
@@ -74,26 +74,38 @@ class CarSpace(ConfigSpace):
         object.__setattr__(self, "_words", {})
         # the origin moves faster than the reference point on arcs: hypot(1, offset / radius) times
         object.__setattr__(self, "_stretch", math.hypot(1.0, self.offset / self.radius))
+        # the embedding's weights (x, y, then the heading's, ConfigSpace.embed) and the bounds with
+        # within_bounds' tolerance, as floats and arrays (the numbers numpy's tests compare with)
+        object.__setattr__(self, "_embed_w", (*self._w_lin.tolist(), float(self._w_ang[0])))
+        lo, hi = self.lower - 1e-9, self.upper + 1e-9
+        object.__setattr__(self, "_bounds", (tuple(lo.tolist()), tuple(hi.tolist())))
+        object.__setattr__(self, "_bounds_arrays", (lo, hi))
         if self.kinematics is Kinematics.HOLONOMIC:
             raise ValueError("a holonomic car is a plain ConfigSpace")
 
     def word(self, a: np.ndarray, b: np.ndarray) -> curves.Word:
         """The shortest curve a -> b as segments (kind, signed length in metres)."""
-        key = _key(a, b)
-        word = self._words.get(key)
-        if word is None:
-            solve = curves.reeds_shepp_word if self.kinematics is Kinematics.REEDS_SHEPP else curves.dubins_word
-            rel = curves.relative(self._ref(a), self._ref(b), self.radius)
-            word = tuple((k, s * self.radius) for k, s in solve(*rel))
-            self._remember(key, word)
-        return word
+        return tuple((curves.KIND[t], s) for t, s in self._word(a, b).tolist())
 
-    def _remember(self, key, word) -> None:
+    def _word(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """:meth:`word` as rows (turn, signed length in metres)."""
+        key = _key(a, b)
+        w = self._words.get(key)
+        if w is None:
+            if self.kinematics is Kinematics.REEDS_SHEPP:
+                out = np.empty((curves.MAX_SEGMENTS, 2))
+                w = out[: car_kernels.solve(_vec(a), _vec(b), self.radius, self.offset, out)]
+            else:
+                w = _rows(curves.dubins_word(*curves.relative(self._ref(a), self._ref(b), self.radius)), self.radius)
+            self._remember(key, w)
+        return w
+
+    def _remember(self, key, w: np.ndarray) -> None:
         # the planner steers a -> b, then checks the edge a -> q_new: a few recent words save
         # recomputing them (a sub-path of a shortest path is a shortest path)
         if len(self._words) >= 64:
             self._words.clear()
-        self._words[key] = word
+        self._words[key] = w
 
     def reference(self, q: np.ndarray) -> np.ndarray:
         """The reference point's pose (rows or one vector): shifted ``offset`` along the heading."""
@@ -108,7 +120,7 @@ class CarSpace(ConfigSpace):
         return float(q[0]) + self.offset * math.cos(th), float(q[1]) + self.offset * math.sin(th), th
 
     def distance(self, a: np.ndarray, b: np.ndarray) -> float:
-        return curves.word_length(self.word(a, b))
+        return car_kernels.length(self._word(a, b))
 
     def closest(self, nodes, q: np.ndarray) -> int:
         """Index of the node of ``nodes`` whose curve to ``q`` is shortest.
@@ -118,64 +130,66 @@ class CarSpace(ConfigSpace):
         length found: most candidates are ruled out without solving their curve. The winner's
         curve is remembered (the planner steers along it next).
         """
-        solve = curves.reeds_shepp_word if self.kinematics is Kinematics.REEDS_SHEPP else curves.dubins_word
+        if self.kinematics is not Kinematics.REEDS_SHEPP:
+            return self._closest_dubins(nodes, q)
+        out = np.empty((curves.MAX_SEGMENTS, 2))
+        best, n = car_kernels.closest(np.array(nodes, float).reshape(-1, 3), _vec(q), self.radius, self.offset, out)
+        self._remember(_key(nodes[best], q), out[:n])
+        return best
+
+    @property
+    def compiled_nearest(self) -> bool:
+        """Whether a tree's nearest-node queries go through :meth:`nearest_node` (a Reeds-Shepp car)."""
+        return self.kinematics is Kinematics.REEDS_SHEPP
+
+    def nearest_node(self, points: np.ndarray, sq: np.ndarray, n: int, ids: np.ndarray | None, nodes: np.ndarray,
+                     q: np.ndarray, step: float = 0.0) -> tuple[int, np.ndarray | None, bool]:
+        """A tree's node nearest q (:meth:`closest` of the ``nn_candidates`` nearest in the embedding) in one compiled
+        call (:func:`lazyground.planning.car_kernels.nearest`): (its index or -1, with ``step`` the pose :meth:`steer`
+        gives from it towards q, whether that reached q). ``points``, ``sq``, ``n``: a scanning nearest-neighbour
+        index's arrays over ``nodes[ids]`` (``ids`` None: over ``nodes``). The words are remembered as
+        :meth:`closest` and :meth:`steer` remember them."""
+        q = _vec(q)
+        out, head, q_new = np.empty((curves.MAX_SEGMENTS, 2)), np.empty((curves.MAX_SEGMENTS, 2)), np.empty(3)
+        i, nw, nh, reached = car_kernels.nearest(points, sq, n, _NO_IDS if ids is None else ids, ids is not None, nodes,
+                                                 q, self.weights, self.nn_candidates, self.radius, self.offset, step,
+                                                 out, head, q_new)
+        if i < 0:
+            return -1, None, False
+        a = nodes[i]
+        self._remember(_key(a, q), out[:nw])
+        if step <= 0.0 or reached:
+            return i, q_new if reached else None, reached
+        self._remember(_key(a, q_new), head[:nh])
+        return i, q_new, False
+
+    def _closest_dubins(self, nodes, q: np.ndarray) -> int:
+        """:meth:`closest` for a Dubins car, in scalar Python (its solver is not compiled)."""
         end, r = self._ref(q), self.radius
-        ref = [self._ref(a) for a in nodes]  # scalar maths: a handful of nodes, numpy's overhead would dominate
+        ref = [self._ref(a) for a in nodes]
         bound = [max(math.hypot(p[0] - end[0], p[1] - end[1]), r * abs(curves.mod2pi(end[2] - p[2]))) for p in ref]
         best, best_len, best_word = 0, math.inf, None
         for i in sorted(range(len(ref)), key=bound.__getitem__):
             if bound[i] >= best_len:
                 break
-            word = solve(*curves.relative(ref[i], end, r))
+            word = curves.dubins_word(*curves.relative(ref[i], end, r))
             length = curves.word_length(word) * r
             if length < best_len:
                 best, best_len, best_word = i, length, word
-        self._remember(_key(nodes[best], q), tuple((k, s * self.radius) for k, s in best_word))
+        self._remember(_key(nodes[best], q), _rows(best_word, r))
         return best
 
-    def _segments(self, a: np.ndarray, word: curves.Word) -> tuple[list, float]:
-        """Each segment's (arc-length offset, reference start pose, turn, gear), and the word's length."""
-        r, off = self.radius, self.offset
-        th = float(a[2])
-        x, y = float(a[0]) + off * math.cos(th), float(a[1]) + off * math.sin(th)
-        starts, done = [], 0.0
-        for kind, length in word:
-            starts.append((done, x, y, th, _TURN[kind], 1.0 if length >= 0.0 else -1.0))
-            x, y, th = _end(x, y, th, kind, length, r)
-            done += abs(length)
-        return starts, done
-
-    def _pose_at(self, a: np.ndarray, word: curves.Word, s: float) -> np.ndarray:
-        """One pose at arc length ``s`` along ``word`` from ``a`` (scalar maths: steering's hot path)."""
-        starts, _ = self._segments(a, word)
-        s0, x, y, th, turn, gear = next(seg for seg in reversed(starts) if seg[0] <= s)
-        kind = "S" if turn == 0.0 else ("L" if turn > 0.0 else "R")
-        x, y, th = _end(x, y, th, kind, gear * (s - s0), self.radius)
-        return np.array([x - self.offset * math.cos(th), y - self.offset * math.sin(th), wrap_angle(th)])
-
-    def poses(self, a: np.ndarray, word: curves.Word, s) -> np.ndarray:
-        """Poses at arc lengths ``s`` (metres, 1-D, clipped to the word's length) along ``word`` from ``a``."""
-        r = self.radius
-        starts, done = self._segments(a, word)
-        table = np.array(starts)
-        s = np.minimum(np.maximum(np.atleast_1d(np.asarray(s, float)), 0.0), done)
-        seg = table[np.maximum(np.searchsorted(table[:, 0], s, side="right") - 1, 0)]
-        s0, x0, y0, th0, turn, gear = seg.T
-        sigma = (s - s0) * gear  # signed distance driven into the segment
-        th1 = th0 + turn * sigma / r
-        straight = turn == 0.0
-        safe = np.where(straight, 1.0, turn)  # a turning circle's centre is r to the left (L) or right (R)
+    def poses(self, a: np.ndarray, w: np.ndarray, s) -> np.ndarray:
+        """Poses at arc lengths ``s`` (metres, 1-D, clipped to the word's length) along word rows ``w`` from a."""
+        s = np.atleast_1d(np.asarray(s, float)).ravel()
         out = np.empty((len(s), 3))
-        c1, s1 = np.cos(th1), np.sin(th1)
-        out[:, 0] = np.where(straight, x0 + sigma * np.cos(th0), x0 + r / safe * (s1 - np.sin(th0))) - self.offset * c1
-        out[:, 1] = np.where(straight, y0 + sigma * np.sin(th0), y0 - r / safe * (c1 - np.cos(th0))) - self.offset * s1
-        out[:, 2] = wrap_angle(th1)
+        car_kernels.poses(_vec(a), w, s, self.radius, self.offset, out)
         return out
 
     def interpolate(self, a: np.ndarray, b: np.ndarray, t) -> np.ndarray:
         """Poses at fractions ``t`` (scalar or 1-D) of the curve a -> b."""
-        word = self.word(a, b)
-        q = self.poses(a, word, np.asarray(t, float).ravel() * curves.word_length(word))
+        w = self._word(a, b)
+        q = self.poses(a, w, np.asarray(t, float).ravel() * car_kernels.length(w))
         return q[0] if np.ndim(t) == 0 else q
 
     def discretize(self, a: np.ndarray, b: np.ndarray, resolution: float, skip_first: bool = False) -> np.ndarray:
@@ -187,26 +201,16 @@ class CarSpace(ConfigSpace):
         re-check of its dense form at ``resolution`` takes (else a sliver of obstacle between one set of
         samples could lie on the other: parking_2, seed 1033071480, a 3.7 mm graze of a wall).
         """
-        word = self.word(a, b)
-        s, done = [] if skip_first else [0.0], 0.0
-        for _, length in word:
-            if abs(length) <= 1e-12:
-                continue
-            n = _samples(abs(length) * self._stretch, resolution)
-            s.extend(done + abs(length) * np.arange(1, n + 1) / n)
-            done += abs(length)
-        if len(s) == 0:  # a == b, b only
-            s.append(0.0)
-        q = self.poses(a, word, s)
-        q[-1] = b  # the curve ends at b; drop the last ulp of drift
-        return q
+        return car_kernels.discretize(_vec(a), _vec(b), self._word(a, b), resolution, skip_first, self._stretch,
+                                      DENSE_SPACING, self.radius, self.offset)
 
     def steer(self, a: np.ndarray, b: np.ndarray, step: float) -> tuple[np.ndarray, bool]:
-        word = self.word(a, b)
-        if curves.word_length(word) <= step:
+        w = self._word(a, b)
+        if car_kernels.length(w) <= step:
             return np.array(b, float), True
-        q = self._pose_at(a, word, step)
-        self._remember(_key(a, q), curves.prefix(word, step))
+        q, head = np.empty(3), np.empty((curves.MAX_SEGMENTS, 2))
+        n = car_kernels.steer(_vec(a), w, step, self.radius, self.offset, q, head)
+        self._remember(_key(a, q), head[:n])  # (the word's first step metres: a shortest path's prefix)
         return q, False
 
     @property
@@ -225,6 +229,23 @@ class CarSpace(ConfigSpace):
         d = step if (towards[0] - a[0]) * c + (towards[1] - a[1]) * s >= 0.0 else -step
         q = np.array([a[0] + d * c, a[1] + d * s, a[2]], float)
         return q if self.within_bounds(q) else None
+
+    def embed(self, q: np.ndarray) -> np.ndarray:
+        """:meth:`ConfigSpace.embed`; one pose in scalar maths (the same products: numpy's overhead would dominate)."""
+        if np.ndim(q) != 1:
+            return super().embed(q)
+        th, w = float(q[2]), self._embed_w
+        return np.array((float(q[0]) * w[0], float(q[1]) * w[1], w[2] * math.cos(th), w[2] * math.sin(th)))
+
+    def within_bounds(self, q: np.ndarray, tol: float = 1e-9) -> bool:
+        if tol != 1e-9 or np.ndim(q) != 1:
+            return super().within_bounds(q, tol)
+        lo, hi = self._bounds
+        return lo[0] <= q[0] <= hi[0] and lo[1] <= q[1] <= hi[1] and lo[2] <= q[2] <= hi[2]
+
+    def all_inside(self, qs: np.ndarray) -> bool:
+        """Whether every row of qs is within the bounds (1e-9 of them: :func:`samples_free`'s test)."""
+        return car_kernels.inside(qs, *self._bounds_arrays)
 
     def path_length(self, path: np.ndarray) -> float:
         return float(sum(self.distance(a, b) for a, b in zip(path[:-1], path[1:])))
@@ -247,25 +268,22 @@ class CarSpace(ConfigSpace):
         return cusp_indices(self.reference(dense))
 
 
-def _samples(stretched: float, resolution: float) -> int:
-    """Pieces of a curve segment (length times the origin's stretch) sampled at ``resolution``: finer than
-    DENSE_SPACING, each of its dense pieces cut into equal parts (see :meth:`CarSpace.discretize`)."""
-    n = max(1, int(np.ceil(stretched / resolution)))
-    if resolution >= DENSE_SPACING:
-        return n
-    dense = max(1, int(np.ceil(stretched / DENSE_SPACING)))
-    return dense * max(1, int(np.ceil(stretched / dense / resolution)))
-
-
 def _key(a, b) -> tuple[bytes, bytes]:
     """The curve cache's key of a -> b."""
     return np.asarray(a, float).tobytes(), np.asarray(b, float).tobytes()
 
 
-def _end(x, y, th, kind, length, r):
-    """The pose after a whole segment (metres), via the unit-radius kinematics."""
-    ex, ey, eth = curves.advance(0.0, 0.0, th, kind, length / r)
-    return x + r * ex, y + r * ey, eth
+_NO_IDS = np.zeros(0, np.int64)
+
+
+def _vec(q) -> np.ndarray:
+    """q as the kernels take a pose: a float vector (no copy if it is one)."""
+    return np.asarray(q, float)
+
+
+def _rows(word: curves.Word, radius: float) -> np.ndarray:
+    """A unit-radius word as rows (turn, signed length in metres)."""
+    return np.array([(curves.TURN[k], s * radius) for k, s in word]).reshape(-1, 2)
 
 
 def drive_profile(path: np.ndarray) -> np.ndarray:
@@ -292,7 +310,10 @@ def cusp_indices(path: np.ndarray) -> tuple[int, ...]:
 def car_space(base: ConfigSpace, kinematics: Kinematics, radius: float, offset: float = 0.0) -> CarSpace:
     """A CarSpace over ``base``'s bounds (registered in :data:`lazyground.planning.kinematics.SPACES`).
 
-    Nearest neighbours weigh the heading by the turning radius (see the module docstring).
+    Nearest neighbours weigh the heading by the turning radius (see the module docstring). A Reeds-Shepp car's
+    compiled queries are loaded here, once per process, rather than in its first search (car_kernels.warm_up).
     """
+    if Kinematics(kinematics) is Kinematics.REEDS_SHEPP:
+        car_kernels.warm_up()
     return CarSpace(base.names, base.lower, base.upper, np.array([1.0, 1.0, radius]), base.wrap,
                     kinematics=kinematics, radius=float(radius), offset=float(offset))

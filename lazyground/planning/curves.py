@@ -11,13 +11,23 @@ other 40 Reeds-Shepp words are their images under three symmetries (time flip:
 drive the word backwards; reflection: swap left and right; backwards: the word
 read end to start), applied generically below rather than spelled out per word.
 
-Pure Python scalars (``math``): one query evaluates ~50 closed forms, and numpy's
-per-call overhead on 3-element arrays would cost more than the arithmetic.
+The Reeds-Shepp solver is compiled (numba; one query evaluates ~50 closed forms: ~34 us in Python, a few in
+numba, the car planner's largest cost per iteration on the generated lots, #33). Its numbers are Python's: the
+same libm calls in the same order, and :func:`hypot` is CPython's correctly rounded ``math.hypot`` (libm's
+differs in the last bit in ~0.3 % of calls). Compiled code sees a word as rows (turn, signed length), turn +1
+for L, -1 for R, 0 for S (:data:`TURN`); :func:`reeds_shepp_word` gives the tuple form.
 """
 
 from __future__ import annotations
 
 import math
+
+import numpy as np
+from numba import njit
+
+from lazyground.user_cache import use_kernel_cache
+
+use_kernel_cache()  # before any kernel is defined: caches keyed by every kernel file's text
 
 PI = math.pi
 TWO_PI = 2.0 * math.pi
@@ -26,14 +36,19 @@ HALF_PI = 0.5 * math.pi
 # radii from the origin: a 0.1 m straight piece of a dense path, re-solved, came out a 0.23 m L-R-L-R wiggle
 # (its start and end rounded ~1e-14 off the line turned every straight word's first arc negative).
 ZERO = 1e-10
+_DBL_MIN = 2.2250738585072014e-308
+MAX_SEGMENTS = 5  # the longest Reeds-Shepp word (C C|S C C)
 
 Segment = tuple[str, float]
 Word = tuple[Segment, ...]
+TURN = {"L": 1.0, "R": -1.0, "S": 0.0}  # a segment's heading change per unit of arc
+KIND = {1.0: "L", -1.0: "R", 0.0: "S"}
 
 
+@njit(cache=True)
 def mod2pi(a: float) -> float:
     """a wrapped into (-pi, pi]."""
-    v = math.fmod(a, TWO_PI)
+    v = np.fmod(a, TWO_PI)  # (C's fmod, exact: math.fmod's numbers)
     if v < -PI:
         v += TWO_PI
     elif v > PI:
@@ -41,6 +56,54 @@ def mod2pi(a: float) -> float:
     return v
 
 
+@njit(cache=True)
+def _two_product(a, b):
+    """a b as hi + lo exactly (Dekker's split: the numbers of fma(a, b, -a b))."""
+    p = a * b
+    t = 134217729.0 * a
+    ahi = t - (t - a)
+    alo = a - ahi
+    t = 134217729.0 * b
+    bhi = t - (t - b)
+    blo = b - bhi
+    return p, ((ahi * bhi - p) + ahi * blo + alo * bhi) + alo * blo
+
+
+@njit(cache=True)
+def hypot(a: float, b: float) -> float:
+    """CPython's math.hypot of two numbers (its ``vector_norm``: scaled, compensated sums, one Newton step),
+    bit for bit; libm's hypot, numba's, is not."""
+    a, b = abs(a), abs(b)
+    m = max(a, b)
+    if math.isinf(m):
+        return m
+    if math.isnan(a) or math.isnan(b):
+        return math.nan
+    if m == 0.0:
+        return m
+    e = math.frexp(m)[1]
+    if e < -1023:  # (subnormal: CPython rescales; not a car's numbers)
+        return _DBL_MIN * hypot(a / _DBL_MIN, b / _DBL_MIN)
+    scale = math.ldexp(1.0, -e)
+    csum, frac1, frac2 = 1.0, 0.0, 0.0
+    for x in (a * scale, b * scale):
+        hi, lo = _two_product(x, x)
+        s = csum + hi
+        frac2 += (csum - s) + hi
+        csum = s
+        frac1 += lo
+    h = math.sqrt(csum - 1.0 + (frac1 + frac2))
+    hi, lo = _two_product(-h, h)
+    s = csum + hi
+    frac2 += (csum - s) + hi
+    csum = s
+    frac1 += lo
+    x = csum - 1.0 + (frac1 + frac2)
+    h += x / (2.0 * h)
+    return h / scale
+
+
+@njit(cache=True)
 def _tau_omega(u, v, xi, eta, phi):
     delta = mod2pi(u - v)
     a = math.sin(u) - math.sin(delta)
@@ -52,119 +115,192 @@ def _tau_omega(u, v, xi, eta, phi):
 
 
 # --- base words: (x, y, phi) of the goal in the start frame (radius 1), with sin(phi) and cos(phi)
-# -> the segments' signed lengths (their kinds are in _BASE) or None
+# -> the segments' signed lengths in ``out`` (their kinds are in _KINDS), how many (0: no such word)
 
 
-def _lsl(x, y, phi, sp, cp):  # 8.1  L+ S+ L+
+@njit(cache=True)
+def _lsl(x, y, phi, sp, cp, out):  # 8.1  L+ S+ L+
     xi, eta = x - sp, y - 1.0 + cp
-    u, t = math.hypot(xi, eta), math.atan2(eta, xi)
+    u, t = hypot(xi, eta), math.atan2(eta, xi)
     v = mod2pi(phi - t)
     if t >= -ZERO and v >= -ZERO:
-        return t, u, v
-    return None
+        out[0], out[1], out[2] = t, u, v
+        return 3
+    return 0
 
 
-def _lsr(x, y, phi, sp, cp):  # 8.2  L+ S+ R+
+@njit(cache=True)
+def _lsr(x, y, phi, sp, cp, out):  # 8.2  L+ S+ R+
     xi, eta = x + sp, y - 1.0 - cp
     u1 = xi * xi + eta * eta
     if u1 < 4.0:
-        return None
+        return 0
     u = math.sqrt(u1 - 4.0)
     t = mod2pi(math.atan2(eta, xi) + math.atan2(2.0, u))
     v = mod2pi(t - phi)
     if t >= -ZERO and v >= -ZERO:
-        return t, u, v
-    return None
+        out[0], out[1], out[2] = t, u, v
+        return 3
+    return 0
 
 
-def _lrl(x, y, phi, sp, cp):  # 8.3 / 8.4  L+ R- L
+@njit(cache=True)
+def _lrl(x, y, phi, sp, cp, out):  # 8.3 / 8.4  L+ R- L
     xi, eta = x - sp, y - 1.0 + cp
-    rho = math.hypot(xi, eta)
+    rho = hypot(xi, eta)
     if rho > 4.0:
-        return None
+        return 0
     u = -2.0 * math.asin(0.25 * rho)
     t = mod2pi(math.atan2(eta, xi) + 0.5 * u + PI)
     v = mod2pi(phi - t + u)
     if t >= -ZERO and u <= ZERO:
-        return t, u, v
-    return None
+        out[0], out[1], out[2] = t, u, v
+        return 3
+    return 0
 
 
-def _lrlr_a(x, y, phi, sp, cp):  # 8.7  L+ R+u L-u R-
+@njit(cache=True)
+def _lrlr_a(x, y, phi, sp, cp, out):  # 8.7  L+ R+u L-u R-
     xi, eta = x + sp, y - 1.0 - cp
-    rho = 0.25 * (2.0 + math.hypot(xi, eta))
+    rho = 0.25 * (2.0 + hypot(xi, eta))
     if rho > 1.0:
-        return None
+        return 0
     u = math.acos(rho)
     t, v = _tau_omega(u, -u, xi, eta, phi)
     if t >= -ZERO and v <= ZERO:
-        return t, u, -u, v
-    return None
+        out[0], out[1], out[2], out[3] = t, u, -u, v
+        return 4
+    return 0
 
 
-def _lrlr_b(x, y, phi, sp, cp):  # 8.8  L+ R-u L-u R+
+@njit(cache=True)
+def _lrlr_b(x, y, phi, sp, cp, out):  # 8.8  L+ R-u L-u R+
     xi, eta = x + sp, y - 1.0 - cp
     rho = (20.0 - xi * xi - eta * eta) / 16.0
     if not 0.0 <= rho <= 1.0:
-        return None
+        return 0
     u = -math.acos(rho)
     if u < -HALF_PI:
-        return None
+        return 0
     t, v = _tau_omega(u, u, xi, eta, phi)
     if t >= -ZERO and v >= -ZERO:
-        return t, u, u, v
-    return None
+        out[0], out[1], out[2], out[3] = t, u, u, v
+        return 4
+    return 0
 
 
-def _lrsl(x, y, phi, sp, cp):  # 8.9  L+ R-pi/2 S- L-
+@njit(cache=True)
+def _lrsl(x, y, phi, sp, cp, out):  # 8.9  L+ R-pi/2 S- L-
     xi, eta = x - sp, y - 1.0 + cp
-    rho = math.hypot(xi, eta)
+    rho = hypot(xi, eta)
     if rho < 2.0:
-        return None
+        return 0
     r = math.sqrt(rho * rho - 4.0)
     u = 2.0 - r
     t = mod2pi(math.atan2(eta, xi) + math.atan2(r, -2.0))
     v = mod2pi(phi - HALF_PI - t)
     if t >= -ZERO and u <= ZERO and v <= ZERO:
-        return t, -HALF_PI, u, v
-    return None
+        out[0], out[1], out[2], out[3] = t, -HALF_PI, u, v
+        return 4
+    return 0
 
 
-def _lrsr(x, y, phi, sp, cp):  # 8.10  L+ R-pi/2 S- R-
+@njit(cache=True)
+def _lrsr(x, y, phi, sp, cp, out):  # 8.10  L+ R-pi/2 S- R-
     xi, eta = x + sp, y - 1.0 - cp
-    rho, t = math.hypot(-eta, xi), math.atan2(xi, -eta)
+    rho, t = hypot(-eta, xi), math.atan2(xi, -eta)
     if rho < 2.0:
-        return None
+        return 0
     u = 2.0 - rho
     v = mod2pi(t + HALF_PI - phi)
     if t >= -ZERO and u <= ZERO and v <= ZERO:
-        return t, -HALF_PI, u, v
-    return None
+        out[0], out[1], out[2], out[3] = t, -HALF_PI, u, v
+        return 4
+    return 0
 
 
-def _lrslr(x, y, phi, sp, cp):  # 8.11  L+ R-pi/2 S- L-pi/2 R+
+@njit(cache=True)
+def _lrslr(x, y, phi, sp, cp, out):  # 8.11  L+ R-pi/2 S- L-pi/2 R+
     xi, eta = x + sp, y - 1.0 - cp
-    rho = math.hypot(xi, eta)
+    rho = hypot(xi, eta)
     if rho < 2.0:
-        return None
+        return 0
     u = 4.0 - math.sqrt(rho * rho - 4.0)
     if u > ZERO:
-        return None
+        return 0
     t = mod2pi(math.atan2((4.0 - u) * xi - 2.0 * eta, -2.0 * xi + (u - 4.0) * eta))
     v = mod2pi(t - phi)
     if t >= -ZERO and v >= -ZERO:
-        return t, -HALF_PI, u, -HALF_PI, v
-    return None
+        out[0], out[1], out[2], out[3], out[4] = t, -HALF_PI, u, -HALF_PI, v
+        return 5
+    return 0
 
 
-_SWAP = {"L": "R", "R": "L", "S": "S"}
-# (base word, its segments' kinds, whether its "backwards" image is a distinct word: only the
-# words that are not palindromic in shape need it)
-_BASE = ((_lsl, "LSL", False), (_lsr, "LSR", False), (_lrl, "LRL", True), (_lrlr_a, "LRLR", False),
-         (_lrlr_b, "LRLR", False), (_lrsl, "LRSL", True), (_lrsr, "LRSR", True), (_lrslr, "LRSLR", False))
-# time flip negates lengths (the query's x), reflection swaps L and R (the query's y); phi flips
-# sign when exactly one of them applies: (sign of x, sign of y, flip, mirror)
-_SYMMETRIES = ((1.0, 1.0, False, False), (-1.0, 1.0, True, False), (1.0, -1.0, False, True), (-1.0, -1.0, True, True))
+# the base words in the order they are tried (ties: the first wins), their segments' turns (padded with 0),
+# and whether their "backwards" image is a distinct word: only the words that are not palindromic in shape need it
+_BASES = ("LSL", "LSR", "LRL", "LRLR", "LRLR", "LRSL", "LRSR", "LRSLR")
+_KINDS = np.array([[TURN[k] for k in w] + [0.0] * (MAX_SEGMENTS - len(w)) for w in _BASES])
+_BACKWARDS = np.array([False, False, True, False, False, True, True, False])
+
+
+@njit(cache=True)
+def _base(k, x, y, phi, sp, cp, out):
+    """Base word k's lengths into ``out``: how many (0: none)."""
+    if k == 0:
+        return _lsl(x, y, phi, sp, cp, out)
+    if k == 1:
+        return _lsr(x, y, phi, sp, cp, out)
+    if k == 2:
+        return _lrl(x, y, phi, sp, cp, out)
+    if k == 3:
+        return _lrlr_a(x, y, phi, sp, cp, out)
+    if k == 4:
+        return _lrlr_b(x, y, phi, sp, cp, out)
+    if k == 5:
+        return _lrsl(x, y, phi, sp, cp, out)
+    if k == 6:
+        return _lrsr(x, y, phi, sp, cp, out)
+    return _lrslr(x, y, phi, sp, cp, out)
+
+
+@njit(cache=True)
+def reeds_shepp(x: float, y: float, phi: float, out: np.ndarray) -> int:
+    """The shortest Reeds-Shepp word to (x, y, phi) in the start frame, radius 1, into ``out`` (rows (turn,
+    signed length), at least MAX_SEGMENTS of them): how many segments.
+
+    Every base word is tried under the symmetries: time flip (drive it backwards: negate the query's x and
+    the lengths), reflection (swap left and right: negate the query's y and the turns), phi's sign flipping
+    when exactly one applies; and read end to start where that is a distinct word (the query rotated into the
+    goal's frame). A word's length sums its segments in base order; the first shortest wins.
+    """
+    sp, cp = math.sin(phi), math.cos(phi)
+    xb, yb = x * cp + y * sp, x * sp - y * cp
+    lengths, best = np.empty(MAX_SEGMENTS), np.empty(MAX_SEGMENTS)
+    best_len, best_k, best_n, best_code = math.inf, -1, 0, 0
+    for k in range(len(_BASES)):
+        for reverse in range(2 if _BACKWARDS[k] else 1):
+            gx, gy = (xb, yb) if reverse else (x, y)
+            for code in range(4):  # (flip, mirror) = (code & 1, code >> 1)
+                flip, mirror = code & 1, code >> 1
+                same = flip == mirror  # sin(-phi) = -sin(phi): one sine serves every query
+                n = _base(k, -gx if flip else gx, -gy if mirror else gy, phi if same else -phi,
+                          sp if same else -sp, cp, lengths)
+                if n == 0:
+                    continue
+                length = 0.0
+                for i in range(n):
+                    length += abs(lengths[i])
+                if length < best_len:
+                    best_len, best_k, best_n, best_code = length, k, n, code + 4 * reverse
+                    best[:n] = lengths[:n]
+    if best_k < 0:
+        return 0
+    flip, mirror, reverse = best_code & 1, (best_code >> 1) & 1, best_code >> 2
+    for i in range(best_n):
+        j = best_n - 1 - i if reverse else i
+        out[i, 0] = -_KINDS[best_k, j] if mirror else _KINDS[best_k, j]
+        out[i, 1] = -best[j] if flip else best[j]
+    return best_n
 
 
 def word_length(word: Word) -> float:
@@ -172,33 +308,10 @@ def word_length(word: Word) -> float:
 
 
 def reeds_shepp_word(x: float, y: float, phi: float) -> Word:
-    """The shortest Reeds-Shepp word to (x, y, phi) in the start frame, radius 1.
-
-    The base words return bare lengths and the winner alone becomes a word: this runs once per
-    nearest-neighbour candidate, and building ~30 words of tuples per query cost a third of it.
-    """
-    best, best_len = None, math.inf
-    sp, cp = math.sin(phi), math.cos(phi)
-    xb, yb = x * cp + y * sp, x * sp - y * cp
-    for base, kinds, backwards in _BASE:
-        for gx, gy, reverse in ((x, y, False), (xb, yb, True)) if backwards else ((x, y, False),):
-            for sx, sy, flip, mirror in _SYMMETRIES:
-                same = flip == mirror  # sin(-phi) = -sin(phi): one sine serves every query
-                lengths = base(sx * gx, sy * gy, phi if same else -phi, sp if same else -sp, cp)
-                if lengths is None:
-                    continue
-                length = sum(map(abs, lengths))
-                if length < best_len:
-                    best, best_len = (kinds, lengths, reverse, flip, mirror), length
-    kinds, lengths, reverse, flip, mirror = best
-    word = tuple(zip(kinds, lengths))
-    if reverse:
-        word = word[::-1]
-    if flip:
-        word = tuple((k, -s) for k, s in word)
-    if mirror:
-        word = tuple((_SWAP[k], s) for k, s in word)
-    return word
+    """The shortest Reeds-Shepp word to (x, y, phi) in the start frame, radius 1 (:func:`reeds_shepp`)."""
+    out = np.empty((MAX_SEGMENTS, 2))
+    n = reeds_shepp(float(x), float(y), float(phi), out)
+    return tuple((KIND[t], s) for t, s in out[:n].tolist())
 
 
 def _arc(a: float) -> float:

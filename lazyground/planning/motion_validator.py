@@ -23,6 +23,9 @@ def samples_free(space, checker, qs: np.ndarray) -> np.ndarray:
     kernels = getattr(space, "kernels", None)  # (a unit-weight linear space: one compiled pass, #31)
     if kernels is not None and qs.ndim == 2 and qs.flags.c_contiguous and kernels.all_inside(qs, space.lower, space.upper):
         return np.asarray(checker.configs_free(qs), bool)
+    all_inside = getattr(space, "all_inside", None)  # (a car's: one compiled test, #33)
+    if all_inside is not None and all_inside(qs):
+        return np.asarray(checker.configs_free(qs), bool)
     inside = np.all((qs >= space.lower - 1e-9) & (qs <= space.upper + 1e-9), axis=1)
     if inside.all():
         return np.asarray(checker.configs_free(qs), bool)

@@ -83,6 +83,11 @@ class NearestNeighbors:
         if len(idx) and self._size > self._brute_limit and idx.min() < self._recent_end:
             self._rebuild_main()
 
+    def arrays(self) -> tuple[np.ndarray, np.ndarray, int]:
+        """(the points, their squared norms, how many are in use): for a compiled scan (rows past the count are
+        unused)."""
+        return self._points, self._sq, self._size
+
     @property
     def scans(self) -> bool:
         """Whether a query is one scan over every point (no k-d tree yet)."""

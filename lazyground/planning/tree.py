@@ -18,6 +18,19 @@ def _as_is(q: np.ndarray) -> np.ndarray:
     return np.asarray(q, float)
 
 
+_NO_IDS = np.zeros(0, np.int64)
+
+
+def _put(a: np.ndarray, i: int, value) -> np.ndarray:
+    """a with a[i] = value, grown (doubled) when i is past its end; returns the array to keep."""
+    if i >= len(a):
+        grown = np.empty((max(2 * len(a), i + 1),) + a.shape[1:], a.dtype)
+        grown[: len(a)] = a
+        a = grown
+    a[i] = value
+    return a
+
+
 class Tree:
     def __init__(self, space: ConfigSpace, per_label: bool = False):
         self.space = space
@@ -39,6 +52,11 @@ class Tree:
         self._muted: set[int] = set()  # nodes left out of the whole tree's queries (:meth:`mute`)
         # (coordinates that are their own embedding are not copied per query: the index copies what it keeps)
         self._embed = _as_is if getattr(space, "embeds_as_is", False) else space.embed
+        # a Reeds-Shepp car: a nearest-node query is one compiled call (CarSpace.nearest_node, #33) over the nodes
+        # kept in one array too, and per label the indices of its nodes
+        self._car = space if getattr(space, "compiled_nearest", False) else None
+        self._q = np.empty((64, space.dim)) if self._car is not None else None
+        self._ids: dict[int, np.ndarray] = {}
 
     def __len__(self) -> int:
         return len(self.nodes)
@@ -59,6 +77,8 @@ class Tree:
         self.checked.append(checked)
         x = self._embed(q)
         i = self.nn.add(x)
+        if self._car is not None:
+            self._q = _put(self._q, i, q)
         if self._per_label:
             members = self._members.get(label)
             if members is None:
@@ -68,6 +88,8 @@ class Tree:
             nn = self._label_nn.get(label)
             if nn is not None:
                 nn.add(x)
+            if self._car is not None:
+                self._ids[label] = _put(self._ids.get(label, _NO_IDS), self._local[-1], i)
         return i
 
     def _label_index(self, label: int) -> tuple[NearestNeighbors | None, list[int] | None]:
@@ -92,13 +114,17 @@ class Tree:
         A space with ``nn_candidates`` > 1 (a car) ranks that many nearest nodes of the
         embedding by its own :meth:`closest` (the driving distance to ``q``).
         """
-        x = self._embed(q)
+        if self._car is not None:
+            return self._car_nearest(q, label, 0.0)[0]
         if label is None:
             nn, members = (self.nn, None) if len(self.nn) else (None, None)
         else:
             nn, members = self._label_index(label)
-        if nn is None:
-            return -1
+        return -1 if nn is None else self._general_nearest(q, nn, members)
+
+    def _general_nearest(self, q: np.ndarray, nn: NearestNeighbors, members: list[int] | None) -> int:
+        """:meth:`nearest` in ``nn`` (the whole tree's index, or a label's with its ``members``)."""
+        x = self._embed(q)
         if self.space.nn_candidates > 1:
             near = nn.nearest_k(x, self.space.nn_candidates)
             near = [j for j in (near if members is None else (members[j] for j in near))
@@ -114,6 +140,8 @@ class Tree:
 
         A unit-weight linear space's scan answers it in one compiled call (the same node and numbers as
         :meth:`nearest` then ``steer``)."""
+        if self._car is not None:
+            return self._car_nearest(q, label, step)
         if label is None:
             nn, members = self.nn, None
         else:
@@ -137,6 +165,20 @@ class Tree:
         i = self.nearest(q, label)
         if i < 0:
             return -1, None, False
+        q_new, reached = self.space.steer(self.nodes[i], q, step)
+        return i, q_new, reached
+
+    def _car_nearest(self, q: np.ndarray, label: int | None, step: float) -> tuple[int, np.ndarray | None, bool]:
+        """:meth:`nearest_steer` (``step`` > 0) or :meth:`nearest` for a Reeds-Shepp car: one compiled call while the
+        index scans (the same node and numbers as the general path below)."""
+        nn, members = (self.nn, None) if label is None else self._label_index(label)
+        if nn is None or not len(nn):
+            return -1, None, False
+        if nn.scans:
+            return self._car.nearest_node(*nn.arrays(), None if label is None else self._ids[label], self._q, q, step)
+        i = self._general_nearest(q, nn, members)
+        if i < 0 or step <= 0.0:
+            return i, None, False
         q_new, reached = self.space.steer(self.nodes[i], q, step)
         return i, q_new, reached
 
