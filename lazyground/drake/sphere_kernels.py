@@ -66,8 +66,10 @@ def pack(blocks: dict) -> tuple[np.ndarray, np.ndarray]:
 
 
 @njit(cache=True, inline="always")
-def _solid_distance(x0, x1, x2, h0, h1, h2, rounding, cylinder):
-    """Signed distance from a point in a solid's centred frame to the solid (lazyground.drake.solids)."""
+def solid_distance(x0, x1, x2, h0, h1, h2, rounding, cylinder):
+    """Signed distance from a point in a solid's centred frame to the solid: one point's
+    :func:`lazyground.drake.solids.solid_distance`, a cylinder's radius as sqrt(x0^2 + x1^2) (numpy's hypot can
+    differ in the last bit). The certifier's and the hand probe's (lazyground.drake.ik.kernels) one code."""
     if cylinder:
         d0 = np.sqrt(x0 * x0 + x1 * x1) - h0
         d1 = -np.inf
@@ -82,8 +84,8 @@ def _solid_distance(x0, x1, x2, h0, h1, h2, rounding, cylinder):
 @njit(cache=True, inline="always")
 def _offset_distance(vx, vy, vz, R, half, rounding, cylinder):
     """Signed distance to a solid with world axes R (columns) from a point at world offset v from its centre."""
-    return _solid_distance(R[0, 0] * vx + R[1, 0] * vy + R[2, 0] * vz, R[0, 1] * vx + R[1, 1] * vy + R[2, 1] * vz,
-                           R[0, 2] * vx + R[1, 2] * vy + R[2, 2] * vz, half[0], half[1], half[2], rounding, cylinder)
+    return solid_distance(R[0, 0] * vx + R[1, 0] * vy + R[2, 0] * vz, R[0, 1] * vx + R[1, 1] * vy + R[2, 1] * vz,
+                          R[0, 2] * vx + R[1, 2] * vy + R[2, 2] * vz, half[0], half[1], half[2], rounding, cylinder)
 
 
 @intrinsic
