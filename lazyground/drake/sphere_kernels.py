@@ -728,7 +728,7 @@ def _clearance(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, W, above, lever, 
     m, G, O, P = idata[_M], idata[_G], idata[_O], idata[_P]
     (gR, go, ghalf, ground, grad, sc, sr, oR, oo, ohalf, oround, ac, ah, reach2, env, sthr, ic, ir, below, node, start,
      gcyl, ocyl, mover, other, istart, gexact, oexact) = blocks  # the cover and inner spheres: unused
-    kinds = idata[idata[7 + _NF + 1]:idata[7 + _NF + 1] + m]
+    kinds = tree[3]
     _centres(node, go, Rb, pb, centre)
     ok = True
     for g in range(G):
@@ -781,6 +781,17 @@ def _clearance(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, W, above, lever, 
     return ok
 
 
+@njit(cache=True, inline="always")
+def _pair_levers(blocks, above, lever, pair_lever):
+    """Per self pair and joint, its lever (P, m) into ``pair_lever`` from the geometries' (G, m): the sum of its two
+    geometries' over the joints above one of them only (the others move both alike)."""
+    mover, other = blocks[23], blocks[24]
+    for k in range(len(mover)):
+        g, h = mover[k], other[k]
+        for j in range(lever.shape[1]):
+            pair_lever[k, j] = lever[g, j] + lever[h, j] if above[g, j] != above[h, j] else 0.0
+
+
 @njit(cache=True)
 def sweep_rows(Q, fd, idata, work, above, pairs):
     """Per row of plant positions Q (in sequence): its code as ``certify_rows`` gives it (0 certified, open pairs'
@@ -788,12 +799,7 @@ def sweep_rows(Q, fd, idata, work, above, pairs):
     Rs, ps, Rb, pb, centre, sph, done, W, A, gap = scratch_views(idata, work)
     tree, blocks = tree_views(fd, idata), block_views(fd, idata)
     m, G, P = idata[_M], idata[_G], idata[_P]
-    i = idata[7 + _NF:_HEAD]
-    o_ = 7 + _NF
-    kinds = idata[idata[o_ + 1]:idata[o_ + 1] + m]
-    index = idata[idata[o_ + 2]:idata[o_ + 2] + m]
-    mover = idata[i[8]:i[8] + P]
-    other = idata[i[9]:i[9] + P]
+    kinds, index = tree[3], tree[4]
     lever, pair_lever = np.empty((G, m)), np.empty((P, m))
     order = np.empty(P, np.int64)
     tight = 0
@@ -854,11 +860,7 @@ def sweep_rows(Q, fd, idata, work, above, pairs):
                     if clear_k[k] >= ROOM:
                         order[rest] = k
                         rest += 1
-                # a self pair: the joints above one of its geometries only (the others move both alike)
-                for k in range(P):
-                    g, h = mover[k], other[k]
-                    for j in range(m):
-                        pair_lever[k, j] = lever[g, j] + lever[h, j] if above[g, j] != above[h, j] else 0.0
+                _pair_levers(blocks, above, lever, pair_lever)
                 out[r] = 0
                 continue
             anchored = False
