@@ -323,7 +323,7 @@ def _solids(A, ca, ha, ra, cyla, B, cb, hb, rb, cylb, thr, shift):
     is that of two points on the shapes, so at least the true one (a free claim stays Drake's), but it can be far
     above it (FCL's GJK stopping early: 12.4 mm for a true 4.8 mm, box against box, on fetch_cans_2), so a
     collision claim from the true distance would not be Drake's answer."""
-    return _gjk(A, ca, ha, ra, cyla, B, cb, hb, rb, cylb, thr - shift, -np.inf) > 0
+    return _gjk(A, ca, ha, ra, cyla, B, cb, hb, rb, cylb, thr - shift)
 
 
 @njit(cache=True)
@@ -389,14 +389,14 @@ def _spheres(g, b, Rb, pb, sc, start, sph):
 
 # ---- exact convex distance between two solids (#31) ----------------------------------------------------------------
 # A pair the sphere cover leaves open is decided between the two solids themselves (boxes, rounded boxes -- spheres
-# and capsules --, cylinders) by GJK on their support functions. Only the *bounds* are used, so GJK's own numerics
+# and capsules --, cylinders) by GJK on their support functions. Only the lower bound is used, so GJK's own numerics
 # never decide an answer:
 # * lower: for any direction n (unit), every point of A - B has n . x >= n . s_A(-n) - n . s_B(n) (s: the support
 #   point), so the distance is at least that (a separating axis); GJK only picks a good n. A solid encloses its
 #   shape, so this bounds the shapes' distance too.
-# * upper: a convex combination of support points of A - B lies in A - B, so its norm bounds the distance from
-#   above; an origin inside a (non-flat) simplex of them: the solids intersect. Not used by the kernel as a proof
-#   of collision: Drake's own distance can be far above the true one (see _solids).
+# * GJK's iterate, a convex combination of support points of A - B, lies in A - B: once it is within the threshold
+#   (or the origin lies inside a simplex of them) no lower bound can clear it, and the test stops. It is no proof
+#   of collision for the kernel: Drake's own distance can be far above the true one (see _solids).
 
 GJK_ITERATIONS = 32
 GJK_SAFETY = 1e-9  # metres: a lower bound must clear its threshold by this much (the arithmetic's rounding)
@@ -566,43 +566,40 @@ def _triangle(S, lam, ia, ib, ic):
 
 
 @njit(cache=True)
-def _gjk(RA, cA, hA, rA, cylA, RB, cB, hB, rB, cylB, free_above, collide_at):
-    """1 when the two solids are proven farther apart than ``free_above`` (a lower bound of their distance exceeds
-    it), -1 when proven within ``collide_at`` (an upper bound is at most it; the caller passes -inf unless the solids
-    are the shapes), 0 when neither (see above)."""
+def _gjk(RA, cA, hA, rA, cylA, RB, cB, hB, rB, cylB, free_above):
+    """Whether the two solids are proven farther apart than ``free_above`` (a lower bound of their distance
+    exceeds it; see above)."""
     S, lam, T, K = np.empty((4, 3)), np.empty(4), np.empty((3, 3)), np.empty((3, 3))
     vx, vy, vz = cA[0] - cB[0], cA[1] - cB[1], cA[2] - cB[2]  # both centres lie in their solids: a point of A - B
     S[0, 0], S[0, 1], S[0, 2] = vx, vy, vz
     n = 1
     for _ in range(GJK_ITERATIONS):
         vv = vx * vx + vy * vy + vz * vz
-        if np.sqrt(vv) <= collide_at:
-            return -1
         if vv <= (free_above + GJK_SAFETY) ** 2:  # a point of A - B this near: never provable farther (stop early)
-            return 0
+            return False
         if vv <= 1e-30:
-            return 0
+            return False
         ax, ay, az = _support(-vx, -vy, -vz, RA, cA, hA, rA, cylA)
         bx, by, bz = _support(vx, vy, vz, RB, cB, hB, rB, cylB)
         wx, wy, wz = ax - bx, ay - by, az - bz
         vw = vx * wx + vy * wy + vz * wz
         if vw > 0.0 and vw * vw > (free_above + GJK_SAFETY) ** 2 * vv:  # the separating axis along v
-            return 1
+            return True
         if vv - vw <= 1e-12 * vv:  # converged: w adds nothing
-            return 0
+            return False
         S[n, 0], S[n, 1], S[n, 2] = wx, wy, wz
         n = _closest(S, lam, n + 1, T, K)
         if n == 0:  # the origin inside a tetrahedron of points of A - B: the solids intersect
-            return -1 if collide_at >= 0.0 else 0
+            return False
         x = y = z = 0.0
         for i in range(n):
             x += lam[i] * S[i, 0]
             y += lam[i] * S[i, 1]
             z += lam[i] * S[i, 2]
         if x * x + y * y + z * z >= vv:  # no progress (rounding)
-            return 0
+            return False
         vx, vy, vz = x, y, z
-    return 0
+    return False
 
 
 def work_size(idata: np.ndarray) -> int:
