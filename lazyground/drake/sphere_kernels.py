@@ -504,6 +504,23 @@ def _orient_origin(S, a, b, c):
     return -((uy * vz - uz * vy) * S[a, 0] + (uz * vx - ux * vz) * S[a, 1] + (ux * vy - uy * vx) * S[a, 2])
 
 
+@njit(cache=True, inline="always")
+def _vertex(S, lam, x, y, z):
+    """A triangle's Voronoi vertex region: S[0] = (x, y, z), weight 1; returns 1 (:func:`_triangle`)."""
+    S[0, 0], S[0, 1], S[0, 2] = x, y, z
+    lam[0] = 1.0
+    return 1
+
+
+@njit(cache=True, inline="always")
+def _edge(S, lam, px, py, pz, qx, qy, qz, t):
+    """A triangle's Voronoi edge region: S[0] = p, S[1] = q, weights 1 - t, t; returns 2 (:func:`_triangle`)."""
+    S[0, 0], S[0, 1], S[0, 2] = px, py, pz
+    S[1, 0], S[1, 1], S[1, 2] = qx, qy, qz
+    lam[0], lam[1] = 1.0 - t, t
+    return 2
+
+
 @njit(cache=True)
 def _triangle(S, lam, ia, ib, ic):
     """Nearest point of triangle S[ia], S[ib], S[ic] to the origin (Ericson, Real-Time Collision Detection 5.1.5):
@@ -516,47 +533,27 @@ def _triangle(S, lam, ia, ib, ic):
     d1 = -(abx * ax + aby * ay + abz * az)
     d2 = -(acx * ax + acy * ay + acz * az)
     if d1 <= 0.0 and d2 <= 0.0:
-        S[0, 0], S[0, 1], S[0, 2] = ax, ay, az
-        lam[0] = 1.0
-        return 1
+        return _vertex(S, lam, ax, ay, az)
     d3 = -(abx * bx + aby * by + abz * bz)
     d4 = -(acx * bx + acy * by + acz * bz)
     if d3 >= 0.0 and d4 <= d3:
-        S[0, 0], S[0, 1], S[0, 2] = bx, by, bz
-        lam[0] = 1.0
-        return 1
+        return _vertex(S, lam, bx, by, bz)
     vc = d1 * d4 - d3 * d2
     if vc <= 0.0 and d1 >= 0.0 and d3 <= 0.0:
-        t = d1 / (d1 - d3)
-        S[0, 0], S[0, 1], S[0, 2] = ax, ay, az
-        S[1, 0], S[1, 1], S[1, 2] = bx, by, bz
-        lam[0], lam[1] = 1.0 - t, t
-        return 2
+        return _edge(S, lam, ax, ay, az, bx, by, bz, d1 / (d1 - d3))
     d5 = -(abx * cx + aby * cy + abz * cz)
     d6 = -(acx * cx + acy * cy + acz * cz)
     if d6 >= 0.0 and d5 <= d6:
-        S[0, 0], S[0, 1], S[0, 2] = cx, cy, cz
-        lam[0] = 1.0
-        return 1
+        return _vertex(S, lam, cx, cy, cz)
     vb = d5 * d2 - d1 * d6
     if vb <= 0.0 and d2 >= 0.0 and d6 <= 0.0:
-        t = d2 / (d2 - d6)
-        S[0, 0], S[0, 1], S[0, 2] = ax, ay, az
-        S[1, 0], S[1, 1], S[1, 2] = cx, cy, cz
-        lam[0], lam[1] = 1.0 - t, t
-        return 2
+        return _edge(S, lam, ax, ay, az, cx, cy, cz, d2 / (d2 - d6))
     va = d3 * d6 - d5 * d4
     if va <= 0.0 and (d4 - d3) >= 0.0 and (d5 - d6) >= 0.0:
-        t = (d4 - d3) / ((d4 - d3) + (d5 - d6))
-        S[0, 0], S[0, 1], S[0, 2] = bx, by, bz
-        S[1, 0], S[1, 1], S[1, 2] = cx, cy, cz
-        lam[0], lam[1] = 1.0 - t, t
-        return 2
+        return _edge(S, lam, bx, by, bz, cx, cy, cz, (d4 - d3) / ((d4 - d3) + (d5 - d6)))
     den = va + vb + vc
     if not den > 0.0:  # a degenerate triangle: its nearest vertex
-        S[0, 0], S[0, 1], S[0, 2] = ax, ay, az
-        lam[0] = 1.0
-        return 1
+        return _vertex(S, lam, ax, ay, az)
     v, w = vb / den, vc / den
     S[0, 0], S[0, 1], S[0, 2] = ax, ay, az
     S[1, 0], S[1, 1], S[1, 2] = bx, by, bz
