@@ -60,6 +60,10 @@ def record(name: str, seeds: int):
     for attr in ("_certify_one", "_edge_open"):  # the kernels the checker binds (edge3 on)
         if hasattr(c, attr):
             wrap(c, attr, "kernel")
+    checker_module = sys.modules[type(c).__module__]
+    for attr in ("edge_call", "config_call"):  # the kernels it calls on its packed arrays (kern4 on)
+        if hasattr(checker_module, attr):
+            wrap(checker_module, attr, "kernel")
     wrap(c, "_open_free", "scenegraph")
     for kind in KINDS:
         inner = getattr(c, kind)

@@ -9,7 +9,6 @@ checker per resolution.
 
 from __future__ import annotations
 
-import functools
 import math
 import time
 
@@ -17,11 +16,10 @@ import numpy as np
 from pydrake.planning import LinearDistanceAndInterpolationProvider, SceneGraphCollisionChecker
 
 from lazyground.drake.compiled import CAP, COLLIDES, CompiledCertifier
-from lazyground.drake.edge_kernel import (ALL_FREE, BISECTION, INTERIOR_FIRST, SEQUENCE, edge_data, edge_open,
-                                          eigen_packet, step_order)
+from lazyground.drake.edge_kernel import (ALL_FREE, BISECTION, INTERIOR_FIRST, SEQUENCE, call_blocks, call_data,
+                                          config_call, edge_call, edge_data, eigen_packet, step_order)
 from lazyground.drake.coordinates import Coordinates
 from lazyground.drake.parallel import parallel_batch
-from lazyground.drake.sphere_kernels import certify_one
 from lazyground.drake.spheres import sphere_certifier
 
 _clock = time.perf_counter
@@ -81,18 +79,16 @@ class DrakeChecker:
         # bound once: an edge check's glue is a fifth of its cost on Fetch (#31)
         self._difference = coordinates.space.difference
         self._distance = self.drake.ComputeConfigurationDistance
-        if self.compiled is not None:  # an edge's glue and steps in one compiled call (edge_kernel.edge_open)
-            self._ends = np.empty((2, len(coordinates.q_full)))  # its ends' plant positions, the step count
-            self._steps = np.zeros(1, np.int64)
-            self._open = np.zeros(CAP + 1, np.int64)
-            self._certify_one = functools.partial(certify_one, self.compiled.fd, self.compiled.idata, self.compiled.work,
-                                                  self._open)  # (q_full, shift) -> code, open pairs in _open
+        if self.compiled is not None:  # an edge's glue and steps in one compiled call (edge_kernel.edge_call)
             # how this Drake sums its distance (0: unknown; then Drake gives each step count): a fixed seed
             self._packet = eigen_packet(self._distance, coordinates.plant_weights(), np.random.default_rng(0))
-            self._edge_open = functools.partial(
-                edge_open, self.compiled.fd, self.compiled.idata, self.compiled.work, self._open, self._steps,
-                self._ends, self._planned,
-                edge_data(coordinates.q_full, coordinates.plant_weights(), coordinates.space.wrap), self._packet)
+            # the certifier's and the edges' arrays in two (numba unboxes each argument on every call, #31)
+            F, I = call_data(self.compiled.fd, self.compiled.idata, len(self.compiled.work),
+                             edge_data(coordinates.q_full, coordinates.plant_weights(), coordinates.space.wrap),
+                             self._planned, self._packet, CAP)
+            self._F, self._I = F, I
+            # what the kernels write: open pairs then the code, an edge's step count and ends, a single check's q
+            self._open, self._steps, self._ends, self._one = call_blocks(F, I)
         self.certified = 0  # configurations the certifier proved free
         self._pairs = {}  # the certifier's pairs as SceneGraph's (id, id, padding), as they come up (_pair)
 
@@ -108,11 +104,10 @@ class DrakeChecker:
 
     def config_free(self, q: np.ndarray) -> bool:
         t0 = _clock()
-        q_full = self._full_one(q)
         if self.compiled is None:
-            free = self._free(q_full)
+            free = self._free(self._full_one(q))
         else:
-            free = self._decide(q_full, self._certify_one(q_full, 0.0))
+            free = self._decide(self._code(q, 0.0))
         self.check_time += _clock() - t0
         self.checks += 1
         return free
@@ -128,17 +123,26 @@ class DrakeChecker:
         if not self.penetration_first:
             return self.config_free(q)
         t0 = _clock()
-        q_full = self._full_one(q)
         if self.compiled is None:
-            free = not self.penetrates(q_full)
+            free = not self.penetrates(self._full_one(q))
         else:  # the certifier's test for penetration (thresholds less the padding; COLLIDES: a padded collision,
             # False here as before), then the open pairs' penetration (every other pair is proven apart)
-            code = self._certify_one(q_full, self.unpadded_shift)
+            code = self._code(q, self.unpadded_shift)
             free = code == 0 or code != COLLIDES and (
-                self._open_free(q_full, self._open[:code].copy(), unpadded=True) if code > 0 else not self.penetrates(q_full))
+                self._open_free(self._one.copy(), self._open[:code].copy(), unpadded=True) if code > 0
+                else not self.penetrates(self._one.copy()))
         self.check_time += _clock() - t0
         self.checks += 1
         return free
+
+    def _code(self, q: np.ndarray, shift: float) -> int:
+        """The certifier's code for planned coordinates q (:func:`lazyground.drake.edge_kernel.config_call`; its plant
+        positions in ``_one``, its open pairs in ``_open``): one compiled call, q as it comes (a contiguous float array
+        from the planner: the call's only signature, :func:`lazyground.drake.compiled.warm_up`), else as one."""
+        try:
+            return config_call(self._F, self._I, q, shift)
+        except TypeError:
+            return config_call(self._F, self._I, np.array(q, float), float(shift))
 
     def _full_one(self, q: np.ndarray) -> np.ndarray:
         """``coordinates.full(q)`` of one configuration (the same values, a new array)."""
@@ -208,14 +212,15 @@ class DrakeChecker:
             free[i] = self._free(configs[i])
         return free
 
-    def _decide(self, q_full: np.ndarray, code: int) -> bool:
-        """Drake's answer at ``q_full`` from the certifier's ``code`` for it (its open pairs in ``_open``)."""
+    def _decide(self, code: int) -> bool:
+        """Drake's answer at the configuration in ``_one`` from the certifier's ``code`` for it (its open pairs in
+        ``_open``)."""
         if code == 0:
             self.certified += 1
             return True
         if code == COLLIDES:
             return False
-        return self._open_free(q_full, self._open[:code].copy() if code > 0 else None)
+        return self._open_free(self._one.copy(), self._open[:code].copy() if code > 0 else None)
 
     def _open_free(self, q_full: np.ndarray, pairs: np.ndarray | None, unpadded: bool = False) -> bool:
         """Drake's answer at ``q_full``, which the certifier left open, from SceneGraph's signed distance of its
@@ -263,7 +268,7 @@ class DrakeChecker:
             ValueError: ``resolution`` is not this checker's fixed resolution.
         """
         if self.compiled is not None:
-            return bool(self._certified_edge(a, b, resolution, fraction=False))
+            return self._certified_edge(a, b, resolution, BISECTION)
         return bool(self._edge(self._edge_free, a, b, resolution))
 
     def _edge_free(self, qa: np.ndarray, qb: np.ndarray) -> bool:
@@ -291,7 +296,7 @@ class DrakeChecker:
             ValueError: ``resolution`` is not this checker's fixed resolution.
         """
         if self.compiled is not None:
-            return self._certified_edge(a, b, resolution, fraction=True)
+            return self._certified_edge(a, b, resolution, SEQUENCE)
         measure = self._edge(self.drake.MeasureEdgeCollisionFree, a, b, resolution)
         return max(0.0, measure.alpha_or(0.0))
 
@@ -307,38 +312,40 @@ class DrakeChecker:
         """
         if self.compiled is None:
             raise ValueError("edge_part_free needs the compiled certifier")
-        return bool(self._certified_edge(a, b, resolution, fraction=False, part=(first, stop)))
+        return self._certified_edge(a, b, resolution, INTERIOR_FIRST, first, -1 if stop is None else stop)
 
-    def _certified_edge(self, a: np.ndarray, b: np.ndarray, resolution: float, fraction: bool,
-                        part: tuple[int, int | None] | None = None):
-        """Drake's ``CheckEdgeCollisionFree`` (``fraction``: ``MeasureEdgeCollisionFree``'s free fraction) at
+    def _certified_edge(self, a: np.ndarray, b: np.ndarray, resolution: float, mode: int, first: int = 0,
+                        stop: int = -1):
+        """Drake's ``CheckEdgeCollisionFree`` (``mode`` SEQUENCE: ``MeasureEdgeCollisionFree``'s free fraction) at
         ``resolution``, with the certifier: the same steps (q_k = qa + k / n (qb - qa), k = 0..n, n =
         max(1, ceil(Drake's distance / resolution)); the certifier's margin covers the last bit by which Drake's
         interpolation may differ, and a step it leaves open is Drake's interpolation), certified in one compiled
-        call (:func:`lazyground.drake.edge_kernel.edge_open`: the ends, the step count, the order and the steps)
+        call (:func:`lazyground.drake.edge_kernel.edge_call`: the ends, the step count, the order and the steps)
         in bisection order (sequentially for the fraction) up to the first one it cannot prove, which
         SceneGraph decides (:meth:`_open_free`) unless it proves a collision there; then on from there. So the answer is Drake's: a step is
         called colliding by Drake or by a proof of it, and every other step is proven free."""
         if self._resolution is None:
             self._resolution = resolution
         t0 = _clock()
-        mode = SEQUENCE if fraction else BISECTION if part is None else INTERIOR_FIRST
-        first, stop = (0, -1) if part is None else (part[0], -1 if part[1] is None else part[1])
-        a, b = np.ascontiguousarray(a, float), np.ascontiguousarray(b, float)
-        p = self._edge_open(a, b, resolution, mode, first, stop, 0 if self._packet else self._drake_steps(a, b, resolution))
+        steps = 0 if self._packet else self._drake_steps(a, b, resolution)
+        try:  # a and b as they come (contiguous float arrays from a planner: the call's one signature, warm_up)
+            p = edge_call(self._F, self._I, a, b, resolution, mode, first, stop, steps)
+        except TypeError:  # anything else as such arrays
+            p = edge_call(self._F, self._I, np.array(a, float), np.array(b, float), float(resolution), mode, int(first),
+                          int(stop), steps)
         if p == ALL_FREE:
-            out = 1.0 if fraction else True
-        elif not fraction and self._open[-1] == COLLIDES:  # a step proven colliding: most of a planner's edges
+            out = 1.0 if mode == SEQUENCE else True
+        elif p < ALL_FREE and mode != SEQUENCE:  # a step proven colliding: most of a planner's edges
             out = False
         else:
-            out = self._open_steps(p, mode, stop, fraction)
+            out = self._open_steps(p if p >= 0 else -2 - p, mode, stop, mode == SEQUENCE)
         self.check_time += _clock() - t0
         self.checks += 1
         return out
 
     def _drake_steps(self, a: np.ndarray, b: np.ndarray, resolution: float) -> int:
         """The step count of a -> b from Drake's own distance (where edge_kernel cannot sum as this Drake does)."""
-        full = self.coordinates.full
+        full, a = self.coordinates.full, np.asarray(a, float)
         return max(1, math.ceil(self._distance(full(a), full(a + self._difference(a, b))) / resolution))
 
     def _open_steps(self, p: int, mode: int, stop: int, fraction: bool):

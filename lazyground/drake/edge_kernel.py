@@ -21,7 +21,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from lazyground.drake.sphere_kernels import block_views, open_pairs_row, scratch_views, tree_views
+from lazyground.drake.sphere_kernels import (COLLIDES, block_views, c_view, certify_one, open_pairs_row,
+                                             scratch_views, tree_views)
 from lazyground.user_cache import use_kernel_cache
 
 use_kernel_cache()  # before any kernel is defined: caches keyed by every kernel file's text
@@ -113,6 +114,18 @@ def step_order(n, mode):
     return out
 
 
+@njit(cache=True, inline="always")
+def _step_count(qa, qb, edata, packet, resolution, steps):
+    """``steps`` when given (> 0), else Drake's: max(1, ceil(weighted distance / resolution)), summed as Drake sums."""
+    if steps > 0:
+        return steps
+    nq = len(qa)
+    v = np.empty(nq)
+    for j in range(nq):
+        v[j] = (qb[j] - qa[j]) * edata[nq + j]
+    return max(1, int(np.ceil(np.sqrt(squared_norm(v, packet)) / resolution)))
+
+
 @njit(cache=True)
 def edge_open(fd, idata, work, pairs, state, qab, planned, edata, packet, a, b, resolution, mode, first, stop, steps):
     """The first position p of the steps' order (from ``first``, before ``stop``; -1: to the end) whose
@@ -122,7 +135,8 @@ def edge_open(fd, idata, work, pairs, state, qab, planned, edata, packet, a, b, 
     ``a``, ``b``: planned coordinates; ``planned``: their indices in the plant's positions; ``edata``: the plant's
     positions at the start (unplanned ones stay there), the metric weights over them, and per planned coordinate
     1.0 where it wraps. Writes both ends' plant positions into ``qab`` (b on the shorter arc from a, as
-    ``a + space.difference(a, b)``) and the step count into ``state[0]``."""
+    ``a + space.difference(a, b)``) and the step count into ``state[0]`` (0 when bisection's first step, the end,
+    is proven colliding: the count is not needed then)."""
     nq, nplan = qab.shape[1], len(planned)
     qa, qb = qab[0], qab[1]
     for j in range(nq):
@@ -134,29 +148,25 @@ def edge_open(fd, idata, work, pairs, state, qab, planned, edata, packet, a, b, 
             d = (d + np.pi) % (2 * np.pi) - np.pi  # lazyground.geometry.wrap_angle
         qa[planned[i]] = a[i]
         qb[planned[i]] = a[i] + d
-    n = steps
-    if n <= 0:
-        v = np.empty(nq)
-        for j in range(nq):
-            v[j] = (qb[j] - qa[j]) * edata[nq + j]
-        n = max(1, int(np.ceil(np.sqrt(squared_norm(v, packet)) / resolution)))
-    state[0] = n
-    end = n + 1 if stop < 0 else min(stop, n + 1)  # len(step_order(n, mode)) is n + 1
     Rs, ps, Rb, pb, centre, sph, done, W, A, gap = scratch_views(idata, work)
     tree, blocks = tree_views(fd, idata), block_views(fd, idata)
     q = np.empty(nq)
     cap = len(pairs) - 1
     p = first
-    if mode == BISECTION and p == 0 and end > 0:  # bisection's first step is the end n: most of a planner's
-        # edges stop there (88 % on fetch_boxes_3), so the order is made only past it (~0.3 µs, #31)
-        t = n / n
+    if mode == BISECTION and p == 0 and stop != 0:  # bisection's first step is the end (t = n / n = 1 for every
+        # n): most of a planner's edges stop there (88 % on fetch_boxes_3), so the order (~0.3 µs) and, where the
+        # end is proven colliding, the step count (~0.3 µs) are not needed (#31)
         for j in range(nq):
-            q[j] = qa[j] + t * (qb[j] - qa[j])
+            q[j] = qa[j] + 1.0 * (qb[j] - qa[j])
         c = open_pairs_row(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap, 0.0)
         if c != 0:
             pairs[-1] = c
+            state[0] = 0 if c == COLLIDES else _step_count(qa, qb, edata, packet, resolution, steps)
             return 0
         p = 1
+    n = _step_count(qa, qb, edata, packet, resolution, steps)
+    state[0] = n
+    end = n + 1 if stop < 0 else min(stop, n + 1)  # len(step_order(n, mode)) is n + 1
     order = step_order(n, mode)
     for p in range(p, end):
         t = order[p] / n
@@ -167,6 +177,77 @@ def edge_open(fd, idata, work, pairs, state, qab, planned, edata, packet, a, b, 
             pairs[-1] = c
             return p
     return ALL_FREE
+
+
+# A checker's call data (call_data): the certifier's arrays and an edge's in one float and one int array, so that a
+# call passes two arrays besides its own: numba's dispatcher types and unboxes every argument on every call (~0.1 µs
+# an array; edge_open's 16 arguments cost ~1.3 µs a call, #31). The int array ends in CALL_HEAD offsets and sizes:
+_WORK, _EDATA, _QAB, _QC, _PAIRS, _NPAIRS, _STATE, _PLANNED, _NPLAN, _NQ, _PACKET = range(11)
+CALL_HEAD = 11
+
+
+def call_data(fd: np.ndarray, idata: np.ndarray, work_size: int, edata: np.ndarray, planned: np.ndarray, packet: int,
+              cap: int) -> tuple[np.ndarray, np.ndarray]:
+    """(F, I) for :func:`edge_call` and :func:`config_call`: F = the certifier's float data, its scratch (``work_size``
+    floats), ``edata`` (:func:`edge_data`), an edge's two ends and one configuration's plant positions; I = its int data,
+    the open pairs (``cap`` and the code), the step count, the planned indices, then the offsets. Both arrays
+    start with the certifier's, whose offsets count from there."""
+    planned = np.asarray(planned, np.int64)
+    nq = (len(edata) - len(planned)) // 2
+    sizes_f = (len(fd), work_size, len(edata), 2 * nq, nq)
+    at_f = np.cumsum((0,) + sizes_f)
+    F = np.concatenate([fd, np.zeros(work_size), edata, np.zeros(3 * nq)])
+    at_i = np.cumsum((0, len(idata), cap + 1, 1, len(planned)))
+    head = np.zeros(CALL_HEAD, np.int64)
+    head[[_WORK, _EDATA, _QAB, _QC]] = at_f[1:5]
+    head[[_PAIRS, _STATE, _PLANNED]] = at_i[1:4]
+    head[_NPAIRS], head[_NPLAN], head[_NQ], head[_PACKET] = cap + 1, len(planned), nq, packet
+    I = np.concatenate([idata, np.zeros(cap + 2, np.int64), planned, head])
+    return F, I
+
+
+def call_blocks(F: np.ndarray, I: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Views of the blocks the kernels write in a checker's call data (:func:`call_data`): (open pairs then the
+    code, the step count, an edge's ends' plant positions (2, nq), a single check's plant positions)."""
+    h = len(I) - CALL_HEAD
+    nq = I[h + _NQ]
+    return (I[I[h + _PAIRS]:I[h + _PAIRS] + I[h + _NPAIRS]], I[I[h + _STATE]:I[h + _STATE] + 1],
+            F[I[h + _QAB]:I[h + _QAB] + 2 * nq].reshape(2, nq), F[I[h + _QC]:I[h + _QC] + nq])
+
+
+@njit(cache=True, inline="always")
+def _call_views(F, I):
+    """(work, edata, ends, one configuration, open pairs, step count, planned indices, packet) in F and I (:func:`call_data`)."""
+    h = len(I) - CALL_HEAD
+    nq, nplan = I[h + _NQ], I[h + _NPLAN]
+    return (c_view(F, I[h + _WORK], (I[h + _EDATA] - I[h + _WORK],)), c_view(F, I[h + _EDATA], (2 * nq + nplan,)),
+            c_view(F, I[h + _QAB], (2, nq)), c_view(F, I[h + _QC], (nq,)), c_view(I, I[h + _PAIRS], (I[h + _NPAIRS],)),
+            c_view(I, I[h + _STATE], (1,)), c_view(I, I[h + _PLANNED], (nplan,)), I[h + _PACKET])
+
+
+@njit(cache=True)
+def edge_call(F, I, a, b, resolution, mode, first, stop, steps):
+    """:func:`edge_open` on a checker's call data (:func:`call_data`): ALL_FREE; p >= 0, the first position left
+    open (its code and open pairs in the pairs block); or -2 - p where the step at position p is proven colliding."""
+    work, edata, qab, qc, pairs, state, planned, packet = _call_views(F, I)
+    if len(a) != len(planned) or len(b) != len(planned):
+        raise ValueError("an edge's ends must have one value per planned coordinate")
+    p = edge_open(F, I, work, pairs, state, qab, planned, edata, packet, a, b, resolution, mode, first, stop, steps)
+    return -2 - p if p >= 0 and pairs[-1] == COLLIDES else p
+
+
+@njit(cache=True)
+def config_call(F, I, q, shift):
+    """:func:`lazyground.drake.sphere_kernels.certify_one` of planned coordinates ``q`` (their plant positions
+    written to F's configuration block, :func:`call_data`), on a checker's call data."""
+    work, edata, qab, qc, pairs, state, planned, packet = _call_views(F, I)
+    if len(q) != len(planned):
+        raise ValueError("a configuration must have one value per planned coordinate")
+    for j in range(len(qc)):
+        qc[j] = edata[j]
+    for i in range(len(planned)):
+        qc[planned[i]] = q[i]
+    return certify_one(F, I, work, pairs, qc, shift)
 
 
 def edge_data(q_full: np.ndarray, weights: np.ndarray, wrap: np.ndarray) -> np.ndarray:

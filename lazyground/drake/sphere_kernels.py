@@ -89,7 +89,7 @@ def _offset_distance(vx, vy, vz, R, half, rounding, cylinder):
 
 
 @intrinsic
-def _c_view(typingctx, flat, lo, shape):
+def c_view(typingctx, flat, lo, shape):
     """flat[lo:lo + prod(shape)] as a C-contiguous view of that shape, without numba's reshape, which calls a
     helper checking the layout (~35 ns a view; a call makes ~30 of them: ~1 µs of an edge's ~8, #31), nor
     ``as_strided``, whose any-layout views make a row ~2x slower. The caller keeps the block inside ``flat``."""
@@ -127,14 +127,14 @@ def _c_view(typingctx, flat, lo, shape):
 
 @njit(cache=True, inline="always")
 def _grid(flat, lo, rows, cols):
-    """flat[lo:lo + rows * cols] as a (rows, cols) view (:func:`_c_view`)."""
-    return _c_view(flat, lo, (rows, cols))
+    """flat[lo:lo + rows * cols] as a (rows, cols) view (:func:`c_view`)."""
+    return c_view(flat, lo, (rows, cols))
 
 
 @njit(cache=True, inline="always")
 def _stack(flat, lo, count, rows, cols):
-    """flat[lo:lo + count * rows * cols] as a (count, rows, cols) view (:func:`_c_view`)."""
-    return _c_view(flat, lo, (count, rows, cols))
+    """flat[lo:lo + count * rows * cols] as a (count, rows, cols) view (:func:`c_view`)."""
+    return c_view(flat, lo, (count, rows, cols))
 
 
 @njit(cache=True, inline="always")

@@ -72,7 +72,7 @@ def test_the_step_count_is_drakes_on_edges_an_exact_number_of_steps_long(scene):
         a = world.space.sample(rng)
         d = rng.normal(size=len(a))
         b = a + d / world.space.distance(a, a + d) * res * rng.integers(1, 30)
-        c._edge_open(a, b, res, ek.BISECTION, 0, 0, 0)  # ends and count only (no step asked about)
+        ek.edge_call(c._F, c._I, a, b, res, ek.BISECTION, 0, 0, 0)  # ends and count only (no step asked about)
         full = c.coordinates.full
         qa, qb = full(a), full(a + c.coordinates.space.difference(a, b))
         assert np.array_equal(c._ends[0], qa) and np.array_equal(c._ends[1], qb)
@@ -106,3 +106,27 @@ def test_where_the_sum_is_unknown_drake_gives_each_step_count(monkeypatch):
     assert world.checker._packet == 0
     e = compare_edges(world, np.random.default_rng(4), 40)
     assert e.mismatches == 0 and 0 < e.free < e.edges
+
+
+def test_single_checks_take_any_array_like_with_the_same_answers():
+    """A checker's compiled single checks (edge_call, config_call) keep the one signature warm_up gave them (no
+    compilation inside a request): a list, a read-only, strided or int array is converted, with the same answers;
+    a configuration of the wrong length is an error, not a read past its end."""
+    world = DrakeWorld(load_scene("fetch_boxes_3"), visual=False)
+    c, rng = world.checker, np.random.default_rng(5)
+    answers = set()
+    for _ in range(150):
+        a = world.space.sample(rng)
+        b = a + (world.space.sample(rng) - a) * rng.uniform(0.02, 0.3)
+        want = (c.edge_free(a, b, 0.05), c.config_free(a), c.config_unpadded_free(a), c.edge_fraction(a, b, 0.05))
+        answers.add(want[:3])
+        read_only = a.copy()
+        read_only.setflags(write=False)
+        for x in (list(a), read_only, np.repeat(a, 2)[::2]):
+            assert (c.edge_free(x, b, 0.05), c.config_free(x), c.config_unpadded_free(x), c.edge_fraction(x, b, 0.05)) == want
+    assert len(answers) > 2  # free and colliding configurations and edges among them
+    assert c.config_free(np.zeros(len(a), int)) == c.config_free(np.zeros(len(a)))
+    assert len(ek.edge_call.signatures) == len(ek.config_call.signatures) == 1
+    for bad in (lambda: c.config_free(a[:-1]), lambda: c.config_unpadded_free(a[:-1]), lambda: c.edge_free(a[:-1], b, 0.05)):
+        with pytest.raises(ValueError):
+            bad()
