@@ -58,6 +58,10 @@ def add_cli_options(parser: argparse.ArgumentParser) -> None:
     """One ``--flag`` per CLI-layer setting; names are argparse choices, numbers are range-checked
     by :func:`cli_values` (so the message reads ``--goal-bias must be in [0, 1], got 2``)."""
     for s in declared(Layer.CLI):
+        if s.type is bool:  # --reach-prior / --no-reach-prior
+            parser.add_argument(s.flag, dest=s.name, action=argparse.BooleanOptionalAction, default=None,
+                                help=f"{s.doc} (default: {_cli_default(s)})")
+            continue
         parser.add_argument(s.flag, dest=s.name, type=str if s.choices else s.type, choices=s.choices,
                             metavar=None if s.choices else s.name.upper(),
                             help=f"{s.doc} ({'' if s.choices else s.allowed() + '; '}default: {_cli_default(s)})")

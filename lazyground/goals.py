@@ -56,15 +56,19 @@ class RoundRobinGoalSource:
     screened_reasons: tuple[str, ...] = ()  # failures before any solve: a region failing nearly only so is deferred
 
     def __init__(self, regions: tuple[GoalRegion, ...], give_up_after: int | None = None,
-                 attempts_per_sample: int | None = None, sampling: GoalSamplingSettings | None = None):
+                 attempts_per_sample: int | None = None, sampling: GoalSamplingSettings | None = None,
+                 unreachable: dict[int, str] | None = None):
         """Args:
             regions: the goal regions.
             give_up_after, attempts_per_sample: override ``sampling``'s (for tools and tests).
             sampling: the run's goal-sampling settings (default: their declared defaults).
+            unreachable: regions proven unreachable (index -> by what): never sampled, given up from the start.
         """
         sampling = GoalSamplingSettings() if sampling is None else sampling
         self.regions = tuple(regions)
         self.stats = [RegionStats() for _ in self.regions]
+        for j, why in (unreachable or {}).items():
+            self.stats[j].unreachable = why
         self._give_up_after = sampling.give_up_after if give_up_after is None else give_up_after
         self.attempts_per_sample = sampling.attempts_per_sample if attempts_per_sample is None else attempts_per_sample
         self.next_region = 0
@@ -72,6 +76,9 @@ class RoundRobinGoalSource:
         # kept as attempts are made, so that no draw scans every region (issue #33: hundreds of regions)
         self.total_attempts = self.total_valid = 0
         self._open = sorted(j for j in range(len(self.regions)) if not self.region_exhausted(j))  # not given up yet
+        # the strategy's choice of regions (the search sets it: lazyground.planning.region_bandit); None: round robin
+        self.chooser = None
+        self._schedule: list[int] = []  # with a chooser: the region of each attempt counter, blocks appended as needed
 
     def seed_near(self) -> bool:
         """Solve goals from the step's start from now on (the branch nearest it); False: this source cannot."""
@@ -102,7 +109,7 @@ class RoundRobinGoalSource:
 
     def region_exhausted(self, j: int) -> bool:
         st = self.stats[j]
-        return st.valid == 0 and st.attempts >= self.region_budget(j)
+        return bool(st.unreachable) or (st.valid == 0 and st.attempts >= self.region_budget(j))
 
     def exhausted(self) -> bool:
         return not self._open
@@ -122,6 +129,8 @@ class RoundRobinGoalSource:
         else:
             st.valid += 1
             self.total_valid += 1
+        if self.chooser is not None:
+            self.chooser.observe(j, sample is not None, reason in self.hopeless_reasons)
 
     def draw(self, n: int, rng: np.random.Generator, stop: StopCondition) -> list[GoalSample]:
         """Up to n new valid samples, round-robin over the regions; fewer if attempts run out or ``stop``
@@ -158,6 +167,8 @@ class RoundRobinGoalSource:
         more planned attempts than it has left before it is given up (as if each
         planned attempt failed). Fewer than ``k`` when no region can take one.
         """
+        if self.chooser is not None:
+            return self._chosen(position, k)
         m, open_ = len(self.regions), self._open
         left: dict[int, int] = {}  # attempts each visited region has left (only those visited: no scan)
         out: list[tuple[int, int]] = []
@@ -173,6 +184,29 @@ class RoundRobinGoalSource:
             if j not in left:
                 st = self.stats[j]
                 left[j] = self.region_budget(j) - st.attempts if st.valid == 0 else k
+            if left[j] > 0:
+                left[j] -= 1
+                out.append((j, position))
+                idle = 0
+            else:
+                idle += 1
+        return out
+
+    def _chosen(self, position: int, k: int) -> list[tuple[int, int]]:
+        """:meth:`plan` in the chooser's order: counter ``position`` is the schedule's entry ``position``; the schedule
+        grows by the chooser's blocks as the counters pass its end (so a plan made again from a counter is the same,
+        as the batch solver's look-ahead needs). Exhausted regions and those out of attempts are passed over."""
+        out: list[tuple[int, int]] = []
+        left: dict[int, int] = {}
+        idle = 0  # entries passed over in a row
+        while len(out) < k and self._open and idle <= len(self.regions):
+            while position >= len(self._schedule):
+                self._schedule += self.chooser.block(self._open)
+            j = self._schedule[position]
+            position += 1
+            if j not in left:
+                st = self.stats[j]
+                left[j] = 0 if self.region_exhausted(j) else self.region_budget(j) - st.attempts if st.valid == 0 else k
             if left[j] > 0:
                 left[j] -= 1
                 out.append((j, position))
@@ -264,7 +298,23 @@ def goal_source_for(regions: tuple[GoalRegion, ...], world,
 
 
 def _config_source(regions, world, sampling: GoalSamplingSettings | None = None) -> ConfigGoalSource:
-    return ConfigGoalSource(regions, world.space, world, sampling=sampling)
+    """The config source over ``world``, without the regions its reach prior proves unreachable (``reach_prior``)."""
+    return ConfigGoalSource(regions, world.space, world, sampling=sampling, unreachable=reach_prior_drops(regions, world, sampling))
+
+
+REACH_PRIOR = "reach prior"  # the reason RegionStats.unreachable gives for the regions the reach prior drops
+
+
+def reach_prior_drops(regions, world, sampling: GoalSamplingSettings | None = None) -> dict[int, str]:
+    """The regions ``world``'s reach prior (a car's disc, :mod:`lazyground.planning.reach_prior`) proves
+    unreachable from its start, index -> REACH_PRIOR; none when ``sampling.reach_prior`` is off or the world
+    has no prior for its robot (``world.reach_prior()`` None or missing)."""
+    sampling = GoalSamplingSettings() if sampling is None else sampling
+    build = getattr(world, "reach_prior", None)
+    prior = build() if sampling.reach_prior and callable(build) else None
+    if prior is None:
+        return {}
+    return {j: REACH_PRIOR for j, r in enumerate(regions) if not prior.keeps(r)}
 
 
 register_goal_source((ConfigRegion.kind,), _config_source)

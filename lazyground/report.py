@@ -8,6 +8,7 @@ from __future__ import annotations
 from lazyground.motion.export import motion_line, motion_to_json, trajectory_to_json
 from lazyground.motion.steps import report_trajectory
 from lazyground.plan_report import PlanReport
+from lazyground.planning.problem import proven_unreachable
 from lazyground.settings import Algorithm, Kinematics
 from lazyground.tolerance import goal_tolerance_json
 
@@ -69,6 +70,8 @@ def report_to_json(report: PlanReport) -> dict:
             for s in res.goal_samples
         ],
         "regions": {r.id: st.to_json() for r, st in zip(res.regions, res.region_stats)},
+        # interpretations the goal source dropped before sampling: all their regions proven unreachable (#33)
+        "proven_unreachable": _proven_json(res),
         "notes": list(report.grounding.notes) + list(report.notes),
         # several objects (#30): the groups asked for and, per object, done / already there / not done and why
         "groups": [g.to_json() for g in report.grounding.groups],
@@ -82,6 +85,12 @@ def report_to_json(report: PlanReport) -> dict:
         joined = report_trajectory(report)  # the steps' trajectories with the gripper events between
         out["trajectory"] = trajectory_to_json(joined) if joined is not None else None
     return out
+
+
+def _proven_json(res) -> dict | None:
+    """``{"interpretations": k, "of": N, "by": "reach prior"}``, or None when no region was proven unreachable."""
+    k, n, why = proven_unreachable(res.regions, res.region_stats)
+    return {"interpretations": k, "of": n, "by": why} if why else None
 
 
 def _step_json(step) -> dict:

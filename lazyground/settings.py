@@ -95,6 +95,8 @@ class Setting:
 
     def allowed(self) -> str:
         """The allowed values, as the docs and error messages say them."""
+        if self.type is bool:
+            return "true, false"
         if self.choices:
             return ", ".join(self.choices)
         if self.low is not None and self.high is not None:
@@ -107,6 +109,8 @@ class Setting:
         """Why ``value`` is not allowed (one phrase, without the name), or None."""
         if value is None:
             return None if self.optional else "must be given"
+        if self.type is bool:
+            return None if isinstance(value, bool) else f"expected true or false, got {value!r}"
         if self.choices:
             if value not in self.choices:  # StrEnum members compare equal to their value
                 return f"unknown {self.name.replace('_', ' ')} {value!r} (known: {self.allowed()})"
@@ -269,6 +273,9 @@ class GoalSamplingSettings:
     goal_learning: float = setting(0.75, "share of a goal region's draws that follow where its earlier draws "
                                    "worked (IK reached, collision-free); 0: uniform draws (lazyground/regions/learned.py)",
                                    _API, low=0.0, high=1.0)
+    reach_prior: bool = setting(True, "drop the goal regions a planar robot (a car) provably cannot reach: the disc "
+                                "inscribed in its footprint finds no way there from the start among the obstacles "
+                                "(`lazyground/planning/reach_prior.py`; `false`: sample every region)", _EVERYWHERE)
     ik_solver: IKSolver = setting(IKSolver.BATCH, "IK solver: `batch` (numpy damped least squares, many attempts "
                                   "at once), `snopt` or `ipopt` (a Drake program per restart)", _API)
 
@@ -429,11 +436,18 @@ def from_scene(spec, **overrides) -> RunSettings:
 
 # --- the docs ---------------------------------------------------------------------------------------
 
+def _shown_default(s: Setting) -> str:
+    """A setting's default as the docs table shows it."""
+    if s.type is bool:
+        return f"`{str(s.default).lower()}`"
+    return f"`{s.default}`" if s.choices else f"{s.default:,}" if s.type is int else f"{s.default:g}"
+
+
 def markdown_table() -> str:
     """The ``planner:`` settings table of docs/scene_format.md and its ``per_algorithm`` keys."""
     rows = ["| key | default | allowed | meaning | also |", "| --- | --- | --- | --- | --- |"]
     for s in declared(Layer.SCENE):
-        default = s.default_doc or (f"`{s.default}`" if s.choices else f"{s.default:,}" if s.type is int else f"{s.default:g}")
+        default = s.default_doc or _shown_default(s)
         allowed = ", ".join(f"`{c}`" for c in s.choices) if s.choices else s.allowed()
         also = ", ".join(f"`{s.flag}`" if layer is Layer.CLI else layer.value
                          for layer in (Layer.CLI, Layer.API, Layer.PER_ALGORITHM, Layer.BENCH) if layer in s.layers)
@@ -446,7 +460,7 @@ def markdown_table() -> str:
              "| name | group | default | allowed | meaning | also |", "| --- | --- | --- | --- | --- | --- |"]
     for s in declared(Layer.API):
         if Layer.SCENE not in s.layers:
-            default = f"`{s.default}`" if s.choices else f"{s.default:,}" if s.type is int else f"{s.default:g}"
+            default = _shown_default(s)
             allowed = ", ".join(f"`{c}`" for c in s.choices) if s.choices else s.allowed()
             also = f"`{s.flag}`" if Layer.CLI in s.layers else ""
             rows.append(f"| `{s.name}` | {_GROUP_OF[s.name]} | {default} | {allowed} | {s.doc} | {also} |")

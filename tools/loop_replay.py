@@ -7,6 +7,10 @@ Run from the checkout's root (cwd comes first on sys.path)::
     # checkouts compared in one interleaved run (A B B A), each in its own process from its own root;
     # runs on the issue's base 703386a too (its solve() has no stop condition: the replay lifts time_limit)
     nice python3 tools/loop_replay.py --checkouts /tmp/base_703386a,. --rounds 2 --seeds 10 --replays 10 --profile
+    # per-iteration overhead apart from the per-run fixed cost: loop CPU per run = fixed + slope x iterations
+    nice python3 tools/loop_replay.py --checkouts /tmp/base_703386a,. --seeds 20 --replays 5 --fit
+    # the same scene with longer runs (any api.plan override, on every checkout): the one-tree planner
+    nice python3 tools/loop_replay.py --checkouts /tmp/base_703386a,. --scenes fetch_cans_2 --set algorithm=rrt --fit
 
 Each seed is planned once for real (``api.plan`` on a prebuilt world) while the checker's answers and the
 goal source's samples (with the generator's state after each draw) are recorded; the search is then run
@@ -19,6 +23,10 @@ real run did is reported (the record would not fit the code). ``us/it pooled`` i
 their iterations summed (short runs weigh less than in the median). ``--profile`` adds one cProfiled replay per
 seed, its own time by planner file (numpy and builtins count for the planner file that called them), scaled
 to the unprofiled CPU (cProfile inflates Python calls ~5x, so the shares lean towards call-heavy parts).
+``--fit`` fits each seed's loop CPU (its fastest replay over the rounds) as fixed + slope x iterations (Theil-Sen;
+least squares beside it), with 95 % bootstrap intervals over seeds for each checkout's slope and fixed part and
+for their ratios to the first checkout's: the slope is the per-iteration overhead, free of the per-run costs
+(set-up, goal roots, the path's re-check) that dominate a scene whose runs are a few iterations long.
 """
 
 from __future__ import annotations
@@ -34,6 +42,10 @@ FETCH = ("fetch_cans_1", "fetch_cans_2", "fetch_boxes_3")
 ANSWERS = ("config_free", "config_unpadded_free", "configs_free", "edge_free", "edge_fraction")
 
 
+class OffRecord(Exception):
+    """A replay asked more than the record holds: it did not run as the recorded plan."""
+
+
 class Recorder:
     """A checker or goal source whose answers are logged in call order (record) or read back (replay)."""
 
@@ -44,6 +56,8 @@ class Recorder:
 
     def _answer(self, name, *args):
         if self._replay:
+            if self._at == len(self._log):
+                raise OffRecord(name)
             out = self._log[self._at]
             self._at += 1
             return out
@@ -81,6 +95,8 @@ class GoalRecorder(Recorder):
 
     def draw(self, n, rng, stop):
         if self._replay:  # (the log is a fresh copy per replay: nothing is copied while the replay is timed)
+            if self._at == len(self._log):
+                raise OffRecord("draw")
             samples, state = self._log[self._at]
             self._at += 1
             rng.bit_generator.state = state
@@ -90,8 +106,8 @@ class GoalRecorder(Recorder):
         return out
 
 
-def record(scene_name: str, seed: int, world, scene) -> dict:
-    """One real plan, its solve() call's arguments and logs."""
+def record(scene_name: str, seed: int, world, scene, overrides: dict | None = None) -> dict:
+    """One real plan (with the API's setting ``overrides``), its solve() call's arguments and logs."""
     from lazyground import api
     from lazyground.planning import rrt
 
@@ -112,7 +128,7 @@ def record(scene_name: str, seed: int, world, scene) -> dict:
     for m in targets:
         m.solve = recording
     try:
-        report = api.plan(scene, scene.expect[0].request, seed=seed, world=world)
+        report = api.plan(scene, scene.expect[0].request, seed=seed, world=world, **(overrides or {}))
     finally:
         for m in targets:
             m.solve = real_solve
@@ -144,10 +160,14 @@ def replay(rec: dict, prof=None) -> tuple[float, bool]:
     if prof is not None:
         prof.enable()
     t0 = time.process_time()
-    r = rrt.solve(rec["space"], ck, gs, rec["start"], settings, rng, rec["seed"], False, **stop)
+    try:
+        r = rrt.solve(rec["space"], ck, gs, rec["start"], settings, rng, rec["seed"], False, **stop)
+    except OffRecord:
+        return time.process_time() - t0, False
+    finally:
+        if prof is not None:
+            prof.disable()
     dt = time.process_time() - t0
-    if prof is not None:
-        prof.disable()
     same = r.iterations == rec["iterations"] and (
         (r.path is None) == (rec["path"] is None) and (r.path is None or np.array_equal(r.path, rec["path"])))
     return dt, same
@@ -198,7 +218,7 @@ def breakdown(stats) -> dict[str, float]:
     return got
 
 
-def measure(scenes, seeds: int, replays: int, profile: bool) -> dict:
+def measure(scenes, seeds: int, replays: int, profile: bool, overrides: dict | None = None) -> dict:
     """Per scene, per seed: iterations, the fastest replay's CPU seconds, replays that matched, search less IK;
     with ``profile`` also one cProfiled replay per seed broken down by category (seconds)."""
     import cProfile
@@ -211,16 +231,16 @@ def measure(scenes, seeds: int, replays: int, profile: bool) -> dict:
     for name in scenes:
         scene = load_scene(name)
         world = DrakeWorld(scene, visual=False)
-        record(name, 1000, world, scene)  # warm-up
+        record(name, 1000, world, scene, overrides)  # warm-up
         rows = []
         for seed in range(seeds):
-            rec = record(name, seed, world, scene)
+            rec = record(name, seed, world, scene, overrides)
             r = rec["report"].result
             best, ok = float("inf"), 0
             for _ in range(replays):
                 dt, same = replay(rec)
                 best, ok = min(best, dt), ok + same
-            row = dict(seed=seed, iterations=rec["iterations"], best_s=best, ok=ok,
+            row = dict(seed=seed, iterations=rec["iterations"], best_s=best, ok=ok, replays=replays,
                        search_ms=(r.time_s - r.goal_sampling_s) * 1e3)
             if profile:
                 prof = cProfile.Profile(time.process_time)
@@ -239,6 +259,64 @@ def summary(rows: list[dict]) -> dict:
                 ms_run=statistics.median(r["best_s"] * 1e3 for r in rows),
                 search_ms=statistics.median(r["search_ms"] for r in rows),
                 ok=sum(r["ok"] for r in rows))
+
+
+def theil_sen(x, y) -> tuple[float, float]:
+    """(fixed, slope) of y = fixed + slope x: the median of the pairwise slopes, then the median intercept."""
+    import numpy as np
+
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    i, j = np.triu_indices(len(x), 1)
+    keep = x[i] != x[j]
+    slope = float(np.median((y[j] - y[i])[keep] / (x[j] - x[i])[keep])) if keep.any() else 0.0
+    return float(np.median(y - slope * x)), slope
+
+
+def least_squares(x, y) -> tuple[float, float]:
+    import numpy as np
+
+    slope, fixed = np.polyfit(np.asarray(x, float), np.asarray(y, float), 1)
+    return float(fixed), float(slope)
+
+
+def per_seed(runs: list[dict], name: str) -> tuple[list[int], list[float]]:
+    """Each seed's iterations and its fastest replay over the rounds (seconds); seeds whose replays did not all
+    end as the recorded run are left out."""
+    rows = [run[name] for run in runs]
+    keep = [k for k in range(len(rows[0])) if all(rr[k]["ok"] == rr[k]["replays"] for rr in rows)]
+    return [rows[0][k]["iterations"] for k in keep], [min(rr[k]["best_s"] for rr in rows) for k in keep]
+
+
+def print_fit(name: str, fits: dict[str, tuple[list[int], list[float]]], base: str, resamples: int = 2000) -> None:
+    """Loop CPU per run = fixed + slope x iterations, per checkout (Theil-Sen over seeds; least squares beside it),
+    with 95 % bootstrap intervals (seeds resampled) of the slope, the fixed part and their ratios to ``base``'s."""
+    import numpy as np
+
+    rng = np.random.default_rng(0)
+    boot: dict[str, np.ndarray] = {}
+    print("  fit, loop CPU per run = fixed + slope x iterations (Theil-Sen over the seeds whose replays matched, "
+          "[95 % bootstrap], least squares after /):")
+    for c, (x, y) in fits.items():
+        x, y = np.asarray(x, float), np.asarray(y, float) * 1e3
+        fixed, slope = theil_sen(x, y)
+        lf, ls = least_squares(x, y) if len(set(x.tolist())) > 1 else (float("nan"), float("nan"))
+        draws = []
+        for _ in range(resamples):
+            k = rng.integers(len(x), size=len(x))
+            draws.append(theil_sen(x[k], y[k]))
+        boot[c] = np.array(draws)
+        lo, hi = np.percentile(boot[c], [2.5, 97.5], axis=0)
+        print(f"    {c[-30:]:30} slope {slope * 1e3:6.1f} us/it [{lo[1] * 1e3:.1f}, {hi[1] * 1e3:.1f}] / {ls * 1e3:.1f}, "
+              f"fixed {fixed:6.2f} ms [{lo[0]:.2f}, {hi[0]:.2f}] / {lf:.2f}; {len(x)} seeds, iterations {int(x.min())}-{int(x.max())}")
+    for c in fits:
+        if c == base:
+            continue
+        fixed_b, slope_b = theil_sen(*[np.asarray(v, float) for v in fits[base]])
+        fixed_c, slope_c = theil_sen(*[np.asarray(v, float) for v in fits[c]])
+        r = boot[c] / boot[base]
+        lo, hi = np.percentile(r, [2.5, 97.5], axis=0)
+        print(f"    {c[-30:]} / {base[-30:]}: slope {slope_c / slope_b:.2f} [{lo[1]:.2f}, {hi[1]:.2f}], "
+              f"fixed {fixed_c / fixed_b:.2f} [{lo[0]:.2f}, {hi[0]:.2f}]")
 
 
 def print_profile(name: str, rows: list[dict]) -> None:
@@ -265,8 +343,11 @@ def interleaved(args) -> int:
         for c in (checkouts if rnd % 2 == 0 else checkouts[::-1]):
             cmd = [sys.executable, str(Path(__file__).resolve()), "--json", "--scenes", args.scenes,
                    "--seeds", str(args.seeds), "--replays", str(args.replays)] + (["--profile"] if args.profile else [])
+            cmd += [a for kv in args.set for a in ("--set", kv)]
             t0 = time.strftime("%H:%M:%S", time.gmtime())
-            done = subprocess.run(cmd, cwd=c, capture_output=True, text=True, check=True)
+            done = subprocess.run(cmd, cwd=c, capture_output=True, text=True)
+            if done.returncode:
+                raise SystemExit(f"{c}: {' '.join(cmd[1:])} failed:\n{done.stderr[-2000:]}")
             runs[c].append(json.loads(done.stdout))
             print(f"# round {rnd + 1} {c} {t0}-{time.strftime('%H:%M:%S', time.gmtime())} UTC, "
                   f"load {open('/proc/loadavg').read().split()[0] if Path('/proc/loadavg').exists() else '?'}", flush=True)
@@ -284,6 +365,8 @@ def interleaved(args) -> int:
                   f"{min(s['ok'] for s in ss)}/{args.seeds * args.replays}")
         for c in checkouts[1:]:
             print(f"  pooled us/it, median over rounds: {c[-30:]} / {base[-30:]} = {pooled[c] / pooled[base]:.2f}")
+        if args.fit:
+            print_fit(name, {c: per_seed(runs[c], name) for c in checkouts}, base)
         if args.profile:
             for c in checkouts:
                 print_profile(c[-30:], runs[c][-1][name])
@@ -299,13 +382,17 @@ def main() -> int:
     p.add_argument("--json", action="store_true", help="per-seed figures as JSON (for --checkouts)")
     p.add_argument("--checkouts", help="comma-separated checkout roots: run each in turn, interleaved")
     p.add_argument("--rounds", type=int, default=2, help="with --checkouts: runs per checkout (A B B A ...)")
+    p.add_argument("--fit", action="store_true",
+                   help="fit loop CPU per run = fixed + slope x iterations over the seeds (Theil-Sen, bootstrap intervals)")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                   help="a setting for every plan, as api.plan's overrides (e.g. algorithm=rrt for long runs); repeatable")
     args = p.parse_args()
     if args.checkouts:
         return interleaved(args)
     sys.path.insert(0, str(Path.cwd()))
     import json
 
-    got = measure(args.scenes.split(","), args.seeds, args.replays, args.profile)
+    got = measure(args.scenes.split(","), args.seeds, args.replays, args.profile, dict(_setting(kv) for kv in args.set))
     if args.json:
         print(json.dumps(got))
         return 0
@@ -314,9 +401,22 @@ def main() -> int:
         s = summary(rows)
         print(f"{name:15} {s['iterations']:6.0f} {s['us_it']:10.1f} {s['pooled_us_it']:12.1f} {s['ms_run']:11.2f} "
               f"{s['search_ms']:12.1f} {s['ok']:>5}/{args.seeds * args.replays}", flush=True)
+        if args.fit:
+            print_fit(name, {".": per_seed([got], name)}, ".")
         if args.profile:
             print_profile(name, rows)
     return 0
+
+
+def _setting(kv: str) -> tuple[str, object]:
+    """``key=value`` with the value as an int, a float or a string."""
+    key, _, value = kv.partition("=")
+    for kind in (int, float):
+        try:
+            return key, kind(value)
+        except ValueError:
+            pass
+    return key, value
 
 
 if __name__ == "__main__":

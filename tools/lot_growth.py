@@ -21,6 +21,8 @@ flank the reachable spots at N = 512)::
 
     PYTHONPATH=. python3 tools/lot_growth.py --sizes 8,64,256,512 --seeds 0-9 --cap 2000 --goals reachable
 
+With the reach prior (the default) the blocked spots are never sampled; ``--no-reach-prior`` samples them as before.
+
 The paper's one-tree planner on the same lots (no goal forest; 4,000-iteration cap)::
 
     PYTHONPATH=. python3 tools/lot_growth.py --sizes 8,64 --seeds 0-5 --cap 4000 \\
@@ -63,13 +65,13 @@ def _patch() -> None:
         STATE["search"] = s
         return grow(s, start)
 
-    def extend_(s, tree, near, q):
-        b = extend(s, tree, near, q)
-        if tree is not s.trees[0]:
+    def extend_(s, tree, q, step, label=None):
+        near, b = extend(s, tree, q, step, label)
+        if tree is not s.trees[0] and near >= 0:
             STATE["counts"]["goal steps", "reachable" if _reachable(s, tree.labels[near]) else "blocked", b >= 0] += 1
-        else:
+        elif tree is s.trees[0]:
             STATE["counts"]["start steps", b >= 0] += 1
-        return b
+        return near, b
 
     def add_(self, q, parent, label, goal_biased, checked):
         s = STATE["search"]
@@ -123,6 +125,8 @@ def main(argv=None) -> int:
     p.add_argument("--oracle", action="store_true", help="also run the oracles")
     p.add_argument("--goals", choices=("all", "reachable"), default="all",
                    help="reachable: plan to the reachable spots' goal regions only (no ambiguity)")
+    p.add_argument("--no-reach-prior", action="store_true",
+                   help="sample every spot's regions, also those the reach prior proves unreachable (#33)")
     a = p.parse_args(argv)
     seeds = (list(range(int(a.seeds.split("-")[0]), int(a.seeds.split("-")[1]) + 1)) if "-" in a.seeds
              else [int(x) for x in a.seeds.split(",")])
@@ -142,7 +146,8 @@ def main(argv=None) -> int:
                 bias = {} if a.goal_bias is None else {"goal_bias": a.goal_bias}
                 if a.goals == "all":
                     r = api.plan(scene, "park", seed=seed, world=world, strategy=a.strategy, algorithm=a.algorithm,
-                                 time_limit=a.time_limit, max_iterations=a.cap, **bias).result
+                                 time_limit=a.time_limit, max_iterations=a.cap, reach_prior=not a.no_reach_prior,
+                                 **bias).result
                 else:
                     r = _plan_reachable(scene, world, seed, a, bias)
                 secs.append(r.time_s)  # the planner's own time (no grounding, shortcut or timing)

@@ -77,6 +77,8 @@ def build_parser() -> argparse.ArgumentParser:
                    "nearest-first, multiplexer, eager, independent (see lazyground/bench/baselines.py)")
     p.add_argument("--baseline-time-limit", type=float, help="--baselines: seconds per baseline run (default: --time-limit), "
                    "so that their unsolved runs do not cap the ratios to ours (reported as bounds in table.md)")
+    p.add_argument("--no-reach-prior", action="store_true", help="car scenes: sample every goal region, also those "
+                   "the reach prior proves unreachable (setting reach_prior: false; every method, baselines included)")
     p.add_argument("--peers", action="store_true", help="also run OMPL RRT and RRTConnect and sscbirrt's CBiRRT (pip install .[bench])")
     p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="worker processes (default: cores)")
     p.add_argument("--cluster", metavar="ADDRESS", help="run on this Dask scheduler instead (pip install .[cluster])")
@@ -183,6 +185,7 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
             configs.append((sscbirrt_peer.PLANNER, "goal-states", None, "first"))
         else:
             notes.append(sscbirrt_peer.MISSING)
+    reach_prior = not getattr(args, "no_reach_prior", False)  # absent from Namespaces built by hand (tests)
     specs = []
     for i in range(runs):  # seeds outermost: an interrupted run still covers every configuration
         for key in keys:
@@ -191,7 +194,7 @@ def plan_specs(args) -> tuple[list[RunSpec], list[str], str]:
             for planner, strategy, bias, objective in configs:
                 own = baseline_limit if baseline_limit is not None and parse_planner(planner) is not None else limit
                 specs.append(RunSpec(key, planner, strategy, bias, args.seed + i, own, request, kinematics,
-                                     str(objective), budget if objective != "first" else None))
+                                     str(objective), budget if objective != "first" else None, reach_prior))
     return specs, notes, preset.get("title", "Computation time (s)")
 
 

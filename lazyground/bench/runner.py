@@ -22,7 +22,7 @@ import numpy as np
 from lazyground.bench import arms, families
 from lazyground.bench.baselines import parse_planner
 from lazyground.bench.sscbirrt_peer import PLANNER
-from lazyground.planning.problem import PlanStatus
+from lazyground.planning.problem import PlanStatus, RegionStats, proven_unreachable
 from lazyground.settings import Algorithm
 
 LAZYGROUND = "lazyground"
@@ -41,6 +41,7 @@ FIELDS = (
     "objective", "budget",  # first / shortest / fastest and the seconds after the first solution (#30)
     "total_s",  # api.plan's wall time less world set-up: grounding, search, shortening and timing (#30)
     "max_sweep",  # rad: the most any revolute joint turns away from its start along the final path (#30)
+    "reach_prior", "proven_unreachable",  # the setting, and the interpretations it dropped (car scenes, #33)
 )
 
 
@@ -58,6 +59,7 @@ class RunSpec:
     kinematics: str | None = None  # car scenes: None keeps the scene's (a results file holds one mode)
     objective: str = "first"  # lazyground: which solution is returned (#30)
     budget: float | None = None  # objective shortest/fastest: seconds after the first solution (None: its time)
+    reach_prior: bool = True  # car scenes: drop the goal regions the reach prior proves unreachable (every method)
 
     def key(self) -> tuple:
         """What identifies a run in a results file (for --resume)."""
@@ -142,7 +144,7 @@ def run(spec: RunSpec) -> dict:
     row = {f: "" for f in FIELDS}
     row.update(scene=spec.scene_name, planner=spec.planner, strategy=spec.strategy, bias=_fmt_bias(spec.bias),
                seed=spec.seed, time_limit=spec.time_limit, objective=spec.objective,
-               budget="" if spec.budget is None else spec.budget)
+               budget="" if spec.budget is None else spec.budget, reach_prior=spec.reach_prior)
     try:
         problem = load_problem(spec.scene)
         if spec.request is not None and not problem.regions:
@@ -170,7 +172,7 @@ def run(spec: RunSpec) -> dict:
 def _run_lazyground(problem: Problem, spec: RunSpec) -> dict:
     algorithm = next(a for a, name in ALGORITHMS.items() if name == spec.planner)
     overrides = dict(strategy=spec.strategy, algorithm=algorithm, goal_bias=spec.bias, time_limit=spec.time_limit,
-                     kinematics=spec.kinematics)
+                     kinematics=spec.kinematics, reach_prior=spec.reach_prior)
     if problem.regions:  # generated arm: C-space regions, no grounding
         from lazyground.api import planner_settings
         from lazyground.goals import ConfigGoalSource
@@ -194,26 +196,31 @@ def _run_lazyground(problem: Problem, spec: RunSpec) -> dict:
 
 def _run_baseline(problem: Problem, spec: RunSpec) -> dict:
     """A baseline of :mod:`lazyground.bench.baselines` on the same world, goal sampler and clock as ours."""
-    from lazyground.api import planner_settings
+    from lazyground.api import run_settings
     from lazyground.bench.baselines import run_baseline
+    from lazyground.goals import reach_prior_drops
     from lazyground.tasks.car_space import planning_space
 
     name, bidirectional = parse_planner(spec.planner)
     algorithm = Algorithm.BIDIRECTIONAL if bidirectional else Algorithm.RRT
-    settings = planner_settings(problem.scene, strategy=spec.strategy, algorithm=algorithm, goal_bias=spec.bias,
-                                time_limit=spec.time_limit, kinematics=spec.kinematics)
+    chosen = run_settings(problem.scene, strategy=spec.strategy, algorithm=algorithm, goal_bias=spec.bias,
+                          time_limit=spec.time_limit, kinematics=spec.kinematics, reach_prior=spec.reach_prior)
+    settings = chosen.planner
     regions, grounding_s = problem.ground()
     world = problem.world
     space = planning_space(problem.scene, world.space, settings.kinematics)
-    result, seconds, iterations, attempts = run_baseline(name, problem.scene, world, regions, space, settings, spec.seed)
+    result, seconds, iterations, attempts = run_baseline(name, problem.scene, world, regions, space, settings, spec.seed,
+                                                         sampling=chosen.goal_sampling)
     if result is None:
         return dict(status=PlanStatus.TIMEOUT.value, time_s=grounding_s + seconds, grounding_s=grounding_s,
                     message="no planner call within the time limit")
     region = result.goal_region
     fields = result_fields(result, grounding_s, region.interpretation if region else "", region.id if region else "")
+    dropped = reach_prior_drops(regions, world, chosen.goal_sampling)  # over every region, not the last call's
+    proven = proven_unreachable(regions, [RegionStats(unreachable=dropped.get(j, "")) for j in range(len(regions))])[0]
     # the whole method's time and work, not only the call that ended it
     return fields | dict(time_s=grounding_s + seconds, iterations=iterations, goal_attempts=attempts,
-                         other_s=max(0.0, seconds - result.goal_sampling_s - result.collision_s))
+                         other_s=max(0.0, seconds - result.goal_sampling_s - result.collision_s), proven_unreachable=proven)
 
 
 def motion_fields(motion) -> dict:
@@ -254,6 +261,7 @@ def result_fields(result, grounding_s: float, interpretation: str, region: str) 
         message=result.message,
         collision_checks=result.collision_checks,
         goal_attempts=sum(st.attempts for st in result.region_stats),
+        proven_unreachable=proven_unreachable(result.regions, result.region_stats)[0],
     )
 
 

@@ -64,6 +64,16 @@ class DrakeWorld:
         self.q_full = self.coordinates.q_full
         self.start = self.coordinates.start
         self._extra: OrderedDict[float, DrakeChecker] = OrderedDict()
+        self._reach: list = []  # the reach prior, once built (lazyground.drake.reach_prior)
+
+    def reach_prior(self):
+        """The reach prior of a planar robot (a car) from the start, built on first use; None for other robots
+        (:func:`lazyground.drake.reach_prior.planar_reach`)."""
+        if not self._reach:
+            from lazyground.drake.reach_prior import planar_reach
+
+            self._reach.append(planar_reach(self))
+        return self._reach[0]
 
     # --- kinematics ------------------------------------------------------------------------
     def frame_pose(self, frame: str, q: np.ndarray) -> Pose:

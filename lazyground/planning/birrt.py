@@ -57,7 +57,7 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
             continue
         for gi in range(rooted, len(s.samples)):  # new goal samples become roots
             root = tg.add_root(s.samples[gi].q, label=gi)
-            if _shut_in(s, s.samples[gi].q):
+            if s.straight_step is not None and _shut_in(s, s.samples[gi].q):
                 tg.mute(root)
         rooted = len(s.samples)
         s.iterations += 1

@@ -113,6 +113,60 @@ def nearest_steer(points, sq, n, x, step, out):
     return 2 * i + (1 if steer(points[i], x, step, out) else 0)
 
 
+@njit(f"Tuple((float64[:, ::1], int64[::1]))({_P}, {_I}, float64)", cache=True)
+def discretize_path(path, ks, resolution):
+    """The path's segments ``ks`` (ascending) at ``resolution``, a vertex shared by two of them once, and each
+    row's segment: :meth:`lazyground.planning.space.ConfigSpace.discretize_path`'s numbers (unit weights):
+    n = max(1, ceil(|b - a| / resolution)) with the norm summed in coordinate order, rows a + (i / n) (b - a)."""
+    m, d = ks.shape[0], path.shape[1]
+    ns = np.empty(m, np.int64)
+    total = 0
+    for r in range(m):
+        k = ks[r]
+        s = 0.0
+        for j in range(d):
+            v = path[k + 1, j] - path[k, j]
+            s += v * v
+        n = max(1, int(np.ceil(np.sqrt(s) / resolution)))
+        ns[r] = n
+        total += n + (0 if r > 0 and ks[r - 1] == k - 1 else 1)
+    qs = np.empty((total, d))
+    owner = np.empty(total, np.int64)
+    row = 0
+    for r in range(m):
+        k, n = ks[r], ns[r]
+        for i in range(1 if r > 0 and ks[r - 1] == k - 1 else 0, n + 1):
+            t = i / n
+            for j in range(d):
+                qs[row, j] = path[k, j] + t * (path[k + 1, j] - path[k, j])
+            owner[row] = k
+            row += 1
+    return qs, owner
+
+
+@njit(f"void({_P}, {_V})", cache=True)
+def segment_lengths(path, out):
+    """out[k] = |path[k + 1] - path[k]| summed in coordinate order (ConfigSpace.distance, unit weights)."""
+    for k in range(path.shape[0] - 1):
+        s = 0.0
+        for j in range(path.shape[1]):
+            v = path[k + 1, j] - path[k, j]
+            s += v * v
+        out[k] = np.sqrt(s)
+
+
+@njit(f"boolean({_P}, {_V}, {_V})", cache=True)
+def all_inside(qs, lower, upper):
+    """Whether every row lies within [lower - 1e-9, upper + 1e-9] (motion_validator.samples_free's test)."""
+    d = qs.shape[1]
+    for j in range(d):
+        lo, hi = lower[j] - 1e-9, upper[j] + 1e-9
+        for i in range(qs.shape[0]):
+            if not (qs[i, j] >= lo and qs[i, j] <= hi):
+                return False
+    return True
+
+
 def warm_up() -> tuple[float, bool]:
     """(seconds this process spent getting the kernels at import, whether it compiled them rather than
     loading numba's cache); the first call only, (0.0, False) after it."""
@@ -124,4 +178,5 @@ def warm_up() -> tuple[float, bool]:
 
 
 _IMPORT_S = time.perf_counter() - _T0
-_COMPILED = any(sum(k.stats.cache_misses.values()) for k in (nearest, nearest_k, steer, nearest_steer))
+_COMPILED = any(sum(k.stats.cache_misses.values()) for k in (nearest, nearest_k, steer, nearest_steer,
+                                                                    discretize_path, segment_lengths, all_inside))

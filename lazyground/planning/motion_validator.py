@@ -20,6 +20,9 @@ def samples_free(space, checker, qs: np.ndarray) -> np.ndarray:
     need not (issue 34: paths around walls at a lot's edge drove up to 6 m outside it), so every sample is
     held to the bounds where it is checked for collision."""
     qs = np.asarray(qs, float)
+    kernels = getattr(space, "kernels", None)  # (a unit-weight linear space: one compiled pass, #31)
+    if kernels is not None and qs.ndim == 2 and qs.flags.c_contiguous and kernels.all_inside(qs, space.lower, space.upper):
+        return np.asarray(checker.configs_free(qs), bool)
     inside = np.all((qs >= space.lower - 1e-9) & (qs <= space.upper + 1e-9), axis=1)
     if inside.all():
         return np.asarray(checker.configs_free(qs), bool)

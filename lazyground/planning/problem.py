@@ -81,12 +81,30 @@ class RegionStats:
     valid: int = 0
     time: float = 0.0
     failures: dict[str, int] = field(default_factory=dict)  # reason -> count
+    unreachable: str = ""  # why the region is proven unreachable before any attempt (e.g. "reach prior")
 
     def fail(self, reason: str) -> None:
         self.failures[reason] = self.failures.get(reason, 0) + 1
 
     def to_json(self) -> dict:
-        return {"attempts": self.attempts, "valid": self.valid, "time_s": round(self.time, 6), "failures": dict(self.failures)}
+        out = {"attempts": self.attempts, "valid": self.valid, "time_s": round(self.time, 6), "failures": dict(self.failures)}
+        return out | ({"unreachable": self.unreachable} if self.unreachable else {})
+
+
+def proven_unreachable(regions, stats: list[RegionStats]) -> tuple[int, int, str]:
+    """(interpretations all of whose regions are proven unreachable, interpretations, by what: the first reason)."""
+    by: dict[str, bool] = {}
+    why = ""
+    for r, st in zip(regions, stats):
+        by[r.interpretation] = by.get(r.interpretation, True) and bool(st.unreachable)
+        why = why or st.unreachable
+    return sum(by.values()), len(by), why
+
+
+def unreachable_note(regions, stats: list[RegionStats]) -> str:
+    """"k of N interpretations proven unreachable by the reach prior", or "" when none is."""
+    k, n, why = proven_unreachable(regions, stats)
+    return f"{k} of {n} interpretations proven unreachable by the {why}" if why else ""
 
 
 class GoalSource(Protocol):

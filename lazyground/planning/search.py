@@ -16,6 +16,8 @@ from lazyground.planning.problem import (
     PlanResult,
     PlanStatus,
     ValidityChecker,
+    proven_unreachable,
+    unreachable_note,
 )
 from lazyground.planning.motion_validator import MotionValidator, samples_free
 from lazyground.planning.space import ConfigSpace
@@ -84,6 +86,11 @@ class Search:
         self._verified: set[bytes] = set()  # segments (endpoint bytes) that passed the fine re-check
         self.selector = make_strategy(settings.strategy, StrategySettings(resample_threshold=settings.resample_threshold))
         self._covers = bool(getattr(self.selector, "covers_regions", False))
+        chooser = getattr(self.selector, "region_chooser", None)  # the strategy picks the regions samples come from
+        if chooser is not None and hasattr(goals, "chooser"):
+            goals.chooser = chooser(goals)
+        # the regions coverage paces samples for: those not proven unreachable before the search (a reach prior)
+        self._coverable = sum(not st.unreachable for st in goals.stats)
         self._attempts0: int | None = None  # the goal source's attempt count when coverage began
         self.trees: list[Tree] = []  # the planner's trees, start tree first (for the result)
         self.failed_from: list[tuple[int, int]] = []  # (tree, node) of failed goal-directed extensions
@@ -111,26 +118,25 @@ class Search:
         """Whether any goal sample exists yet; draws a batch when none does.
 
         A strategy that paces coverage (``covers_regions``) gets one more sample each iteration
-        until there are as many samples as goal regions (lazyground.planning.cover)."""
+        until there are as many samples as goal regions not proven unreachable (lazyground.planning.cover)."""
         if not self.samples:
             self.draw(self.settings.initial_goal_samples)
-        elif self._covers and len(self.samples) < len(self.goals.regions) and self._ik_in_budget():
+        elif self._covers and len(self.samples) < self._coverable and self._ik_in_budget():
             self.draw(1)
         return bool(self.samples)
 
     def _ik_in_budget(self) -> bool:
-        """Whether goal sampling is within the strategy's budget: ``free_attempts`` plus ``attempts_per_iteration``
-        per search iteration (goal-sampling attempts counted since the first sample; a source that does not
-        count them: always).
+        """Whether goal sampling is within the strategy's budget: the goal source's attempts since the first
+        sample at most the strategy's ``ik_allowance(iterations)`` (a strategy or source without one: always).
 
         Counted, not timed, so that a seed gives the same run on any machine."""
         total = getattr(self.goals, "total_attempts", None)
-        ratio = getattr(self.selector, "attempts_per_iteration", None)
-        if total is None or ratio is None:
+        allowance = getattr(self.selector, "ik_allowance", None)
+        if total is None or allowance is None:
             return True
         if self._attempts0 is None:
             self._attempts0 = total
-        return total - self._attempts0 <= ratio * self.iterations + getattr(self.selector, "free_attempts", 0)
+        return total - self._attempts0 <= allowance(self.iterations)
 
     def select(self) -> int | None:
         """The strategy's goal sample (skipping dead ones), its attempt counted; None if all are dead."""
@@ -176,7 +182,8 @@ class Search:
         (a rejected join leaves most of its segments valid, and the next candidate
         path usually shares them).
         """
-        keys = [path[k].tobytes() + path[k + 1].tobytes() for k in range(len(path) - 1)]
+        rows = [q.tobytes() for q in path]  # (each vertex once: it ends one segment and starts the next)
+        keys = [rows[k] + rows[k + 1] for k in range(len(path) - 1)]
         todo = [k for k, key in enumerate(keys) if key not in self._verified]
         bad = path_is_valid(self.space, self.checker, path, self.settings.resolution / self.settings.validation_factor, todo)
         self._verified.update(keys[k] for k in todo if bad < 0 or k < bad)
@@ -221,13 +228,20 @@ class Search:
     def region_summary(self) -> str:
         """Each goal region's tries (grasps, placements or configurations), valid ones, and why the others failed."""
         parts = []
+        proven = unreachable_note(self.goals.regions, self.goals.stats)
         for region, st in zip(self.goals.regions, self.goals.stats):
+            if st.unreachable:
+                continue
             why = ", ".join(f"{k} x{v}" for k, v in sorted(st.failures.items()))
             tried = f"{st.attempts} {TRIED.get(region.kind, 'configurations')} tried, {st.valid} valid"
             parts.append(f"{region.id}: {tried} ({why})" if why else f"{region.id}: {tried}" if st.attempts else f"{region.id}: not tried")
-        return "; ".join(parts)
+        return "; ".join(parts + ([proven] if proven else []))
 
     def no_goal(self) -> PlanResult:
+        _, n, why = proven_unreachable(self.goals.regions, self.goals.stats)
+        if why and all(st.unreachable for st in self.goals.stats):  # one line, not a list of untried regions
+            return self.result(PlanStatus.NO_VALID_GOAL, f"no reachable goal: all {n} interpretation(s) proven unreachable "
+                               f"by the {why} (the disc inscribed in the robot's footprint has no way there from the start)")
         return self.result(PlanStatus.NO_VALID_GOAL, "no valid goal configuration in any goal region: " + self.region_summary())
 
     def _offsets(self) -> list[int]:

@@ -24,6 +24,14 @@ from lazyground.geometry import wrap_angle
 from lazyground.planning.motion_validator import MotionValidator
 
 FLOAT_PATH_MAX_DIM = 16  # OpenBLAS's dot sums 16 or more entries in blocks: numpy's rounding, not a loop's
+_KERNELS: list = []  # lazyground.planning.linear_kernels once loaded (ConfigSpace.kernels; not on the space: it pickles)
+
+
+def _load_kernels():
+    from lazyground.planning import linear_kernels
+
+    _KERNELS.append(linear_kernels)
+    return linear_kernels
 
 
 @dataclass(frozen=True)
@@ -78,6 +86,14 @@ class ConfigSpace:
         object.__setattr__(self, "_w2_list", tuple((weights**2).tolist()) if fast else None)
         object.__setattr__(self, "embeds_as_is", not wrap.any() and bool(np.all(weights == 1.0)))
         object.__setattr__(self, "unit_linear", self.embeds_as_is and fast)
+
+    @property
+    def kernels(self):
+        """:mod:`lazyground.planning.linear_kernels` in a unit-weight linear space (every arm here), else None
+        (numba: imported at the first ask by such a space; a car never loads it)."""
+        if not self.unit_linear:
+            return None
+        return _KERNELS[0] if _KERNELS else _load_kernels()
 
     @property
     def dim(self) -> int:
@@ -152,8 +168,15 @@ class ConfigSpace:
         them once; and each row's segment index.
 
         Linear straight segments go in a few numpy calls over all of them: the same numbers as segment by
-        segment (a + t (b - a) with t = i / n, elementwise), without a dozen numpy calls per segment (#31)."""
+        segment (a + t (b - a) with t = i / n, elementwise), without a dozen numpy calls per segment (#31);
+        in a unit-weight space in one compiled call (:attr:`kernels`), the same numbers again."""
         segments = list(segments)
+        kernels = self.kernels if type(self).discretize is ConfigSpace.discretize else None
+        if kernels is not None and segments:
+            try:
+                return kernels.discretize_path(path, np.array(segments, np.int64), resolution)
+            except TypeError:  # (path not a contiguous float array: numpy's calls below)
+                pass
         skips = [i > 0 and segments[i - 1] == k - 1 for i, k in enumerate(segments)]
         if self._w2_list is None or type(self).discretize is not ConfigSpace.discretize or not segments:
             chunks = [self.discretize(path[k], path[k + 1], resolution, skip_first=skip) for k, skip in zip(segments, skips)]
@@ -200,6 +223,14 @@ class ConfigSpace:
         return bool((q >= self.lower - tol).all() and (q <= self.upper + tol).all())  # methods: np.all costs ~2x here
 
     def path_length(self, path: np.ndarray) -> float:
+        kernels = self.kernels
+        if kernels is not None and len(path) > 1:  # (the segments' distances in one compiled call, then the same sum)
+            out = np.empty(len(path) - 1)
+            try:
+                kernels.segment_lengths(path, out)
+                return float(sum(out.tolist()))
+            except TypeError:  # (not a contiguous float array)
+                pass
         return float(sum(self.distance(a, b) for a, b in zip(path[:-1], path[1:])))
 
     def motion_validator(self, checker) -> MotionValidator:

@@ -18,12 +18,6 @@ def _as_is(q: np.ndarray) -> np.ndarray:
     return np.asarray(q, float)
 
 
-def _linear_kernels():
-    from lazyground.planning import linear_kernels  # (numba: imported only by a linear space's tree)
-
-    return linear_kernels
-
-
 class Tree:
     """In a unit-weight linear space the queries and nodes go to compiled code, which takes contiguous, writable
     float vectors only (numba's signatures: lazyground.planning.linear_kernels): the planner's own arrays are,
@@ -38,11 +32,14 @@ class Tree:
         self.alive: list[bool] = []
         self.checked: list[bool] = []  # whether the edge from the node's parent has been collision-checked
         # a unit-weight linear space (every arm here): nearest neighbours and steering compiled (#31)
-        self._kernels = _linear_kernels() if getattr(space, "unit_linear", False) else None
+        self._kernels = getattr(space, "kernels", None)
         self.nn = NearestNeighbors(space.embed_dim, kernels=self._kernels)
         self._per_label = per_label
-        self._label_nn: dict[int, tuple[NearestNeighbors, list[int]]] = {}
-        self._local: list[int] = []  # index of each node in its label's index
+        self._members: dict[int, list[int]] = {}  # each label's nodes, in order
+        # each label's index, built at its first query (:meth:`_label_index`): most goal roots are never
+        # asked (cans_2: ~16 roots a run, a few label queries), and an index costs ~5 µs to set up (#31)
+        self._label_nn: dict[int, NearestNeighbors] = {}
+        self._local: list[int] = []  # index of each node in its label's index (its place among the members)
         self._muted: set[int] = set()  # nodes left out of the whole tree's queries (:meth:`mute`)
         # (coordinates that are their own embedding are not copied per query: the index copies what it keeps)
         self._embed = _as_is if getattr(space, "embeds_as_is", False) else space.embed
@@ -67,12 +64,31 @@ class Tree:
         x = self._embed(q)
         i = self.nn.add(x)
         if self._per_label:
-            nn, members = self._label_nn.get(label, (None, None))
-            if nn is None:
-                nn, members = self._label_nn[label] = (NearestNeighbors(self.space.embed_dim, capacity=64, kernels=self._kernels), [])
-            self._local.append(nn.add(x))
+            members = self._members.get(label)
+            if members is None:
+                members = self._members[label] = []
+            self._local.append(len(members))
             members.append(i)
+            nn = self._label_nn.get(label)
+            if nn is not None:
+                nn.add(x)
         return i
+
+    def _label_index(self, label: int) -> tuple[NearestNeighbors | None, list[int] | None]:
+        """(the index over one label's nodes, those nodes), built on the first query as it would have grown
+        node by node (pruned nodes removed); (None, None) for a label without nodes."""
+        members = self._members.get(label)
+        if members is None:
+            return None, None
+        nn = self._label_nn.get(label)
+        if nn is None:
+            nn = self._label_nn[label] = NearestNeighbors(self.space.embed_dim, capacity=64, kernels=self._kernels)
+            for j in members:
+                nn.add(self._embed(self.nodes[j]))
+            dead = [self._local[j] for j in members if not self.alive[j]]
+            if dead:
+                nn.remove(dead)
+        return nn, members
 
     def nearest(self, q: np.ndarray, label: int | None = None) -> int:
         """The nearest live node (of one label's subtree if given), or -1 if there is none.
@@ -84,7 +100,7 @@ class Tree:
         if label is None:
             nn, members = (self.nn, None) if len(self.nn) else (None, None)
         else:
-            nn, members = self._label_nn.get(label, (None, None))
+            nn, members = self._label_index(label)
         if nn is None:
             return -1
         if self.space.nn_candidates > 1:
@@ -105,7 +121,7 @@ class Tree:
         if label is None:
             nn, members = self.nn, None
         else:
-            nn, members = self._label_nn.get(label, (None, None))
+            nn, members = self._label_index(label)
             if nn is None:
                 return -1, None, False
         if self._kernels is not None and nn.scans:
@@ -168,7 +184,9 @@ class Tree:
             for j in dead:
                 by_label.setdefault(self.labels[j], []).append(self._local[j])
             for label, local in by_label.items():
-                self._label_nn[label][0].remove(sorted(local))
+                nn = self._label_nn.get(label)
+                if nn is not None:  # (an index built later leaves them out itself)
+                    nn.remove(sorted(local))
 
     def arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Nodes (n x dim), parents (int) and goal-biased flags (bool), typed even for an empty goal tree."""

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from lazyground.goals import goal_source_for
 from lazyground.motion.post import post_process
+from lazyground.planning.problem import unreachable_note
 from lazyground.planning.rrt import solve
 from lazyground.planning.stop import StopCondition
 from lazyground.planning.turns import sweep_note
@@ -51,6 +52,7 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     notes = world.model_notes + ((motion.note,) if motion is not None and motion.note else ())
     swept = sweep_note(motion.shortcut.path, world.space.names, world.space.wrap, world.coordinates.turns) \
         if motion is not None and result.solved else None
-    notes += ((swept,) if swept else ()) + improvement_notes(best)
+    proven = unreachable_note(result.regions, result.region_stats)  # "k of N interpretations proven unreachable ..."
+    notes += ((swept,) if swept else ()) + ((proven,) if proven else ()) + improvement_notes(best)
     return Outcome(result, (Step(grounding.action, result, setup_s, motion=motion),), world.space.names, notes,
                    improvements=best.improvements)

@@ -102,7 +102,7 @@ def test_start_in_collision_names_the_pair(tmp_path, capsys):
 
 def test_no_valid_goal(tmp_path, capsys):
     blocker = "- {id: blocker, geometry: {box: [3, 6, 2]}, pose: {xyz: [20, 17, 1]}}"
-    assert main(["plan", lot(tmp_path, extra=blocker), "park", "--json"]) == 1
+    assert main(["plan", lot(tmp_path, extra=blocker), "park", "--json", "--no-reach-prior"]) == 1
     doc = json.loads(capsys.readouterr().out)
     assert doc["status"] == "no_valid_goal"
     assert "spot_1/forwards: 50 configurations tried, 0 valid (in collision x50)" in doc["message"]
@@ -110,9 +110,27 @@ def test_no_valid_goal(tmp_path, capsys):
 
 def test_timeout_when_unreachable(tmp_path, capsys):
     wall = "- {id: wall, geometry: {box: [30, 0.3, 2]}, pose: {xyz: [15, 12, 1]}}"
-    assert main(["plan", lot(tmp_path, extra=wall), "park", "--json"]) == 1
+    assert main(["plan", lot(tmp_path, extra=wall), "park", "--json", "--no-reach-prior"]) == 1
     doc = json.loads(capsys.readouterr().out)
     assert doc["status"] == "timeout" and doc["iterations"] == 3000  # the scene's max_iterations
+
+
+@pytest.mark.parametrize("extra", ["- {id: wall, geometry: {box: [30, 0.3, 2]}, pose: {xyz: [15, 12, 1]}}",
+                                   "- {id: blocker, geometry: {box: [3, 6, 2]}, pose: {xyz: [20, 17, 1]}}"])
+def test_every_spot_proven_unreachable_ends_at_once(tmp_path, capsys, extra):
+    """The reach prior (#33): a wall across the lot (or a box over the spot) leaves the car's disc no way to the
+    spot, so the request ends before any iteration, no_valid_goal, exit 1, one line saying so."""
+    assert main(["plan", lot(tmp_path, extra=extra), "park", "--json"]) == 1
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["status"] == "no_valid_goal" and doc["iterations"] == 0 and doc["goal_samples"] == 0
+    assert doc["message"].startswith("no reachable goal: all 1 interpretation(s) proven unreachable by the reach prior")
+    assert "\n" not in doc["message"]
+    assert doc["proven_unreachable"] == {"interpretations": 1, "of": 1, "by": "reach prior"}
+    assert doc["regions"]["spot_1/forwards"]["unreachable"] == "reach prior"
+    assert main(["plan", lot(tmp_path, extra=extra), "park"]) == 1
+    out = capsys.readouterr().out
+    assert "note: 1 of 1 interpretations proven unreachable by the reach prior" in out
+    assert "status: no_valid_goal: no reachable goal" in out
 
 
 @pytest.mark.parametrize(

@@ -20,7 +20,8 @@ def scene_path(name: str) -> Path:
     return SCENES / f"{name}.yaml"
 
 # A small lot whose only free spot lies behind a wall across the whole lot: the spot's goal
-# region has valid samples, but no path reaches it (every plan must end in a timeout).
+# region has valid samples, but no path reaches it (every plan must end in a timeout; the reach
+# prior, which proves it at once, is off: these tests need a search that runs to its limit).
 WALLED_LOT = """\
 name: walled_lot
 robot:
@@ -32,7 +33,7 @@ obstacles:
   - {id: wall, geometry: {box: [30, 0.3, 2]}, pose: {xyz: [15, 12, 1]}}
 objects:
   - {id: spot_1, type: parking_spot, geometry: {box: [5.5, 2.6, 0.05]}, pose: {xyz: [20, 17, 0], rpy: [0, 0, 1.5708]}}
-planner: {step_size: 1.0, time_limit: 5}
+planner: {step_size: 1.0, time_limit: 5, reach_prior: false}
 """
 
 

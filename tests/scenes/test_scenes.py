@@ -22,6 +22,7 @@ from lazyground.motion.validate import trajectory_problems  # noqa: E402
 from lazyground.tasks.place import validate_pick_and_place  # noqa: E402
 from lazyground.planning import path_is_valid  # noqa: E402
 from lazyground.scene import load_scene  # noqa: E402
+from lazyground.tasks.car_space import planning_space  # noqa: E402
 
 SCENES = sorted((Path(__file__).resolve().parents[2] / "yaml_scenes").glob("*.yaml"))
 CASES = [
@@ -68,7 +69,10 @@ def test_scene_expectation(path, k):
             assert report.chosen_object in expect.reachable, f"seed {seed} reached {report.chosen_object}"
         if res.goal_region.kind == "config":
             assert res.goal_region.contains(res.path[-1])
-        assert path_is_valid(world.space, world, res.path, fine) == -1, f"seed {seed}: path collides at {fine:g}"
+        # along the motion the robot makes: a car's curves between its dense waypoints, not their chords (a chord
+        # cuts a turn's corner by ~0.3 mm; parking_2 seed 4 with the reach prior passes closer than that)
+        space = planning_space(scene, world.space, report.settings.planner.kinematics)
+        assert path_is_valid(space, world, res.path, fine) == -1, f"seed {seed}: path collides at {fine:g}"
         if report.motion is None:  # a car driving Reeds-Shepp curves: its dense path is what it drives (#17)
             assert report.cusps is not None, f"seed {seed}: no timed trajectory"
             continue

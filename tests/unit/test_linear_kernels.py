@@ -113,3 +113,51 @@ def test_a_goal_source_s_read_only_or_strided_samples_plan_as_plain_ones(algorit
                         np.random.default_rng(seed))
         assert plain.solved and foreign.solved
         assert foreign.iterations == plain.iterations and np.array_equal(foreign.path, plain.path)
+
+
+class _NumpySpace(ConfigSpace):
+    kernels = None  # (the same space on numpy's path)
+
+
+def test_a_path_s_samples_and_bounds_are_numpy_s():
+    # the fine re-check's discretization in one call: numpy's rows bit for bit; the bounds test as samples_free's
+    rng = np.random.default_rng(11)
+    for _ in range(400):
+        d = int(rng.choice([2, 7, 8]))
+        space = _space(d)
+        ref = _NumpySpace(space.names, space.lower, space.upper)
+        m, res = int(rng.integers(2, 10)), float(rng.choice([0.005, 0.02, 0.3, 10.0]))
+        path = rng.uniform(-3.2, 3.2, (m, d))
+        segments = sorted(rng.choice(m - 1, size=int(rng.integers(1, m)), replace=False).tolist())
+        (qs, owner), (qs_ref, owner_ref) = space.discretize_path(path, segments, res), ref.discretize_path(path, segments, res)
+        assert qs.tobytes() == qs_ref.tobytes() and np.array_equal(owner, owner_ref)
+        inside = np.all((qs >= space.lower - 1e-9) & (qs <= space.upper + 1e-9), axis=1)
+        assert K.all_inside(qs, space.lower, space.upper) == bool(inside.all())
+        assert space.path_length(path) == ref.path_length(path)
+
+
+@pytest.mark.parametrize("kernels", [True, False], ids=["compiled", "numpy"])
+def test_a_label_s_index_built_late_answers_as_one_built_early(kernels):
+    # a goal label's index is built at its first query (#31): queried from the start or only at the end, after
+    # prunes and mutes, the same answers
+    space, rng = _space(8), np.random.default_rng(4)
+    early, late = Tree(space, per_label=True), Tree(space, per_label=True)
+    if not kernels:
+        for t in (early, late):
+            t._kernels = t.nn.kernels = None
+    for t in (early, late):
+        for label in range(4):
+            t.add_root(rng.uniform(-3, 3, 8) if t is early else early.nodes[label].copy(), label=label)
+    for i in range(300):
+        q, parent = rng.uniform(-3, 3, 8), int(rng.integers(0, i + 4))
+        assert early.add(q.copy(), parent) == late.add(q.copy(), parent)
+        for label in range(4):
+            early.nearest(q, label)
+        if i in (100, 200):
+            early.prune(i // 2), late.prune(i // 2)
+            early.mute(i), late.mute(i)
+    assert not late._label_nn
+    for _ in range(200):
+        x, label = rng.uniform(-3, 3, 8), int(rng.integers(0, 5))
+        (i, q, r), (j, p, s) = early.nearest_steer(x, 0.3, label), late.nearest_steer(x, 0.3, label)
+        assert (i, r) == (j, s) and (q is p is None or np.array_equal(q, p)) and early.nearest(x, label) == late.nearest(x, label)

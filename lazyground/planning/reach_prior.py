@@ -1,0 +1,199 @@
+"""A sound reach prior: goal positions a ball the robot carries provably cannot reach (issue #33).
+
+If the robot's collision body contains a ball (in the plane: a disc; a car holds a vertical
+cylinder as tall as its body) of radius ``r``, the robot can only reach a goal whose ball
+centre that ball could reach from the start's ball centre while moving among the obstacles.
+The prior answers this on a grid of cells of side ``h``, in any number of dimensions:
+
+* a cell is *blocked* only if the ball of radius ``r - h sqrt(n) / 2`` about its centre reaches
+  into an obstacle, so that the ball of radius ``r`` about every point of the cell does: a blocked
+  cell holds no ball centre of a valid configuration (obstacles are under-approximated: a shape
+  the caller cannot represent soundly is left out, which only frees cells);
+* the grid has a ring of cells around the bounds: free, so that whatever leaves the bounds is one
+  component; or blocked, for a robot whose planner holds every configuration it checks to its
+  limits (``bounded``; :func:`lazyground.planning.motion_validator.samples_free` does for a car's
+  curves);
+* free cells are labelled in components, each cell joined to every neighbour it touches, corners
+  included (``scipy.ndimage.label``): any continuous motion of a ball centre passes through
+  cells that touch one after another, so a goal box none of whose cells shares a component with
+  the start is unreachable.
+
+Sound, not complete: a goal the prior keeps may still be unreachable. A planner's path is a sequence of
+checked configurations; when they lie closer than a cell apart (a car's: 0.1 m, the cells 0.11 m), the
+cells of consecutive ones touch, so the argument holds for the path as checked, not only for continuous motion. :class:`PlanarReach` maps
+a planar robot's (x, y, heading) configuration boxes onto the grid of its disc centre.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy import ndimage
+
+EPS = 1e-6  # metres: a cell is blocked only if its ball reaches this far into an obstacle (float slack)
+TOLERANCE = 1e-6  # goal boxes and bounds are widened by this (ConfigRegion.contains' tolerance, limits held to 1e-9)
+
+
+@dataclass(frozen=True)
+class Solid:
+    """A box about ``centre`` with half extents ``half`` along the columns of ``axes`` (world
+    directions; identity by default), rounded by ``rounding`` (every point within it of the box):
+    a ball is a point box, rounded."""
+
+    centre: tuple[float, ...]
+    half: tuple[float, ...]
+    rounding: float = 0.0
+    axes: tuple[tuple[float, ...], ...] | None = None
+    name: str = ""
+
+    def distance(self, points: np.ndarray) -> np.ndarray:
+        """Signed distance from ``points`` (m, n) to the solid."""
+        local = np.asarray(points, float) - np.asarray(self.centre, float)
+        if self.axes is not None:
+            local = local @ np.asarray(self.axes, float)
+        d = np.abs(local) - np.asarray(self.half, float)
+        outside = np.sqrt(np.sum(np.maximum(d, 0.0) ** 2, axis=1))
+        return outside + np.minimum(d.max(axis=1), 0.0) - self.rounding
+
+    def reach(self) -> np.ndarray:
+        """Half extents of the solid's axis-aligned bounding box."""
+        half = np.asarray(self.half, float)
+        extent = half if self.axes is None else np.abs(np.asarray(self.axes, float)) @ half
+        return extent + self.rounding
+
+
+@dataclass(frozen=True)
+class ReachGrid:
+    """Components of the cells a ball of ``radius`` may have its centre in (0: blocked)."""
+
+    origin: np.ndarray  # the lower corner of cell (0, ..., 0)
+    cell: float
+    radius: float
+    labels: np.ndarray = field(repr=False)
+
+    def cells(self, lower, upper) -> tuple[slice, ...]:
+        """The index ranges of the cells meeting the closed box [lower, upper] (clipped to the grid:
+        a box beyond it meets the free ring)."""
+        top = np.array(self.labels.shape) - 1
+        lo = np.clip(np.floor((np.asarray(lower, float) - self.origin) / self.cell).astype(int), 0, top)
+        hi = np.clip(np.floor((np.asarray(upper, float) - self.origin) / self.cell).astype(int), 0, top)
+        return tuple(slice(a, b + 1) for a, b in zip(lo, hi))
+
+    def components(self, lower, upper) -> set[int]:
+        """The components of the free cells meeting the box [lower, upper]."""
+        found = np.unique(self.labels[self.cells(lower, upper)])
+        return {int(k) for k in found if k}
+
+    def blocked(self, points) -> np.ndarray:
+        """Whether each point (m, n) lies in a blocked cell (its ball provably hits an obstacle)."""
+        p = np.atleast_2d(np.asarray(points, float))
+        top = np.array(self.labels.shape) - 1
+        idx = np.clip(np.floor((p - self.origin) / self.cell).astype(int), 0, top)
+        return self.labels[tuple(idx.T)] == 0
+
+
+def reach_grid(lower, upper, radius: float, solids: list[Solid], cell: float, bounded: bool = False) -> ReachGrid:
+    """The grid of cells of side ``cell`` over [lower, upper] and a ring of cells around it.
+
+    Args:
+        lower, upper: the bounds of the ball centres (n values each).
+        radius: the ball's radius (a cell is blocked for ``radius - cell sqrt(n) / 2``).
+        solids: the obstacles (under-approximations of them).
+        cell: the cells' side.
+        bounded: the ball centre never leaves [lower, upper] (a planner that holds every configuration
+            to its limits): the ring is blocked. Otherwise it is free, one component with everything
+            beyond the bounds (the obstacles there are not on the grid).
+    """
+    # the bounds widened by TOLERANCE (a planner holds configurations to its limits within a float margin), each
+    # point of them in an inner cell (floor + 1 cells: the upper bound too), one ring of cells outside
+    lower, upper = np.asarray(lower, float) - TOLERANCE, np.asarray(upper, float) + TOLERANCE
+    n = len(lower)
+    origin = lower - cell
+    shape = tuple(int(k) for k in np.floor((upper - lower) / cell).astype(int) + 3)
+    free = np.ones(shape, bool)
+    rho = radius - cell * math.sqrt(n) / 2 - EPS
+    if rho > 0:
+        for s in solids:
+            _block(free, origin, cell, rho, s)
+    ring = np.zeros(shape, bool)
+    for axis in range(n):
+        ring[(slice(None),) * axis + (0,)] = ring[(slice(None),) * axis + (-1,)] = True
+    free = free & ~ring if bounded else free | ring
+    labels, _ = ndimage.label(free, structure=np.ones((3,) * n, bool))
+    return ReachGrid(origin, cell, radius, labels)
+
+
+def _block(free: np.ndarray, origin: np.ndarray, cell: float, rho: float, solid: Solid) -> None:
+    """Mark the cells whose centres lie within ``rho`` of ``solid`` blocked (:meth:`Solid.distance` below
+    ``rho``, in squares and along broadcast axes: a window of cells costs a few operations per cell)."""
+    c, n = np.asarray(solid.centre, float), free.ndim
+    reach = solid.reach() + rho
+    lo = np.maximum(np.floor((c - reach - origin) / cell - 0.5).astype(int), 0)
+    hi = np.minimum(np.ceil((c + reach - origin) / cell - 0.5).astype(int), np.array(free.shape) - 1)
+    if np.any(hi < lo):
+        return
+    rel = [(origin[k] + (np.arange(lo[k], hi[k] + 1) + 0.5) * cell - c[k]).reshape([-1 if i == k else 1 for i in range(n)])
+           for k in range(n)]
+    axes = None if solid.axes is None else np.asarray(solid.axes, float)
+    outside = 0.0
+    for k, h in enumerate(solid.half):
+        local = rel[k] if axes is None else sum(rel[j] * axes[j, k] for j in range(n))
+        outside = outside + np.maximum(np.abs(local) - h, 0.0) ** 2
+    # inside the box every cell is hit (rho > 0); outside, the distance is sqrt(outside) - rounding
+    hit = np.broadcast_to(outside < (rho + solid.rounding) ** 2, tuple(hi - lo + 1))
+    free[tuple(slice(a, b + 1) for a, b in zip(lo, hi))] &= ~hit
+
+
+def _arc_box(offset: np.ndarray, lo: float, span: float) -> tuple[np.ndarray, np.ndarray]:
+    """The bounding box of ``offset`` turned by every angle in [lo, lo + span]."""
+    rho = float(np.hypot(*offset))
+    if rho == 0.0:
+        return np.zeros(2), np.zeros(2)
+    if span >= 2 * math.pi:
+        return np.full(2, -rho), np.full(2, rho)
+    a0 = math.atan2(offset[1], offset[0]) + lo
+    angles = [a0, a0 + span] + [k * math.pi / 2 for k in range(math.ceil(a0 / (math.pi / 2)), math.floor((a0 + span) / (math.pi / 2)) + 1)]
+    pts = rho * np.array([[math.cos(a), math.sin(a)] for a in angles])
+    return pts.min(axis=0), pts.max(axis=0)
+
+
+@dataclass(frozen=True)
+class PlanarReach:
+    """The reach prior of a planar robot: its disc (``offset`` from the body frame, in it) on ``grid``.
+
+    Configurations are vectors with x, y and heading at ``index`` (the planned coordinates).
+    """
+
+    grid: ReachGrid
+    start: frozenset[int]  # the start's components (empty: the start's disc is in no free cell)
+    index: tuple[int, int, int]
+    offset: tuple[float, float] = (0.0, 0.0)
+    left_out: tuple[str, ...] = ()  # obstacles not represented (only frees cells)
+    build_s: float = 0.0
+
+    def centre_box(self, lower, upper, span: float) -> tuple[np.ndarray, np.ndarray]:
+        """The box of disc centres of the configurations in a box whose heading runs ``span`` from its lower bound."""
+        ix, iy, ih = self.index
+        lo, hi = _arc_box(np.asarray(self.offset, float), float(lower[ih]), span)
+        return (np.array([lower[ix], lower[iy]], float) + lo - TOLERANCE,
+                np.array([upper[ix], upper[iy]], float) + hi + TOLERANCE)
+
+    def keeps(self, region) -> bool:
+        """Whether the prior lets ``region`` (a box of configurations, e.g. a ConfigRegion) be reached: False only
+        when no cell of its disc centres lies in the start's component."""
+        if not self.start or len(region.lower) <= max(self.index):
+            return True
+        lower, span, _ = region.unit_map()
+        upper = lower + span
+        lo, hi = self.centre_box(lower, upper, float(span[self.index[2]]))
+        return bool(self.grid.components(lo, hi) & self.start)
+
+    def centres(self, qs) -> np.ndarray:
+        """The disc centres (m, 2) of configurations ``qs`` (m, dim)."""
+        q = np.atleast_2d(np.asarray(qs, float))
+        ix, iy, ih = self.index
+        c, s = np.cos(q[:, ih]), np.sin(q[:, ih])
+        ox, oy = self.offset
+        return np.column_stack([q[:, ix] + c * ox - s * oy, q[:, iy] + s * ox + c * oy])
