@@ -66,8 +66,10 @@ def pack(blocks: dict) -> tuple[np.ndarray, np.ndarray]:
 
 
 @njit(cache=True, inline="always")
-def _solid_distance(x0, x1, x2, h0, h1, h2, rounding, cylinder):
-    """Signed distance from a point in a solid's centred frame to the solid (lazyground.drake.solids)."""
+def solid_distance(x0, x1, x2, h0, h1, h2, rounding, cylinder):
+    """Signed distance from a point in a solid's centred frame to the solid: one point's
+    :func:`lazyground.drake.solids.solid_distance`, a cylinder's radius as sqrt(x0^2 + x1^2) (numpy's hypot can
+    differ in the last bit). The certifier's and the hand probe's (lazyground.drake.ik.kernels) one code."""
     if cylinder:
         d0 = np.sqrt(x0 * x0 + x1 * x1) - h0
         d1 = -np.inf
@@ -82,8 +84,8 @@ def _solid_distance(x0, x1, x2, h0, h1, h2, rounding, cylinder):
 @njit(cache=True, inline="always")
 def _offset_distance(vx, vy, vz, R, half, rounding, cylinder):
     """Signed distance to a solid with world axes R (columns) from a point at world offset v from its centre."""
-    return _solid_distance(R[0, 0] * vx + R[1, 0] * vy + R[2, 0] * vz, R[0, 1] * vx + R[1, 1] * vy + R[2, 1] * vz,
-                           R[0, 2] * vx + R[1, 2] * vy + R[2, 2] * vz, half[0], half[1], half[2], rounding, cylinder)
+    return solid_distance(R[0, 0] * vx + R[1, 0] * vy + R[2, 0] * vz, R[0, 1] * vx + R[1, 1] * vy + R[2, 1] * vz,
+                          R[0, 2] * vx + R[1, 2] * vy + R[2, 2] * vz, half[0], half[1], half[2], rounding, cylinder)
 
 
 @intrinsic
@@ -321,7 +323,7 @@ def _solids(A, ca, ha, ra, cyla, B, cb, hb, rb, cylb, thr, shift):
     is that of two points on the shapes, so at least the true one (a free claim stays Drake's), but it can be far
     above it (FCL's GJK stopping early: 12.4 mm for a true 4.8 mm, box against box, on fetch_cans_2), so a
     collision claim from the true distance would not be Drake's answer."""
-    return _gjk(A, ca, ha, ra, cyla, B, cb, hb, rb, cylb, thr - shift, -np.inf) > 0
+    return _gjk(A, ca, ha, ra, cyla, B, cb, hb, rb, cylb, thr - shift)
 
 
 @njit(cache=True)
@@ -387,14 +389,14 @@ def _spheres(g, b, Rb, pb, sc, start, sph):
 
 # ---- exact convex distance between two solids (#31) ----------------------------------------------------------------
 # A pair the sphere cover leaves open is decided between the two solids themselves (boxes, rounded boxes -- spheres
-# and capsules --, cylinders) by GJK on their support functions. Only the *bounds* are used, so GJK's own numerics
+# and capsules --, cylinders) by GJK on their support functions. Only the lower bound is used, so GJK's own numerics
 # never decide an answer:
 # * lower: for any direction n (unit), every point of A - B has n . x >= n . s_A(-n) - n . s_B(n) (s: the support
 #   point), so the distance is at least that (a separating axis); GJK only picks a good n. A solid encloses its
 #   shape, so this bounds the shapes' distance too.
-# * upper: a convex combination of support points of A - B lies in A - B, so its norm bounds the distance from
-#   above; an origin inside a (non-flat) simplex of them: the solids intersect. Not used by the kernel as a proof
-#   of collision: Drake's own distance can be far above the true one (see _solids).
+# * GJK's iterate, a convex combination of support points of A - B, lies in A - B: once it is within the threshold
+#   (or the origin lies inside a simplex of them) no lower bound can clear it, and the test stops. It is no proof
+#   of collision for the kernel: Drake's own distance can be far above the true one (see _solids).
 
 GJK_ITERATIONS = 32
 GJK_SAFETY = 1e-9  # metres: a lower bound must clear its threshold by this much (the arithmetic's rounding)
@@ -502,6 +504,23 @@ def _orient_origin(S, a, b, c):
     return -((uy * vz - uz * vy) * S[a, 0] + (uz * vx - ux * vz) * S[a, 1] + (ux * vy - uy * vx) * S[a, 2])
 
 
+@njit(cache=True, inline="always")
+def _vertex(S, lam, x, y, z):
+    """A triangle's Voronoi vertex region: S[0] = (x, y, z), weight 1; returns 1 (:func:`_triangle`)."""
+    S[0, 0], S[0, 1], S[0, 2] = x, y, z
+    lam[0] = 1.0
+    return 1
+
+
+@njit(cache=True, inline="always")
+def _edge(S, lam, px, py, pz, qx, qy, qz, t):
+    """A triangle's Voronoi edge region: S[0] = p, S[1] = q, weights 1 - t, t; returns 2 (:func:`_triangle`)."""
+    S[0, 0], S[0, 1], S[0, 2] = px, py, pz
+    S[1, 0], S[1, 1], S[1, 2] = qx, qy, qz
+    lam[0], lam[1] = 1.0 - t, t
+    return 2
+
+
 @njit(cache=True)
 def _triangle(S, lam, ia, ib, ic):
     """Nearest point of triangle S[ia], S[ib], S[ic] to the origin (Ericson, Real-Time Collision Detection 5.1.5):
@@ -514,47 +533,27 @@ def _triangle(S, lam, ia, ib, ic):
     d1 = -(abx * ax + aby * ay + abz * az)
     d2 = -(acx * ax + acy * ay + acz * az)
     if d1 <= 0.0 and d2 <= 0.0:
-        S[0, 0], S[0, 1], S[0, 2] = ax, ay, az
-        lam[0] = 1.0
-        return 1
+        return _vertex(S, lam, ax, ay, az)
     d3 = -(abx * bx + aby * by + abz * bz)
     d4 = -(acx * bx + acy * by + acz * bz)
     if d3 >= 0.0 and d4 <= d3:
-        S[0, 0], S[0, 1], S[0, 2] = bx, by, bz
-        lam[0] = 1.0
-        return 1
+        return _vertex(S, lam, bx, by, bz)
     vc = d1 * d4 - d3 * d2
     if vc <= 0.0 and d1 >= 0.0 and d3 <= 0.0:
-        t = d1 / (d1 - d3)
-        S[0, 0], S[0, 1], S[0, 2] = ax, ay, az
-        S[1, 0], S[1, 1], S[1, 2] = bx, by, bz
-        lam[0], lam[1] = 1.0 - t, t
-        return 2
+        return _edge(S, lam, ax, ay, az, bx, by, bz, d1 / (d1 - d3))
     d5 = -(abx * cx + aby * cy + abz * cz)
     d6 = -(acx * cx + acy * cy + acz * cz)
     if d6 >= 0.0 and d5 <= d6:
-        S[0, 0], S[0, 1], S[0, 2] = cx, cy, cz
-        lam[0] = 1.0
-        return 1
+        return _vertex(S, lam, cx, cy, cz)
     vb = d5 * d2 - d1 * d6
     if vb <= 0.0 and d2 >= 0.0 and d6 <= 0.0:
-        t = d2 / (d2 - d6)
-        S[0, 0], S[0, 1], S[0, 2] = ax, ay, az
-        S[1, 0], S[1, 1], S[1, 2] = cx, cy, cz
-        lam[0], lam[1] = 1.0 - t, t
-        return 2
+        return _edge(S, lam, ax, ay, az, cx, cy, cz, d2 / (d2 - d6))
     va = d3 * d6 - d5 * d4
     if va <= 0.0 and (d4 - d3) >= 0.0 and (d5 - d6) >= 0.0:
-        t = (d4 - d3) / ((d4 - d3) + (d5 - d6))
-        S[0, 0], S[0, 1], S[0, 2] = bx, by, bz
-        S[1, 0], S[1, 1], S[1, 2] = cx, cy, cz
-        lam[0], lam[1] = 1.0 - t, t
-        return 2
+        return _edge(S, lam, bx, by, bz, cx, cy, cz, (d4 - d3) / ((d4 - d3) + (d5 - d6)))
     den = va + vb + vc
     if not den > 0.0:  # a degenerate triangle: its nearest vertex
-        S[0, 0], S[0, 1], S[0, 2] = ax, ay, az
-        lam[0] = 1.0
-        return 1
+        return _vertex(S, lam, ax, ay, az)
     v, w = vb / den, vc / den
     S[0, 0], S[0, 1], S[0, 2] = ax, ay, az
     S[1, 0], S[1, 1], S[1, 2] = bx, by, bz
@@ -564,43 +563,40 @@ def _triangle(S, lam, ia, ib, ic):
 
 
 @njit(cache=True)
-def _gjk(RA, cA, hA, rA, cylA, RB, cB, hB, rB, cylB, free_above, collide_at):
-    """1 when the two solids are proven farther apart than ``free_above`` (a lower bound of their distance exceeds
-    it), -1 when proven within ``collide_at`` (an upper bound is at most it; the caller passes -inf unless the solids
-    are the shapes), 0 when neither (see above)."""
+def _gjk(RA, cA, hA, rA, cylA, RB, cB, hB, rB, cylB, free_above):
+    """Whether the two solids are proven farther apart than ``free_above`` (a lower bound of their distance
+    exceeds it; see above)."""
     S, lam, T, K = np.empty((4, 3)), np.empty(4), np.empty((3, 3)), np.empty((3, 3))
     vx, vy, vz = cA[0] - cB[0], cA[1] - cB[1], cA[2] - cB[2]  # both centres lie in their solids: a point of A - B
     S[0, 0], S[0, 1], S[0, 2] = vx, vy, vz
     n = 1
     for _ in range(GJK_ITERATIONS):
         vv = vx * vx + vy * vy + vz * vz
-        if np.sqrt(vv) <= collide_at:
-            return -1
         if vv <= (free_above + GJK_SAFETY) ** 2:  # a point of A - B this near: never provable farther (stop early)
-            return 0
+            return False
         if vv <= 1e-30:
-            return 0
+            return False
         ax, ay, az = _support(-vx, -vy, -vz, RA, cA, hA, rA, cylA)
         bx, by, bz = _support(vx, vy, vz, RB, cB, hB, rB, cylB)
         wx, wy, wz = ax - bx, ay - by, az - bz
         vw = vx * wx + vy * wy + vz * wz
         if vw > 0.0 and vw * vw > (free_above + GJK_SAFETY) ** 2 * vv:  # the separating axis along v
-            return 1
+            return True
         if vv - vw <= 1e-12 * vv:  # converged: w adds nothing
-            return 0
+            return False
         S[n, 0], S[n, 1], S[n, 2] = wx, wy, wz
         n = _closest(S, lam, n + 1, T, K)
         if n == 0:  # the origin inside a tetrahedron of points of A - B: the solids intersect
-            return -1 if collide_at >= 0.0 else 0
+            return False
         x = y = z = 0.0
         for i in range(n):
             x += lam[i] * S[i, 0]
             y += lam[i] * S[i, 1]
             z += lam[i] * S[i, 2]
         if x * x + y * y + z * z >= vv:  # no progress (rounding)
-            return 0
+            return False
         vx, vy, vz = x, y, z
-    return 0
+    return False
 
 
 def work_size(idata: np.ndarray) -> int:
@@ -726,7 +722,7 @@ def _clearance(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, W, above, lever, 
     m, G, O, P = idata[_M], idata[_G], idata[_O], idata[_P]
     (gR, go, ghalf, ground, grad, sc, sr, oR, oo, ohalf, oround, ac, ah, reach2, env, sthr, ic, ir, below, node, start,
      gcyl, ocyl, mover, other, istart, gexact, oexact) = blocks  # the cover and inner spheres: unused
-    kinds = idata[idata[7 + _NF + 1]:idata[7 + _NF + 1] + m]
+    kinds = tree[3]
     _centres(node, go, Rb, pb, centre)
     ok = True
     for g in range(G):
@@ -779,6 +775,17 @@ def _clearance(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, W, above, lever, 
     return ok
 
 
+@njit(cache=True, inline="always")
+def _pair_levers(blocks, above, lever, pair_lever):
+    """Per self pair and joint, its lever (P, m) into ``pair_lever`` from the geometries' (G, m): the sum of its two
+    geometries' over the joints above one of them only (the others move both alike)."""
+    mover, other = blocks[23], blocks[24]
+    for k in range(len(mover)):
+        g, h = mover[k], other[k]
+        for j in range(lever.shape[1]):
+            pair_lever[k, j] = lever[g, j] + lever[h, j] if above[g, j] != above[h, j] else 0.0
+
+
 @njit(cache=True)
 def sweep_rows(Q, fd, idata, work, above, pairs):
     """Per row of plant positions Q (in sequence): its code as ``certify_rows`` gives it (0 certified, open pairs'
@@ -786,12 +793,7 @@ def sweep_rows(Q, fd, idata, work, above, pairs):
     Rs, ps, Rb, pb, centre, sph, done, W, A, gap = scratch_views(idata, work)
     tree, blocks = tree_views(fd, idata), block_views(fd, idata)
     m, G, P = idata[_M], idata[_G], idata[_P]
-    i = idata[7 + _NF:_HEAD]
-    o_ = 7 + _NF
-    kinds = idata[idata[o_ + 1]:idata[o_ + 1] + m]
-    index = idata[idata[o_ + 2]:idata[o_ + 2] + m]
-    mover = idata[i[8]:i[8] + P]
-    other = idata[i[9]:i[9] + P]
+    kinds, index = tree[3], tree[4]
     lever, pair_lever = np.empty((G, m)), np.empty((P, m))
     order = np.empty(P, np.int64)
     tight = 0
@@ -852,11 +854,7 @@ def sweep_rows(Q, fd, idata, work, above, pairs):
                     if clear_k[k] >= ROOM:
                         order[rest] = k
                         rest += 1
-                # a self pair: the joints above one of its geometries only (the others move both alike)
-                for k in range(P):
-                    g, h = mover[k], other[k]
-                    for j in range(m):
-                        pair_lever[k, j] = lever[g, j] + lever[h, j] if above[g, j] != above[h, j] else 0.0
+                _pair_levers(blocks, above, lever, pair_lever)
                 out[r] = 0
                 continue
             anchored = False

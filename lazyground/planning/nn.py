@@ -43,7 +43,8 @@ class NearestNeighbors:
         self._buffer_fraction = buffer_fraction  # ... or this fraction of the points, whichever is more
         self._fraction = recent_fraction
         self._brute_limit = brute_limit
-        self.kernels = kernels  # lazyground.planning.linear_kernels: the scans compiled (None: numpy's)
+        self.kernels = kernels  # lazyground.planning.linear_kernels: the scans compiled (None: numpy's); a query
+        # is then a contiguous, writable float vector (the kernels' signatures: lazyground.planning.tree.Tree)
 
     def __len__(self) -> int:
         return self._size
@@ -103,10 +104,7 @@ class NearestNeighbors:
     def nearest(self, x: np.ndarray) -> int:
         if self._main is None:  # no k-d tree yet: one scan (the answer the general path gives)
             if self.kernels is not None:
-                try:
-                    return self.kernels.nearest(self._points, self._sq, self._size, x)
-                except TypeError:  # (x not a writable contiguous float vector: numpy's scan)
-                    pass
+                return self.kernels.nearest(self._points, self._sq, self._size, x)
             return int(self._scan(0, x).argmin()) if self._size else -1
         d, best = self._main.query(x)  # (a recent tree exists only beside a main one)
         best_d2 = d * d
@@ -129,10 +127,7 @@ class NearestNeighbors:
         """
         if self._main is None and self.kernels is not None:
             out = np.empty(k, np.int64)
-            try:
-                return out[: self.kernels.nearest_k(self._points, self._sq, self._size, x, k, out)]
-            except TypeError:  # (as in nearest)
-                pass
+            return out[: self.kernels.nearest_k(self._points, self._sq, self._size, x, k, out)]
         idx, d2 = [], []
         for tree, off in ((self._main, 0), (self._recent, self._main_end)):
             if tree is not None:

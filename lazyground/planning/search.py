@@ -104,6 +104,8 @@ class Search:
         """Draw up to n more goal samples and hand them to the strategy."""
         c0, n0 = self.checker.check_time, _checks(self.checker)
         new = self.goals.draw(n, self.rng, self.stop)
+        for sample in new:  # the planner's own vector: the compiled steps of its trees take no read-only or strided one
+            sample.q = np.array(sample.q, float)
         self._sampling_checks += self.checker.check_time - c0
         self._sampling_count += _checks(self.checker) - n0
         first = len(self.samples)

@@ -32,6 +32,10 @@ def _put(a: np.ndarray, i: int, value) -> np.ndarray:
 
 
 class Tree:
+    """In a unit-weight linear space the queries and nodes go to compiled code, which takes contiguous, writable
+    float vectors only (numba's signatures: lazyground.planning.linear_kernels): the planner's own arrays are,
+    and :meth:`lazyground.planning.search.Search.draw` copies each goal sample's configuration into one."""
+
     def __init__(self, space: ConfigSpace, per_label: bool = False):
         self.space = space
         self.nodes: list[np.ndarray] = []
@@ -150,18 +154,14 @@ class Tree:
                 return -1, None, False
         if self._kernels is not None and nn.scans:
             out = np.empty(len(q))
-            try:
-                code = nn.nearest_steer(q, step, out)
-            except TypeError:  # (q not a writable contiguous float vector: the general path)
-                code = None
-            if code is not None:
-                if code < 0:
-                    return -1, None, False
-                if members is None:
-                    i = code >> 1
-                    return (i, out, bool(code & 1)) if self.alive[i] and i not in self._muted else (-1, None, False)
-                i = members[code >> 1]
-                return (i, out, bool(code & 1)) if self.alive[i] else (-1, None, False)
+            code = nn.nearest_steer(q, step, out)
+            if code < 0:
+                return -1, None, False
+            if members is None:
+                i = code >> 1
+                return (i, out, bool(code & 1)) if self.alive[i] and i not in self._muted else (-1, None, False)
+            i = members[code >> 1]
+            return (i, out, bool(code & 1)) if self.alive[i] else (-1, None, False)
         i = self.nearest(q, label)
         if i < 0:
             return -1, None, False
@@ -186,10 +186,7 @@ class Tree:
         """:meth:`ConfigSpace.steer` from node i towards ``q`` (compiled in a unit-weight linear space)."""
         if self._kernels is not None:
             out = np.empty(len(q))
-            try:
-                return out, self._kernels.steer(self.nodes[i], q, step, out)
-            except TypeError:
-                pass
+            return out, self._kernels.steer(self.nodes[i], q, step, out)
         return self.space.steer(self.nodes[i], q, step)
 
     def nearest_k(self, q: np.ndarray, k: int) -> list[int]:

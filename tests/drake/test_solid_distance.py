@@ -1,6 +1,5 @@
-"""The kernels' distance bounds between two solids (#31: lazyground.drake.sphere_kernels._gjk): a pair it calls
-farther than a threshold is, one it calls within is, on cases with a known distance and on random solids
-against a sampled distance."""
+"""The kernels' distance bound between two solids (#31: lazyground.drake.sphere_kernels._gjk): a pair it calls
+farther than a threshold is, on cases with a known distance and on random solids against a sampled distance."""
 
 import numpy as np
 import pytest
@@ -31,10 +30,8 @@ def test_cylinder_cap_facing_a_box(gap, tilt):
     box_half = np.array([0.035, 0.035, 0.075])
     cb = np.array([0.0, 0.0, top + gap + 0.075])
     args = (R, np.zeros(3), half_cyl, 0.0, True, np.eye(3), cb, box_half, 0.0, False)
-    assert _gjk(*args, gap - 1e-4, -np.inf) == 1
-    assert _gjk(*args, gap + 1e-4, -np.inf) == 0
-    assert _gjk(*args, gap + 1e-4, gap + 1e-4) == -1
-    assert _gjk(*args, 10.0, gap - 1e-4) == 0
+    assert _gjk(*args, gap - 1e-4)
+    assert not _gjk(*args, gap + 1e-4)
 
 
 def _solid(rng):
@@ -63,13 +60,14 @@ def _points(solid, rng, n=4000):
 
 def test_random_solids_never_called_farther_than_they_are():
     rng = np.random.default_rng(3)
-    decided = 0
+    apart = proven = 0
     for _ in range(300):
         a, b = _solid(rng), _solid(rng)
         x = (_points(a, rng) - b[1]) @ b[0]
         above = solid_distance(x, np.broadcast_to(b[2], x.shape), np.full(len(x), b[3]), np.full(len(x), b[4])).min()
         threshold = rng.uniform(0.0, 0.05)
-        verdict = _gjk(*a, *b, threshold, threshold)
-        assert not (verdict == 1 and above <= threshold)  # called farther, but two of their points are this close
-        decided += verdict != 0
-    assert decided >= 290  # it decides nearly every pair (the fallback is rare)
+        farther = _gjk(*a, *b, threshold)
+        assert not (farther and above <= threshold)  # called farther, but two of their points are this close
+        apart += above > threshold + 0.005
+        proven += farther and above > threshold + 0.005
+    assert apart >= 200 and proven >= 0.95 * apart  # it proves nearly every pair apart (the fallback is rare)

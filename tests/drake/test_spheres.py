@@ -6,13 +6,15 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from numba import njit
 
 pytest.importorskip("pydrake")
 
 from pydrake.geometry import Box, Capsule, Cylinder, Ellipsoid, Sphere  # noqa: E402
 
 from lazyground.bench.moveit_corpus import CORPUS  # noqa: E402
-from lazyground.drake.chain import body_tree  # noqa: E402
+from lazyground.drake import sphere_kernels  # noqa: E402
+from lazyground.drake.chain import PRISMATIC, body_tree  # noqa: E402
 from lazyground.drake.solids import cover, solid, solid_distance  # noqa: E402
 from lazyground.drake.spheres import _growth  # noqa: E402
 from lazyground.drake.world import Attachment, DrakeWorld  # noqa: E402
@@ -175,6 +177,36 @@ def test_no_point_moves_farther_than_its_levers_allow():
         gained += bool(np.all(bound[ok, G + k] < bound[ok, g] + bound[ok, o] - 1e-9))
     assert tight > 0.3
     assert gained > len(cert._self.mover) / 2  # most pairs share joints above them that the relative bound leaves out
+
+
+@njit
+def _kernel_levers(q, fd, idata, work, above, lever, pair_lever):
+    """The levers the compiled sweep takes at an anchor q (sphere_kernels.sweep_rows): its _clearance, _pair_levers."""
+    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = sphere_kernels.scratch_views(idata, work)
+    tree, blocks = sphere_kernels.tree_views(fd, idata), sphere_kernels.block_views(fd, idata)
+    clear_g, clear_k = np.empty(lever.shape[0]), np.empty(pair_lever.shape[0])
+    sphere_kernels._clearance(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, W, above, lever, clear_g, clear_k)
+    sphere_kernels._pair_levers(blocks, above, lever, pair_lever)
+
+
+@pytest.mark.parametrize("scene", ["fetch_cans_1", "panda_tabletop"])
+def test_the_compiled_sweep_s_levers_are_the_reference_s(scene):
+    """The levers the sweep proves rows from (sphere_kernels) are :meth:`SphereCertifier.levers`, whose bound the
+    test above checks against the motion of every sphere: per geometry and per self pair, at random configurations
+    (Fetch's torso joint is prismatic)."""
+    world = DrakeWorld(load_scene(f"yaml_scenes/{scene}.yaml"), visual=False)
+    cert, compiled = world.checker.certifier, world.checker.compiled
+    rng = np.random.default_rng(4)
+    q = world.full(np.array([world.space.sample(rng) for _ in range(100)]))
+    want = cert.levers(q)
+    G, P, m = len(cert._count), len(cert._self.mover), len(cert.tree.kinds)
+    assert P and (cert.tree.kinds == PRISMATIC).any() == (scene == "fetch_cans_1")
+    lever, pair_lever = np.empty((G, m)), np.empty((P, m))
+    for b in range(len(q)):
+        _kernel_levers(q[b], compiled.fd, compiled.idata, compiled.work, compiled._above, lever, pair_lever)
+        # (a centre on a joint's axis: sqrt(|v|^2 - along^2) of a difference of two ~1 m^2 roundings, ~1e-8 m)
+        np.testing.assert_allclose(np.vstack([lever, pair_lever]), want[b], rtol=0.0, atol=1e-7)
+    assert (want[:, G:] == 0).any() and (want[:, G:] > 0).any()  # pairs share joints and move by others
 
 
 def test_the_growth_factor_bounds_the_distance_moved_from_the_lever_at_q():

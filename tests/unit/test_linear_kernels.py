@@ -3,9 +3,11 @@
 import numpy as np
 import pytest
 
+from lazyground.planning import PlannerSettings, solve
 from lazyground.planning import linear_kernels as K
 from lazyground.planning.space import ConfigSpace
 from lazyground.planning.tree import Tree
+from tests.unit.toy import NO_CLOCK, REACHABLE, SOLVE_BUDGET, SPACE, START, WALLS, BoxWorld, goal_source
 
 
 def _space(dim: int, weights=None) -> ConfigSpace:
@@ -62,15 +64,55 @@ def test_a_tree_answers_as_without_kernels():
         assert (q, r)[1] == slow.steer(i, x, 0.3)[1] and np.array_equal(q, slow.steer(i, x, 0.3)[0])
 
 
-def test_an_array_the_kernels_do_not_take_goes_the_numpy_way():
-    space = _space(3)
-    tree = Tree(space)
-    tree.add_root(np.zeros(3))
+def test_the_kernels_take_only_the_planner_s_own_vectors():
     x = np.full(3, 2.0)
     x.setflags(write=False)  # (numba types a read-only array apart: no compiled signature takes it)
-    i, q, reached = tree.nearest_steer(x, 0.5)
-    assert i == 0 and not reached and np.array_equal(q, space.steer(np.zeros(3), x, 0.5)[0])
-    assert tree.nearest(x) == 0 and tree.steer(0, x, 10.0)[1]
+    with pytest.raises(TypeError):
+        K.steer(np.zeros(3), x, 0.5, np.empty(3))
+    with pytest.raises(TypeError):
+        K.steer(np.zeros(3), np.zeros((3, 2))[:, 0], 0.5, np.empty(3))  # strided
+
+
+class _Foreign:
+    """A goal source whose samples' configurations are read-only or strided arrays."""
+
+    def __init__(self, source, strided: bool):
+        self.source, self.strided = source, strided
+        self.regions, self.stats = source.regions, source.stats
+
+    def draw(self, n, rng, stop):
+        out = self.source.draw(n, rng, stop)
+        for s in out:
+            if self.strided:
+                wide = np.zeros((len(s.q), 2))
+                wide[:, 0] = s.q
+                s.q = wide[:, 0]
+            else:
+                s.q = s.q.copy()
+                s.q.setflags(write=False)
+        return out
+
+    def exhausted(self):
+        return self.source.exhausted()
+
+    @property
+    def sample_time(self):
+        return self.source.sample_time
+
+
+@pytest.mark.parametrize("algorithm", ["rrt", "bidirectional"])
+@pytest.mark.parametrize("strided", [False, True])
+def test_a_goal_source_s_read_only_or_strided_samples_plan_as_plain_ones(algorithm, strided):
+    # the one-tree planner steers towards a goal sample's own array: the search copies each into a planner vector
+    settings = PlannerSettings(step_size=0.5, time_limit=NO_CLOCK, max_iterations=SOLVE_BUDGET, algorithm=algorithm)
+    assert SPACE.unit_linear
+    for seed in range(3):
+        world = BoxWorld(WALLS)
+        plain = solve(SPACE, world, goal_source(world, [REACHABLE]), START, settings, np.random.default_rng(seed))
+        foreign = solve(SPACE, world, _Foreign(goal_source(world, [REACHABLE]), strided), START, settings,
+                        np.random.default_rng(seed))
+        assert plain.solved and foreign.solved
+        assert foreign.iterations == plain.iterations and np.array_equal(foreign.path, plain.path)
 
 
 class _NumpySpace(ConfigSpace):

@@ -19,6 +19,7 @@ import math
 import numpy as np
 from numba import njit
 
+from lazyground.drake.sphere_kernels import solid_distance
 from lazyground.user_cache import use_kernel_cache
 
 use_kernel_cache()  # before any kernel is defined: caches keyed by every kernel file's text
@@ -227,16 +228,6 @@ def solve_rows(q0, targets, X_before, X_after, kinds, free, lower, upper, wrap, 
 
 
 @njit(cache=True)
-def _solid_distance(x0, x1, x2, half, rounding, cylinder):
-    """:func:`lazyground.drake.solids.solid_distance` of one point in its solid's centred frame."""
-    d0, d1, d2 = abs(x0) - half[0], abs(x1) - half[1], abs(x2) - half[2]
-    if cylinder:  # radial and axial distance only
-        d0, d1 = math.hypot(x0, x1) - half[0], -math.inf
-    outside = math.sqrt(max(d0, 0.0) ** 2 + max(d1, 0.0) ** 2 + max(d2, 0.0) ** 2)
-    return outside + min(max(max(d0, d1), d2), 0.0) - rounding
-
-
-@njit(cache=True)
 def probe_rows(X_WT, points, R_WS, p_WS, half, rounding, cylinder, limit, near, out):
     """:meth:`lazyground.drake.ik.hand_probe.HandProbe.blocked` per target pose (B, 4, 4) into ``out`` (B,):
     some probe point, placed by the target, closer to an obstacle's solid than its limit there."""
@@ -247,7 +238,7 @@ def probe_rows(X_WT, points, R_WS, p_WS, half, rounding, cylinder, limit, near, 
             o0 = v0 * R_WS[k, 0, 0] + v1 * R_WS[k, 1, 0] + v2 * R_WS[k, 2, 0]  # the hand's origin in the solid's frame
             o1 = v0 * R_WS[k, 0, 1] + v1 * R_WS[k, 1, 1] + v2 * R_WS[k, 2, 1]
             o2 = v0 * R_WS[k, 0, 2] + v1 * R_WS[k, 1, 2] + v2 * R_WS[k, 2, 2]
-            if not _solid_distance(o0, o1, o2, half[k], rounding[k], cylinder[k]) < near[k]:
+            if not solid_distance(o0, o1, o2, half[k, 0], half[k, 1], half[k, 2], rounding[k], cylinder[k]) < near[k]:
                 continue
             for p in range(len(points)):
                 x, y, z = points[p, 0], points[p, 1], points[p, 2]
@@ -257,7 +248,7 @@ def probe_rows(X_WT, points, R_WS, p_WS, half, rounding, cylinder, limit, near, 
                 l0 = o0 + w0 * R_WS[k, 0, 0] + w1 * R_WS[k, 1, 0] + w2 * R_WS[k, 2, 0]
                 l1 = o1 + w0 * R_WS[k, 0, 1] + w1 * R_WS[k, 1, 1] + w2 * R_WS[k, 2, 1]
                 l2 = o2 + w0 * R_WS[k, 0, 2] + w1 * R_WS[k, 1, 2] + w2 * R_WS[k, 2, 2]
-                if _solid_distance(l0, l1, l2, half[k], rounding[k], cylinder[k]) < limit[k, p]:
+                if solid_distance(l0, l1, l2, half[k, 0], half[k, 1], half[k, 2], rounding[k], cylinder[k]) < limit[k, p]:
                     out[b] = True
                     break
             if out[b]:
