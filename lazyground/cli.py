@@ -235,9 +235,9 @@ def cmd_plan(args) -> int:
 
 
 def _say_compiled(done: tuple[float, bool] | None) -> None:
-    """One line on stderr when this run compiled the collision kernels (the first on a machine: tens of seconds)."""
+    """One line on stderr when this run compiled the kernels (the first on a machine: tens of seconds)."""
     if done and done[1]:
-        print(f"note: compiled the collision kernels in {done[0]:.0f} s, within the world build (once per machine: "
+        print(f"note: compiled the planner's kernels in {done[0]:.0f} s, within the world build (once per machine: "
               "numba caches them)", file=sys.stderr)
 
 

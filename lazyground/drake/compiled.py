@@ -23,6 +23,8 @@ CAP = 16  # open pairs kept per configuration; a configuration with more goes to
 
 _compile_s: float | None = None  # the first call's compile or cache-load time in this process
 _compiled_now = False  # whether that call compiled (no usable cache on this machine) rather than loaded
+_car_s: float | None = None  # the same for a car's kernels (warm_up_car)
+_car_compiled = False
 
 
 def warm_up() -> float:
@@ -57,10 +59,26 @@ def warm_up() -> float:
     return _compile_s
 
 
+def warm_up_car() -> float:
+    """Load (or compile, once per machine) a Reeds-Shepp car's planner kernels (:mod:`lazyground.planning.car_kernels`)
+    once per process, for :func:`compile_report`; the seconds it took (0.0 after the first call). A car's world has no
+    certifier, so :func:`warm_up` never runs there: its set-up calls this (``Worlds.warm_kernels``)."""
+    global _car_s, _car_compiled
+    if _car_s is not None:
+        return 0.0
+    from lazyground.planning import car_kernels
+
+    t0 = time.perf_counter()
+    _car_compiled = car_kernels.warm_up()
+    _car_s = time.perf_counter() - t0
+    return _car_s
+
+
 def compile_report() -> tuple[float, bool] | None:
-    """(seconds this process spent getting the kernels, whether it compiled them rather than loading numba's
-    cache); None before the first use. Part of the world build, never of a request's time."""
-    return None if _compile_s is None else (_compile_s, _compiled_now)
+    """(seconds this process spent getting the kernels, whether it compiled any rather than loading numba's
+    cache); None before the first use. Part of the set-up (the world build), never of a request's time."""
+    parts = [(s, c) for s, c in ((_compile_s, _compiled_now), (_car_s, _car_compiled)) if s is not None]
+    return (sum(s for s, _ in parts), any(c for _, c in parts)) if parts else None
 
 
 class CompiledCertifier:

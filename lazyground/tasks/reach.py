@@ -38,8 +38,9 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
         An Outcome with one step; its path shortened and timed (lazyground.motion) when solved.
     """
     world = worlds.get()
-    setup_s = worlds.setup_s
     planner = settings.planner
+    worlds.warm_kernels(planner.kinematics)
+    setup_s = worlds.setup_s
     space = planning_space(scene, world.space, planner.kinematics)  # a car's curves, or world.space
     stop = StopCondition.after(planner.time_limit, max_iterations=planner.max_iterations, clock=clock, spent=spent)
 

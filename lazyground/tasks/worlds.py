@@ -45,3 +45,15 @@ class Worlds:
             self.setup_s += default_clock() - t0
             self._cache[key] = world
         return world
+
+    def warm_kernels(self, kinematics) -> None:
+        """Load a Reeds-Shepp car's compiled curves (compile them, the first time on a machine) now, once per
+        process, timed as set-up like the world build: not as the request's time (issue #31, first call)."""
+        from lazyground.settings import Kinematics
+
+        if Kinematics(kinematics) is Kinematics.REEDS_SHEPP:
+            from lazyground.drake import compiled
+
+            t0 = default_clock()
+            compiled.warm_up_car()
+            self.setup_s += default_clock() - t0

@@ -43,8 +43,9 @@ def run_demo(out_dir: Path, seed: int, say: Callable[[str], None]) -> int:
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     all_solved = True
-    if compiled.warm_up() and compiled.compile_report()[1]:  # before any request, so no request's time holds it
-        say(f"compiled the collision kernels in {compiled.compile_report()[0]:.0f} s (once per machine: numba caches them)\n")
+    compiled.warm_up(), compiled.warm_up_car()  # the arm's and the car's kernels, before any request's time
+    if compiled.compile_report()[1]:
+        say(f"compiled the planner's kernels in {compiled.compile_report()[0]:.0f} s (once per machine: numba caches them)\n")
     for demo in DEMOS:
         scene_path = SCENES / demo.scene
         if not scene_path.exists():

@@ -57,3 +57,14 @@ def test_the_compile_is_reported_once_per_process():
     seconds, fresh = compiled.compile_report()
     assert seconds > 0.0 and isinstance(fresh, bool)
     assert compiled.warm_up() == 0.0  # once per process
+
+
+def test_a_car_request_loads_the_cars_kernels_in_its_set_up():
+    """api.plan on a Reeds-Shepp scene has loaded the car's kernels before its request began (Worlds.warm_kernels),
+    and they count in the compile report."""
+    from lazyground import api
+    from lazyground.drake import compiled
+
+    scene = load_scene("parking_1")
+    api.plan(scene, "park", seed=0, max_iterations=5)
+    assert compiled.warm_up_car() == 0.0 and compiled.compile_report() is not None

@@ -47,3 +47,20 @@ def test_outcome_is_typed_and_frozen():
     assert report.time_s == pytest.approx(0.75)  # grounding + planning, never set-up
     single = dataclasses.replace(report, outcome=dataclasses.replace(out, steps=(pick,)))
     assert single.steps == ()  # one-step tasks have no "steps" in their report (JSON unchanged)
+
+
+def test_a_cars_compiled_curves_load_as_set_up_not_as_the_request(monkeypatch):
+    """A Reeds-Shepp car's kernels load (or compile) in the set-up, counted like the world build, so the
+    report's total_s (the request as the user waits) does not hold them; other kinematics load nothing."""
+    from lazyground.drake import compiled
+
+    ticks = [0.0]
+    monkeypatch.setattr("lazyground.tasks.worlds.default_clock", lambda: ticks[0])
+    loads = []
+    monkeypatch.setattr(compiled, "warm_up_car", lambda: loads.append(1) or ticks.__setitem__(0, ticks[0] + 5.0))
+    worlds = Worlds(object(), world=object())
+    worlds.warm_kernels("holonomic")
+    worlds.warm_kernels("dubins")
+    assert (worlds.setup_s, loads) == (0.0, [])
+    worlds.warm_kernels("reeds-shepp")
+    assert (worlds.setup_s, loads) == (5.0, [1])
