@@ -181,16 +181,21 @@ class RoundRobinGoalSource:
             if (position // m + j) % DEFER and self.deferred(j):  # a deferred region's turn in DEFER (staggered)
                 idle += 1
                 continue
-            if j not in left:
-                st = self.stats[j]
-                left[j] = self.region_budget(j) - st.attempts if st.valid == 0 else k
-            if left[j] > 0:
-                left[j] -= 1
+            if self._take(j, k, left):
                 out.append((j, position))
                 idle = 0
             else:
                 idle += 1
         return out
+
+    def _take(self, j: int, k: int, left: dict[int, int]) -> bool:
+        """Whether region j takes one more of the ``k`` planned attempts: ``left`` holds the attempts each region
+        visited so far has left (set at its first visit: its budget less its attempts until it has a valid sample)."""
+        if j not in left:
+            st = self.stats[j]
+            left[j] = self.region_budget(j) - st.attempts if st.valid == 0 else k
+        left[j] -= 1
+        return left[j] >= 0
 
     def _chosen(self, position: int, k: int) -> list[tuple[int, int]]:
         """:meth:`plan` in the chooser's order: counter ``position`` is the schedule's entry ``position``; the schedule
@@ -204,11 +209,9 @@ class RoundRobinGoalSource:
                 self._schedule += self.chooser.block(self._open)
             j = self._schedule[position]
             position += 1
-            if j not in left:
-                st = self.stats[j]
-                left[j] = 0 if self.region_exhausted(j) else self.region_budget(j) - st.attempts if st.valid == 0 else k
-            if left[j] > 0:
-                left[j] -= 1
+            if j not in left and self.region_exhausted(j):
+                left[j] = 0
+            if self._take(j, k, left):
                 out.append((j, position))
                 idle = 0
             else:
