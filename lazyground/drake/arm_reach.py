@@ -113,7 +113,7 @@ def arm_reach(world) -> ArmReach | None:
     if not frame or not world.plant.HasFrameNamed(frame):
         return None
     prior = ArmReach(world)
-    return prior if _candidate_balls(world, frame) else None
+    return prior if prior.balls(frame) else None  # the end effector's grids built now
 
 
 def _candidate_balls(world, frame: str) -> list:
