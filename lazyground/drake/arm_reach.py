@@ -10,10 +10,10 @@ reach is dropped.
 
 The obstacles are the world's shapes Drake checks against the ball's shape (boxes, spheres,
 capsules, half-spaces exactly; a cylinder by a box and a capsule inside it; meshes, convex
-shapes and ellipsoids left out, which only frees cells). The grid covers the sphere the ball
-centre can reach: about the first joint's origin, of radius the chain's stretched length
-(revolute and ball joints keep their origins, a prismatic one adds its longest travel, fixed
-offsets their length), so a region beyond it is dropped too.
+shapes and ellipsoids left out, which only frees cells). The grid covers where the ball centre
+can be: within the chain's stretched length of the first moving joint's origin (a segment if that
+joint is prismatic; later revolute and ball joints keep their origins, a prismatic one adds its
+longest travel, fixed offsets their length), so a region beyond it is dropped too.
 """
 
 from __future__ import annotations
@@ -47,8 +47,17 @@ class Ball:
     radius: float
     grid: ReachGrid | None  # None: no cell blocks for it (too coarse)
     start: frozenset[int]  # the components of the start's ball centre (empty: keeps everything)
+    reach: tuple = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), math.inf)  # (a, b, radius): the centre stays that near a-b
     left_out: tuple[str, ...] = ()
     build_s: float = 0.0
+
+    def beyond_reach(self, lower, upper) -> bool:
+        """Whether the box [lower, upper] lies wholly beyond the reach (checked at 101 points of the segment, each
+        with the radius widened by half their spacing)."""
+        a, b, radius = np.asarray(self.reach[0]), np.asarray(self.reach[1]), self.reach[2]
+        points = a + np.linspace(0.0, 1.0, 101)[:, None] * (b - a)
+        gap = np.linalg.norm(np.clip(points, lower, upper) - points, axis=1)
+        return bool(np.all(gap > radius + np.linalg.norm(b - a) / 200))
 
     def reaches(self, lower, upper) -> bool:
         """Whether some cell of the box [lower, upper] of ball centres lies in the start's component."""
@@ -62,10 +71,16 @@ class ArmReach:
         self.world = world
         self._balls: dict[str, list[tuple[Ball, np.ndarray]]] = {}  # frame -> [(ball, its centre in the frame)]
         self._built: dict[str, Ball] = {}  # body -> its ball (shared by the frames it is rigid with)
+        self._pairs = None  # SceneGraph's collision candidates, listed once
 
     @property
     def build_s(self) -> float:
         return sum(b.build_s for b in self._built.values())
+
+    @property
+    def grids(self) -> list[ReachGrid]:
+        """The grids built so far."""
+        return [b.grid for b in self._built.values() if b.grid is not None]
 
     @property
     def left_out(self) -> tuple[str, ...]:
@@ -79,7 +94,9 @@ class ArmReach:
 
     def _ball(self, body, p_B, r) -> Ball:
         if body.name() not in self._built:
-            self._built[body.name()] = _build_ball(self.world, body, p_B, r)
+            if self._pairs is None:
+                self._pairs = self.world.checker.drake.model().scene_graph().model_inspector().GetCollisionCandidates()
+            self._built[body.name()] = _build_ball(self.world, body, p_B, r, self._pairs)
         return self._built[body.name()]
 
     def keeps(self, region) -> bool:
@@ -168,38 +185,49 @@ def _inscribed(shape) -> float | None:
     return None
 
 
-def _reach(world, body, p_B) -> tuple[np.ndarray, float] | None:
-    """(a point fixed in the world, the farthest the point ``p_B`` of ``body`` can be from it), or None when a joint
-    on the way is not revolute, prismatic, ball or welded."""
-    joints = joints_to_world(world.plant, body)[::-1]  # from the world down
-    if not joints:
-        return None
+def _reach(world, body, p_B) -> tuple[np.ndarray, np.ndarray, float] | None:
+    """(a, b, length): the point ``p_B`` of ``body`` stays within ``length`` of the segment a-b in the world, the
+    positions the chain's first moving joint's origin takes (a prismatic joint's travel; a = b for a revolute or ball
+    joint); each later joint adds its fixed offset, a prismatic one its longest travel. None when a joint on the way
+    is not revolute, prismatic, ball or welded, or nothing moves the body."""
     planned, space = list(world.planned), world.space
+    a = b = prev = None
     length = 0.0
-    for k, j in enumerate(joints):
-        if k:  # the previous joint's child frame to this one's parent frame, fixed in the body between them
-            length += float(np.linalg.norm(j.frame_on_parent().GetFixedPoseInBodyFrame().translation()
-                                           - joints[k - 1].frame_on_child().GetFixedPoseInBodyFrame().translation()))
-        if isinstance(j, WeldJoint):
-            length += float(np.linalg.norm(j.X_FM().translation()))
-        elif isinstance(j, PrismaticJoint):
+    for j in joints_to_world(world.plant, body)[::-1]:  # from the world down
+        if isinstance(j, PrismaticJoint):
             i = j.position_start()
-            travel = (space.lower[planned.index(i)], space.upper[planned.index(i)]) if i in planned else (world.q_full[i],)
-            length += max(abs(float(t)) for t in travel)
-        elif not isinstance(j, (RevoluteJoint, BallRpyJoint)):
+            travel = (space.lower[planned.index(i)], space.upper[planned.index(i)]) if i in planned else (world.q_full[i],) * 2
+        elif not isinstance(j, (WeldJoint, RevoluteJoint, BallRpyJoint)):
             return None
-    length += float(np.linalg.norm(np.asarray(p_B) - joints[-1].frame_on_child().GetFixedPoseInBodyFrame().translation()))
-    X_WP = world.kinematics.matrix(joints[0].frame_on_parent(), world.q_full)  # on the world body: fixed
-    return X_WP[:3, 3], length
+        if prev is None and isinstance(j, WeldJoint):
+            continue  # still fixed in the world
+        if prev is None:  # the first moving joint: its parent frame is fixed in the world
+            X_WF = world.kinematics.matrix(j.frame_on_parent(), world.q_full)
+            a = b = X_WF[:3, 3]
+            if isinstance(j, PrismaticJoint):
+                axis = X_WF[:3, :3] @ np.asarray(j.translation_axis(), float)
+                a, b = X_WF[:3, 3] + travel[0] * axis, X_WF[:3, 3] + travel[1] * axis
+        else:  # the previous joint's child frame to this one's parent frame, fixed in the body between them
+            length += float(np.linalg.norm(j.frame_on_parent().GetFixedPoseInBodyFrame().translation()
+                                           - prev.frame_on_child().GetFixedPoseInBodyFrame().translation()))
+            if isinstance(j, WeldJoint):
+                length += float(np.linalg.norm(j.X_FM().translation()))
+            elif isinstance(j, PrismaticJoint):
+                length += max(abs(float(t)) for t in travel)
+        prev = j
+    if prev is None:
+        return None
+    length += float(np.linalg.norm(np.asarray(p_B) - prev.frame_on_child().GetFixedPoseInBodyFrame().translation()))
+    return a, b, length
 
 
-def _build_ball(world, body, p_B, radius: float) -> Ball:
+def _build_ball(world, body, p_B, radius: float, pairs=None) -> Ball:
     """The grid of ``body``'s ball (centre ``p_B``) among the world's shapes it is checked against."""
     t0 = default_clock()
     drake = world.checker.drake
     inspector = drake.model().scene_graph().model_inspector()
     g_ball = max(world.plant.GetCollisionGeometriesForBody(body), key=lambda g: _inscribed(inspector.GetShape(g)) or -1.0)
-    obstacles, padding = candidate_obstacles(world, body, g_ball)
+    obstacles, padding = candidate_obstacles(world, body, g_ball, pairs)
     solids, left_out = [], []
     for g in obstacles:
         s = solids_3d(inspector.GetShape(g), inspector.GetPoseInFrame(g).GetAsMatrix4())
@@ -208,16 +236,16 @@ def _build_ball(world, body, p_B, radius: float) -> Ball:
         else:
             solids += s
     r = radius + padding
-    centre, length = _reach(world, body, p_B)
-    lower, upper = centre - length, centre + length
+    a, b, length = _reach(world, body, p_B)
+    lower, upper = np.minimum(a, b) - length, np.maximum(a, b) + length
     cell = max(r / CELLS_PER_RADIUS, (float(np.prod(upper - lower)) / MAX_CELLS) ** (1 / 3))
-    grid = reach_grid(lower, upper, r, solids, cell, bounded=True, sphere=(centre, length)) if r > cell * math.sqrt(3) / 2 else None
+    grid = reach_grid(lower, upper, r, solids, cell, bounded=True, reach=(a, b, length)) if r > cell * math.sqrt(3) / 2 else None
     start = frozenset()
     if grid is not None:
         X = world.kinematics.matrix(body.body_frame(), world.q_full)
         c = X[:3, :3] @ np.asarray(p_B) + X[:3, 3]
         start = frozenset(grid.components(c - 1e-9, c + 1e-9))
-    return Ball(body.name(), tuple(p_B), r, grid, start, tuple(left_out), default_clock() - t0)
+    return Ball(body.name(), tuple(p_B), r, grid, start, (tuple(a), tuple(b), length), tuple(left_out), default_clock() - t0)
 
 
 def solids_3d(shape, X_WG: np.ndarray) -> list[Solid] | None:

@@ -95,7 +95,7 @@ class ReachGrid:
 
 
 def reach_grid(lower, upper, radius: float, solids: list[Solid], cell: float, bounded: bool = False,
-               sphere: tuple | None = None) -> ReachGrid:
+               reach: tuple | None = None) -> ReachGrid:
     """The grid of cells of side ``cell`` over [lower, upper] and a ring of cells around it.
 
     Args:
@@ -106,8 +106,8 @@ def reach_grid(lower, upper, radius: float, solids: list[Solid], cell: float, bo
         bounded: the ball centre never leaves [lower, upper] (a planner that holds every configuration
             to its limits): the ring is blocked. Otherwise it is free, one component with everything
             beyond the bounds (the obstacles there are not on the grid).
-        sphere: (centre, radius) the ball centre never leaves (an arm's reach): the cells wholly beyond it are
-            blocked (with ``bounded``, [lower, upper] its bounding box).
+        reach: (a, b, radius): the ball centre stays within ``radius`` of the segment a-b (an arm's reach; a = b:
+            a sphere): the cells wholly beyond are blocked (with ``bounded``, [lower, upper] around it).
     """
     # the bounds widened by TOLERANCE (a planner holds configurations to its limits within a float margin), each
     # point of them in an inner cell (floor + 1 cells: the upper bound too), one ring of cells outside
@@ -124,20 +124,26 @@ def reach_grid(lower, upper, radius: float, solids: list[Solid], cell: float, bo
     for axis in range(n):
         ring[(slice(None),) * axis + (0,)] = ring[(slice(None),) * axis + (-1,)] = True
     free = free & ~ring if bounded else free | ring
-    if sphere is not None:
-        _outside_sphere(free, origin, cell, *sphere)
+    if reach is not None:
+        _outside_reach(free, origin, cell, *reach)
     labels, _ = ndimage.label(free, structure=np.ones((3,) * n, bool))
     return ReachGrid(origin, cell, radius, labels)
 
 
-def _outside_sphere(free: np.ndarray, origin: np.ndarray, cell: float, centre, radius: float) -> None:
-    """Mark the cells every point of which lies farther than ``radius`` from ``centre`` blocked."""
-    far = (radius + cell * math.sqrt(free.ndim) / 2 + EPS) ** 2
-    d2 = 0.0
-    for k in range(free.ndim):
-        x = origin[k] + (np.arange(free.shape[k]) + 0.5) * cell - float(centre[k])
-        d2 = d2 + (x ** 2).reshape([-1 if i == k else 1 for i in range(free.ndim)])
-    free &= ~(d2 > far)
+def _outside_reach(free: np.ndarray, origin: np.ndarray, cell: float, a, b, radius: float) -> None:
+    """Mark the cells every point of which lies farther than ``radius`` from the segment a-b blocked (slab by slab
+    along the first axis: a few full-size arrays of a 10-million-cell grid would take hundreds of MB)."""
+    n = free.ndim
+    a, d = np.asarray(a, float), np.asarray(b, float) - np.asarray(a, float)
+    far = (radius + cell * math.sqrt(n) / 2 + EPS) ** 2
+    dd = float(d @ d)
+    x = [origin[k] + (np.arange(free.shape[k]) + 0.5) * cell - a[k] for k in range(n)]
+    rest = [x[k].reshape([-1 if i == k else 1 for i in range(1, n)]) for k in range(1, n)]
+    for i, x0 in enumerate(x[0]):
+        rel = [x0] + rest
+        t = 0.0 if dd == 0.0 else np.clip(sum(r * d[k] for k, r in enumerate(rel)) / dd, 0.0, 1.0)
+        d2 = sum((r - t * d[k]) ** 2 for k, r in enumerate(rel))
+        free[i] &= ~np.broadcast_to(d2 > far, free.shape[1:])
 
 
 def _block(free: np.ndarray, origin: np.ndarray, cell: float, rho: float, solid: Solid) -> None:

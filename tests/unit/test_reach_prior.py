@@ -179,11 +179,24 @@ def test_the_box_of_centres_holds_the_point_at_every_pose_of_the_region(seed):
 
 
 def test_a_ball_within_a_reach_sphere_cannot_leave_it():
-    """``sphere``: the cells wholly beyond the reach are blocked, the ones it touches kept."""
-    grid = reach_grid((-1.0, -1.0, -1.0), (1.0, 1.0, 1.0), 0.05, [], 0.025, bounded=True, sphere=((0.0, 0.0, 0.0), 1.0))
+    """``reach``: the cells wholly beyond the reach are blocked, the ones it touches kept."""
+    grid = reach_grid((-1.0, -1.0, -1.0), (1.0, 1.0, 1.0), 0.05, [], 0.025, bounded=True, reach=((0.0,) * 3, (0.0,) * 3, 1.0))
     start = grid.components((0, 0, 0), (0, 0, 0))
     assert start and grid.components((0.0, 0.0, 0.99), (0.0, 0.0, 0.99)) == start
     assert not grid.components((0.75, 0.75, 0.75), (0.95, 0.95, 0.95))  # |(0.75,) * 3| = 1.3: beyond the reach
     points = np.random.default_rng(0).uniform(-1, 1, (20_000, 3))
     inside = np.linalg.norm(points, axis=1) <= 1.0
     assert not np.any(grid.blocked(points) & inside)
+
+
+def test_a_ball_within_reach_of_a_segment_cannot_leave_its_capsule():
+    """``reach`` about a segment (a prismatic joint's travel): points within the radius of it are never blocked,
+    a box wholly beyond is dropped."""
+    a, b = np.array([0.1, -0.2, 0.0]), np.array([0.1, 0.3, 0.4])
+    lower, upper = np.minimum(a, b) - 0.5, np.maximum(a, b) + 0.5
+    grid = reach_grid(lower, upper, 0.05, [], 0.03, bounded=True, reach=(a, b, 0.5))
+    points = np.random.default_rng(1).uniform(lower, upper, (20_000, 3))
+    t = np.clip((points - a) @ (b - a) / ((b - a) @ (b - a)), 0, 1)
+    inside = np.linalg.norm(points - a - t[:, None] * (b - a), axis=1) <= 0.5
+    assert not np.any(grid.blocked(points) & inside) and grid.blocked(points[~inside]).mean() > 0.5
+    assert not grid.components(upper - 0.1, upper)  # the corner: 0.5 * sqrt(3) from the segment's end
