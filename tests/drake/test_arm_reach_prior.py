@@ -25,7 +25,6 @@ from lazyground.settings import GoalSamplingSettings  # noqa: E402
 from tests.counts import BY_COUNTS  # noqa: E402
 
 OFF = GoalSamplingSettings(reach_prior=False)
-REQUESTS = {"panda_tabletop": "pick up the mug", "ur5e_tabletop": "pick up the cup", "fetch_cans_1": "pick up a can"}
 _WORLDS: dict = {}
 
 
@@ -37,8 +36,11 @@ def _world(name: str):
     return _WORLDS[name]
 
 
-def _request(name: str) -> str:
-    return REQUESTS.get(name, "pick up a can")
+def _regions(name: str) -> tuple:
+    """The goal regions of every request the scene expects (one request on a rack)."""
+    scene, _ = _world(name)
+    return tuple(r for request in dict.fromkeys(e.request for e in scene.expect)
+                 for r in grounding.ground(request, scene).goal_regions)
 
 
 def _centres(prior, frame, qs):
@@ -71,7 +73,7 @@ def test_no_collision_free_configuration_has_a_ball_in_a_blocked_cell(name):
         free = world.configs_free(batch)
         blocked, _ = _centres(prior, frame, batch)
         assert free.any() and not np.any(free[:, None] & blocked), f"{name}: {np.sum(free[:, None] & blocked)} free in blocked cells"
-    regions = tuple(grounding.ground(_request(name), scene).goal_regions)
+    regions = _regions(name)
     dropped = reach_prior_drops(regions, world)
     goals = []
     for j, r in enumerate(regions[:48]):
@@ -97,7 +99,7 @@ def test_with_the_prior_off_the_planner_reaches_only_goals_the_prior_keeps(name,
     frame = scene.robot.end_effector
     solved = 0
     for seed in seeds:
-        report = api.plan(scene, _request(name), seed=seed, world=world, algorithm="bidirectional", reach_prior=False,
+        report = api.plan(scene, scene.expect[0].request, seed=seed, world=world, algorithm="bidirectional", reach_prior=False,
                           **{**BY_COUNTS, "max_iterations": cap})
         if not report.result.solved:
             continue
@@ -129,6 +131,21 @@ def test_every_caged_and_behind_can_of_a_rack_is_dropped(key):
     assert reach_prior_drops(regions, world, OFF) == {}
     source = goal_source_for(regions, world)
     assert {j for j in range(len(regions)) if source.region_exhausted(j)} == set(dropped)
+
+
+@pytest.mark.parametrize("name", ["panda_tabletop", "ur5e_tabletop", "fetch_cans_1", "fetch_boxes_3"])
+def test_bundled_scenes_keep_every_reachable_object(name):
+    """Every object a bundled scene expects reachable keeps a region; the Panda's caged can and the cup beyond its
+    reach are dropped whole."""
+    scene, world = _world(name)
+    regions = _regions(name)
+    dropped = reach_prior_drops(regions, world)
+    for e in scene.expect:
+        for obj in e.reachable or ():
+            assert any(j not in dropped for j, r in enumerate(regions) if r.object == obj), f"{name}: {obj} dropped"
+    if name == "panda_tabletop":
+        assert {regions[j].object for j in dropped} >= {"can_caged", "cup_far"}
+        assert all(j in dropped for j, r in enumerate(regions) if r.object in ("can_caged", "cup_far"))
 
 
 def test_a_goal_beyond_the_arms_stretched_length_is_dropped_and_one_within_kept():
