@@ -31,6 +31,7 @@ from lazyground.drake.solids import FAR
 from lazyground.geometry import Pose
 from lazyground.planning.reach_prior import ReachGrid, Solid, pose_centre_box, reach_grid
 from lazyground.planning.stop import default_clock
+from lazyground.robots.end_effector import frame_of
 
 CELLS_PER_RADIUS = 2  # cell side = radius / 2: a blocked shell separates at any thickness (2 rho >= cell sqrt 3)
 MAX_CELLS = 12_000_000  # a larger reach gets coarser cells (a ball whose blocking radius then vanishes is skipped)
@@ -126,7 +127,10 @@ class ArmReach:
 def arm_reach(world) -> ArmReach | None:
     """The reach prior of ``world``'s arm, or None when its end effector has no ball (none large enough, or a joint
     on the way to the world that the reach bound does not handle)."""
-    frame = world.scene.robot.end_effector
+    try:
+        frame = frame_of(world.scene.robot)
+    except ValueError:  # a SceneError: the robot.yaml beside the model is invalid
+        return None
     if not frame or not world.plant.HasFrameNamed(frame):
         return None
     prior = ArmReach(world)
