@@ -61,7 +61,7 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
             if s.straight_step is not None and _shut_in(s, s.samples[gi].q):
                 tg.mute(root)
             if s.blocked is not None:
-                s.blocked.add(root)
+                s.blocked.add()
         rooted = len(s.samples)
         s.iterations += 1
         q_rand = space.sample(rng)
@@ -188,7 +188,7 @@ def _step(s: Search, tree: Tree, parent: int, q_new: np.ndarray) -> int:
     if tree is not s.trees[0]:
         new = tree.add(q_new, parent) if s.edge_free(q_parent, q_new, s.resolution) else -1
         if s.blocked is not None:  # (a tree that stays its root: lazyground.planning.blocked)
-            s.blocked.step(tree, tree.labels[parent], new >= 0)
+            s.blocked.step(tree.labels[parent], new >= 0)
         return new
     free = s.probe_free
     if not free(q_new):

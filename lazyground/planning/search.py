@@ -103,9 +103,11 @@ class Search:
     def track_blocked(self) -> None:
         """Count the goal trees that stay their root (a planner with a goal forest calls it before its first
         sample) where the strategy chose the regions and has a ``blocked_after``; else nothing changes."""
-        after = getattr(self.selector, "blocked_after", 0)
-        if after and getattr(self.goals, "chooser", None) is not None:
-            self.blocked = BlockedTrees(after)
+        after, chooser = getattr(self.selector, "blocked_after", 0), getattr(self.goals, "chooser", None)
+        if after and chooser is not None:  # (the chooser hears of them: a blocked sample counts as a miss)
+            tell = getattr(chooser, "block_sample", None)
+            self.blocked = BlockedTrees(after, None if tell is None else
+                                        lambda gi, blocked: tell(self.samples[gi].region, blocked))
 
     def time_left(self) -> bool:
         """Whether the stop condition lets the search go on (one clock reading)."""
