@@ -28,6 +28,9 @@ tree progresses earn its budget, at 0.25 attempts an iteration plus 50 free (:me
 sample whose last credited step brought its tree closer to the start tree holds goal sampling until a step of it
 is penalised. On the Fetch rack the reachable can's sample often comes first and its tree then connects alone,
 while 1 attempt an iteration went on (layout 6: 300 IK attempts for round-robin's run, 5,673 for cover's).
+(6) In the two-tree planner, while no goal tree can grow (every sample's tree still its root after ``blocked_after``
+collided steps, :mod:`lazyground.planning.blocked`, or no sample yet) the budget earns 1 attempt an iteration: the
+iterations between IK attempts were the N = 64 racks' growth (Panda, 10 layouts: 76,363 -> 25,240 iterations).
 """
 
 from __future__ import annotations
