@@ -45,6 +45,7 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
     ts.add_root(start)
     tg = Tree(space, per_label=True)
     s.trees = [ts, tg]
+    s.track_blocked()
     rooted = 0
     start_turn = True
     closest: dict[int, float] = {}  # goal sample -> the smallest gap its subtree has left to the start tree
@@ -59,6 +60,8 @@ def grow_bidirectional(s: Search, start: np.ndarray) -> PlanResult | None:
             root = tg.add_root(s.samples[gi].q, label=gi)
             if s.straight_step is not None and _shut_in(s, s.samples[gi].q):
                 tg.mute(root)
+            if s.blocked is not None:
+                s.blocked.add()
         rooted = len(s.samples)
         s.iterations += 1
         q_rand = space.sample(rng)
@@ -183,7 +186,10 @@ def _step(s: Search, tree: Tree, parent: int, q_new: np.ndarray) -> int:
     """
     q_parent = tree.nodes[parent]
     if tree is not s.trees[0]:
-        return tree.add(q_new, parent) if s.edge_free(q_parent, q_new, s.resolution) else -1
+        new = tree.add(q_new, parent) if s.edge_free(q_parent, q_new, s.resolution) else -1
+        if s.blocked is not None:  # (a tree that stays its root: lazyground.planning.blocked)
+            s.blocked.step(tree.labels[parent], new >= 0)
+        return new
     free = s.probe_free
     if not free(q_new):
         return -1  # (most steps end blocked: the probes are computed only past a free end)

@@ -39,6 +39,7 @@ class StagedBandit:
         self.attempts = np.array([st.attempts for st in stats], float)
         self.passed = self.attempts - [sum(st.failures.get(r, 0) for r in hopeless_reasons) for st in stats]
         self.valid = np.array([st.valid for st in stats], float)
+        self.blocked = np.zeros(len(stats))  # valid samples whose goal tree stays its root (:meth:`block_sample`)
         self._passed, self._valid = float(self.passed.sum()), float(self.valid.sum())  # pooled
 
     def observe(self, j: int, valid: bool, hopeless: bool) -> None:
@@ -49,14 +50,21 @@ class StagedBandit:
         self._passed += not hopeless
         self._valid += valid
 
+    def block_sample(self, j: int, blocked: bool) -> None:
+        """A valid sample of region ``j`` turned out blocked (its goal tree cannot leave its root:
+        :mod:`lazyground.planning.blocked`), or grew after all (``blocked`` False). A blocked sample counts as a miss:
+        its region goes back among those without a sample, at the rate of its other attempts."""
+        self.blocked[j] += 1 if blocked else -1
+
     def scores(self, regions: np.ndarray) -> np.ndarray:
-        n, s, v = self.attempts[regions], self.passed[regions], self.valid[regions]
+        n, s, v = self.attempts[regions], self.passed[regions], self.valid[regions] - self.blocked[regions]
         pooled = (self._valid + 1) / (self._passed + 2)
         return (s + 1) / (n + 2) * (v + PRIOR * pooled) / (s + PRIOR)
 
     def block(self, open_: list[int]) -> list[int]:
         """The next regions to try, best first: up to ``BLOCK`` distinct ones among ``open_``, those without a valid
-        sample first (ties: fewer attempts, then the lower index, as round robin)."""
+        sample that is not blocked first (ties: fewer attempts, then the lower index, as round robin)."""
         regions = np.asarray(open_, int)
-        order = np.lexsort((regions, self.attempts[regions], -self.scores(regions), self.valid[regions] > 0))[:BLOCK]
+        usable = self.valid[regions] - self.blocked[regions] > 0
+        order = np.lexsort((regions, self.attempts[regions], -self.scores(regions), usable))[:BLOCK]
         return [int(j) for j in regions[order]]

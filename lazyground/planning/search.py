@@ -19,6 +19,7 @@ from lazyground.planning.problem import (
     proven_unreachable,
     unreachable_note,
 )
+from lazyground.planning.blocked import BlockedTrees
 from lazyground.planning.motion_validator import MotionValidator, samples_free
 from lazyground.planning.space import ConfigSpace
 from lazyground.planning.stop import StopCondition
@@ -89,12 +90,24 @@ class Search:
         chooser = getattr(self.selector, "region_chooser", None)  # the strategy picks the regions samples come from
         if chooser is not None and hasattr(goals, "chooser"):
             goals.chooser = chooser(goals)
+        # goal trees that cannot grow out of their root (lazyground.planning.blocked): tracked by a goal-forest
+        # planner (track_blocked) where the strategy chose the regions (cover on IK goals); None elsewhere
+        self.blocked: BlockedTrees | None = None
         # the regions coverage paces samples for: those not proven unreachable before the search (a reach prior)
         self._coverable = sum(not st.unreachable for st in goals.stats)
         self._attempts0: int | None = None  # the goal source's attempt count when coverage began
         self.trees: list[Tree] = []  # the planner's trees, start tree first (for the result)
         self.failed_from: list[tuple[int, int]] = []  # (tree, node) of failed goal-directed extensions
         self.iterations = self.resamplings = self.rejected = 0
+
+    def track_blocked(self) -> None:
+        """Count the goal trees that stay their root (a planner with a goal forest calls it before its first
+        sample) where the strategy chose the regions and has a ``blocked_after``; else nothing changes."""
+        after, chooser = getattr(self.selector, "blocked_after", 0), getattr(self.goals, "chooser", None)
+        if after and chooser is not None:  # (the chooser hears of them: a blocked sample counts as a miss)
+            tell = getattr(chooser, "block_sample", None)
+            self.blocked = BlockedTrees(after, None if tell is None else
+                                        lambda gi, blocked: tell(self.samples[gi].region, blocked))
 
     def time_left(self) -> bool:
         """Whether the stop condition lets the search go on (one clock reading)."""
@@ -136,6 +149,8 @@ class Search:
             return True
         if self._attempts0 is None:
             self._attempts0 = total
+        if self.blocked is not None:  # (whether a goal tree can still grow: lazyground.planning.blocked)
+            return total - self._attempts0 <= allowance(self.iterations, self.blocked.live > 0)
         return total - self._attempts0 <= allowance(self.iterations)
 
     def select(self) -> int | None:
@@ -159,6 +174,8 @@ class Search:
         """Goal sample gi's approach failed the fine re-check: never select it again."""
         self.dead.add(gi)
         self._below.discard(gi)
+        if self.blocked is not None:
+            self.blocked.retire(gi)
 
     def penalize(self, gi: int, only_if_all_stuck: bool = False) -> None:
         """Count a failure of goal sample gi; draw more samples when the strategy asks for them
