@@ -85,14 +85,13 @@ def test_the_step_count_is_drakes_on_edges_an_exact_number_of_steps_long(scene):
 def test_the_far_end_wraps_as_the_space_does():
     """b on the shorter arc from a, bit for bit as a + space.difference(a, b) (lazyground.geometry.wrap_angle)."""
     fd, idata = pack(_TOY)
-    work, pairs = np.zeros(work_size(idata)), np.zeros(CAP + 1, np.int64)
-    steps, ends = np.zeros(1, np.int64), np.zeros((2, 1))
-    edata = ek.edge_data(np.zeros(1), np.ones(1), np.ones(1, bool))
+    F, I = ek.call_data(fd, idata, work_size(idata), ek.edge_data(np.zeros(1), np.ones(1), np.ones(1, bool)),
+                        np.zeros(1, np.int64), 2, CAP)
+    ends = ek.call_blocks(F, I)[2]
     rng = np.random.default_rng(0)
     values = np.concatenate([rng.uniform(-20, 20, (4000, 2)), [[0.0, np.pi], [np.pi, -np.pi], [-3.0, 3.2]]])
     for a, b in values:
-        ek.edge_open(fd, idata, work, pairs, steps, ends, np.zeros(1, np.int64), edata, 2, np.array([a]), np.array([b]),
-                     0.1, ek.BISECTION, 0, 0, 0)
+        ek.edge_call(F, I, np.array([a]), np.array([b]), 0.1, ek.BISECTION, 0, 0, 0)
         assert ends[1, 0] == a + wrap_angle(np.array([b - a]))[0]
 
 
