@@ -9,7 +9,8 @@ import pytest
 pytest.importorskip("pydrake")
 
 from lazyground.drake import edge_kernel as ek  # noqa: E402
-from lazyground.drake.compiled import _TOY, CAP  # noqa: E402
+from lazyground.drake import sphere_kernels as sk  # noqa: E402
+from lazyground.drake.compiled import _TOY, CAP, _above  # noqa: E402
 from lazyground.drake.sphere_kernels import pack, work_size  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.geometry import wrap_angle  # noqa: E402
@@ -129,3 +130,24 @@ def test_single_checks_take_any_array_like_with_the_same_answers():
     for bad in (lambda: c.config_free(a[:-1]), lambda: c.config_unpadded_free(a[:-1]), lambda: c.edge_free(a[:-1], b, 0.05)):
         with pytest.raises(ValueError):
             bad()
+
+
+def _keeps_its_memory(a: np.ndarray) -> bool:
+    """Whether an array a kernel returned holds on to its memory (numba's own arrays: a memory-info base)."""
+    return a.flags.owndata or a.base is not None
+
+
+def test_what_the_kernels_return_keeps_its_memory():
+    """The kernels' views are borrowed (sphere_kernels.c_view: no reference count, #31): one returned to Python
+    would point into arrays it does not keep alive. Every array the kernels return keeps its own memory; a
+    returned view would not (the control below)."""
+    from numba import njit
+
+    fd, idata = pack(_TOY)
+    work, Q = np.zeros(work_size(idata)), np.array([[0.0], [0.1], [3.0]])
+    outs = [sk.certify_rows(Q, fd, idata, work, np.zeros((3, CAP), np.int64)),
+            sk.sweep_rows(Q, fd, idata, work, _above(_TOY), np.zeros((3, CAP), np.int64)),
+            ek.step_order(5, ek.BISECTION)]
+    assert all(_keeps_its_memory(a) for a in outs)
+    leak = njit(lambda x: sk.c_view(x, 1, (2,)))  # a kernel returning a borrowed view (a bug)
+    assert not _keeps_its_memory(leak(np.arange(4.0)))
