@@ -19,6 +19,7 @@ from numba import njit
 
 from lazyground.planning import curves
 from lazyground.planning.nn import FAR
+from lazyground.planning.topk import keep_smallest
 from lazyground.user_cache import use_kernel_cache
 
 use_kernel_cache()  # before any kernel is defined: caches keyed by every kernel file's text
@@ -257,17 +258,7 @@ def nearest(points, sq, n, ids, use_ids, nodes, q, weights, k, r, off, step, out
         if points[i, 0] == FAR:
             continue
         g = (sq[i] + ((points[i, 0] * m0 + points[i, 2] * m2) + (points[i, 1] * m1 + points[i, 3] * m3))) + xx
-        if m == k and not g < vals[m - 1]:
-            continue
-        p = m if m < k else k - 1  # insertion: vals sorted, equal values in index order
-        while p > 0 and g < vals[p - 1]:
-            vals[p] = vals[p - 1]
-            best_k[p] = best_k[p - 1]
-            p -= 1
-        vals[p] = g
-        best_k[p] = i
-        if m < k:
-            m += 1
+        m = keep_smallest(vals, best_k, m, k, g, i)
     if m == 0:
         return -1, 0, 0, False
     cands = np.empty((m, 3))

@@ -23,6 +23,7 @@ import time
 import numpy as np
 from numba import njit
 
+from lazyground.planning.topk import keep_smallest
 from lazyground.user_cache import use_kernel_cache
 
 use_kernel_cache()  # before any kernel is defined: caches keyed by every kernel file's text
@@ -68,18 +69,7 @@ def nearest_k(points, sq, n, x, k, out):
         s = 0.0
         for j in range(d):
             s += points[i, j] * m2x[j]
-        g = sq[i] + s
-        if m == k and not g < vals[m - 1]:
-            continue
-        p = m if m < k else k - 1  # insertion: keep vals sorted, equal values in index order
-        while p > 0 and g < vals[p - 1]:
-            vals[p] = vals[p - 1]
-            out[p] = out[p - 1]
-            p -= 1
-        vals[p] = g
-        out[p] = i
-        if m < k:
-            m += 1
+        m = keep_smallest(vals, out, m, k, sq[i] + s, i)
     return m
 
 
