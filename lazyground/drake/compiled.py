@@ -41,8 +41,6 @@ def warm_up() -> float:
     kernels.certify_one(fd, idata, work, pairs, np.zeros(1), 0.0)
     kernels.first_open(np.zeros(1), np.ones(1), 2, np.arange(3), 0, fd, idata, work, pairs)
     kernels.sweep_rows(np.zeros((2, 1)), fd, idata, work, _above(_TOY), np.zeros((2, CAP), np.int64))
-    edge_kernel.edge_open(fd, idata, work, pairs, np.zeros(1, np.int64), np.zeros((2, 1)), np.zeros(1, np.int64),
-                          np.array([0.0, 1.0, 0.0]), 2, np.zeros(1), np.ones(1), 0.3, edge_kernel.BISECTION, 0, -1, 0)
     F, I = edge_kernel.call_data(fd, idata, len(work), np.array([0.0, 1.0, 0.0]), np.zeros(1, np.int64), 2, CAP)
     edge_kernel.edge_call(F, I, np.zeros(1), np.ones(1), 0.3, edge_kernel.BISECTION, 0, -1, 0)
     edge_kernel.config_call(F, I, np.zeros(1), 0.0)
@@ -54,7 +52,7 @@ def warm_up() -> float:
     planner_compiled = linear_kernels.warm_up()[1]
     _compile_s = time.perf_counter() - t0
     _compiled_now = ik_compiled or planner_compiled or any(sum(k.stats.cache_misses.values()) for k in (
-        kernels.certify_rows, kernels.certify_one, kernels.first_open, kernels.sweep_rows, edge_kernel.edge_open,
+        kernels.certify_rows, kernels.certify_one, kernels.first_open, kernels.sweep_rows,
         edge_kernel.step_order, edge_kernel.edge_call, edge_kernel.config_call))
     return _compile_s
 

@@ -126,7 +126,7 @@ def _step_count(qa, qb, edata, packet, resolution, steps):
     return max(1, int(np.ceil(np.sqrt(squared_norm(v, packet)) / resolution)))
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def edge_open(fd, idata, work, pairs, state, qab, planned, edata, packet, a, b, resolution, mode, first, stop, steps):
     """The first position p of the steps' order (from ``first``, before ``stop``; -1: to the end) whose
     configuration is not certified free (its code in ``pairs[-1]``, its open pairs before), or ALL_FREE.
@@ -134,11 +134,12 @@ def edge_open(fd, idata, work, pairs, state, qab, planned, edata, packet, a, b, 
 
     ``a``, ``b``: planned coordinates; ``planned``: their indices in the plant's positions; ``edata``: the plant's
     positions at the start (unplanned ones stay there), the metric weights over them, and per planned coordinate
-    1.0 where it wraps. Writes both ends' plant positions into ``qab`` (b on the shorter arc from a, as
-    ``a + space.difference(a, b)``) and the step count into ``state[0]`` (0 when bisection's first step, the end,
-    is proven colliding: the count is not needed then)."""
+    1.0 where it wraps. Writes both ends' plant positions into ``qab[:2]`` (b on the shorter arc from a, as
+    ``a + space.difference(a, b)``; ``qab[2]``: the step's, scratch) and the step count into ``state[0]`` (0 when
+    bisection's first step, the end, is proven colliding: the count is not needed then). Inlined into
+    :func:`edge_call` (a call between compiled functions passes every view's fields: ~0.2 µs, #31)."""
     nq, nplan = qab.shape[1], len(planned)
-    qa, qb = qab[0], qab[1]
+    qa, qb, q = qab[0], qab[1], qab[2]
     for j in range(nq):
         qa[j] = edata[j]
         qb[j] = edata[j]
@@ -150,7 +151,6 @@ def edge_open(fd, idata, work, pairs, state, qab, planned, edata, packet, a, b, 
         qb[planned[i]] = a[i] + d
     Rs, ps, Rb, pb, centre, sph, done, W, A, gap = scratch_views(idata, work)
     tree, blocks = tree_views(fd, idata), block_views(fd, idata)
-    q = np.empty(nq)
     cap = len(pairs) - 1
     p = first
     if mode == BISECTION and p == 0 and stop != 0:  # bisection's first step is the end (t = n / n = 1 for every
@@ -189,14 +189,14 @@ CALL_HEAD = 11
 def call_data(fd: np.ndarray, idata: np.ndarray, work_size: int, edata: np.ndarray, planned: np.ndarray, packet: int,
               cap: int) -> tuple[np.ndarray, np.ndarray]:
     """(F, I) for :func:`edge_call` and :func:`config_call`: F = the certifier's float data, its scratch (``work_size``
-    floats), ``edata`` (:func:`edge_data`), an edge's two ends and one configuration's plant positions; I = its int data,
+    floats), ``edata`` (:func:`edge_data`), an edge's two ends and its step's, and one configuration's plant positions; I = its int data,
     the open pairs (``cap`` and the code), the step count, the planned indices, then the offsets. Both arrays
     start with the certifier's, whose offsets count from there."""
     planned = np.asarray(planned, np.int64)
     nq = (len(edata) - len(planned)) // 2
-    sizes_f = (len(fd), work_size, len(edata), 2 * nq, nq)
+    sizes_f = (len(fd), work_size, len(edata), 3 * nq, nq)
     at_f = np.cumsum((0,) + sizes_f)
-    F = np.concatenate([fd, np.zeros(work_size), edata, np.zeros(3 * nq)])
+    F = np.concatenate([fd, np.zeros(work_size), edata, np.zeros(4 * nq)])
     at_i = np.cumsum((0, len(idata), cap + 1, 1, len(planned)))
     head = np.zeros(CALL_HEAD, np.int64)
     head[[_WORK, _EDATA, _QAB, _QC]] = at_f[1:5]
@@ -221,7 +221,7 @@ def _call_views(F, I):
     h = len(I) - CALL_HEAD
     nq, nplan = I[h + _NQ], I[h + _NPLAN]
     return (c_view(F, I[h + _WORK], (I[h + _EDATA] - I[h + _WORK],)), c_view(F, I[h + _EDATA], (2 * nq + nplan,)),
-            c_view(F, I[h + _QAB], (2, nq)), c_view(F, I[h + _QC], (nq,)), c_view(I, I[h + _PAIRS], (I[h + _NPAIRS],)),
+            c_view(F, I[h + _QAB], (3, nq)), c_view(F, I[h + _QC], (nq,)), c_view(I, I[h + _PAIRS], (I[h + _NPAIRS],)),
             c_view(I, I[h + _STATE], (1,)), c_view(I, I[h + _PLANNED], (nplan,)), I[h + _PACKET])
 
 

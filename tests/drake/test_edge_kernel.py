@@ -9,7 +9,8 @@ import pytest
 pytest.importorskip("pydrake")
 
 from lazyground.drake import edge_kernel as ek  # noqa: E402
-from lazyground.drake.compiled import _TOY, CAP  # noqa: E402
+from lazyground.drake import sphere_kernels as sk  # noqa: E402
+from lazyground.drake.compiled import _TOY, CAP, _above  # noqa: E402
 from lazyground.drake.sphere_kernels import pack, work_size  # noqa: E402
 from lazyground.drake.world import DrakeWorld  # noqa: E402
 from lazyground.geometry import wrap_angle  # noqa: E402
@@ -85,14 +86,13 @@ def test_the_step_count_is_drakes_on_edges_an_exact_number_of_steps_long(scene):
 def test_the_far_end_wraps_as_the_space_does():
     """b on the shorter arc from a, bit for bit as a + space.difference(a, b) (lazyground.geometry.wrap_angle)."""
     fd, idata = pack(_TOY)
-    work, pairs = np.zeros(work_size(idata)), np.zeros(CAP + 1, np.int64)
-    steps, ends = np.zeros(1, np.int64), np.zeros((2, 1))
-    edata = ek.edge_data(np.zeros(1), np.ones(1), np.ones(1, bool))
+    F, I = ek.call_data(fd, idata, work_size(idata), ek.edge_data(np.zeros(1), np.ones(1), np.ones(1, bool)),
+                        np.zeros(1, np.int64), 2, CAP)
+    ends = ek.call_blocks(F, I)[2]
     rng = np.random.default_rng(0)
     values = np.concatenate([rng.uniform(-20, 20, (4000, 2)), [[0.0, np.pi], [np.pi, -np.pi], [-3.0, 3.2]]])
     for a, b in values:
-        ek.edge_open(fd, idata, work, pairs, steps, ends, np.zeros(1, np.int64), edata, 2, np.array([a]), np.array([b]),
-                     0.1, ek.BISECTION, 0, 0, 0)
+        ek.edge_call(F, I, np.array([a]), np.array([b]), 0.1, ek.BISECTION, 0, 0, 0)
         assert ends[1, 0] == a + wrap_angle(np.array([b - a]))[0]
 
 
@@ -130,3 +130,24 @@ def test_single_checks_take_any_array_like_with_the_same_answers():
     for bad in (lambda: c.config_free(a[:-1]), lambda: c.config_unpadded_free(a[:-1]), lambda: c.edge_free(a[:-1], b, 0.05)):
         with pytest.raises(ValueError):
             bad()
+
+
+def _keeps_its_memory(a: np.ndarray) -> bool:
+    """Whether an array a kernel returned holds on to its memory (numba's own arrays: a memory-info base)."""
+    return a.flags.owndata or a.base is not None
+
+
+def test_what_the_kernels_return_keeps_its_memory():
+    """The kernels' views are borrowed (sphere_kernels.c_view: no reference count, #31): one returned to Python
+    would point into arrays it does not keep alive. Every array the kernels return keeps its own memory; a
+    returned view would not (the control below)."""
+    from numba import njit
+
+    fd, idata = pack(_TOY)
+    work, Q = np.zeros(work_size(idata)), np.array([[0.0], [0.1], [3.0]])
+    outs = [sk.certify_rows(Q, fd, idata, work, np.zeros((3, CAP), np.int64)),
+            sk.sweep_rows(Q, fd, idata, work, _above(_TOY), np.zeros((3, CAP), np.int64)),
+            ek.step_order(5, ek.BISECTION)]
+    assert all(_keeps_its_memory(a) for a in outs)
+    leak = njit(lambda x: sk.c_view(x, 1, (2,)))  # a kernel returning a borrowed view (a bug)
+    assert not _keeps_its_memory(leak(np.arange(4.0)))
