@@ -34,8 +34,10 @@ class StagedBandit:
     (numpy), once per ``BLOCK`` attempts, not per search iteration.
     """
 
-    def __init__(self, stats: list, hopeless_reasons: tuple[str, ...]):
-        """Args: the source's per-region statistics so far (RegionStats), its hopeless failure reasons."""
+    def __init__(self, stats: list, hopeless_reasons: tuple[str, ...], deferred=()):
+        """Args: the source's per-region statistics so far (RegionStats), its hopeless failure reasons, the regions
+        to try after the others of their stage (e.g. whose hand cannot back out: :mod:`lazyground.drake.approach`)."""
+        self.deferred = np.isin(np.arange(len(stats)), list(deferred))
         self.attempts = np.array([st.attempts for st in stats], float)
         self.passed = self.attempts - [sum(st.failures.get(r, 0) for r in hopeless_reasons) for st in stats]
         self.valid = np.array([st.valid for st in stats], float)
@@ -63,8 +65,10 @@ class StagedBandit:
 
     def block(self, open_: list[int]) -> list[int]:
         """The next regions to try, best first: up to ``BLOCK`` distinct ones among ``open_``, those without a valid
-        sample that is not blocked first (ties: fewer attempts, then the lower index, as round robin)."""
+        sample that is not blocked first, deferred ones after the others of their stage (ties: fewer attempts, then
+        the lower index, as round robin)."""
         regions = np.asarray(open_, int)
         usable = self.valid[regions] - self.blocked[regions] > 0
-        order = np.lexsort((regions, self.attempts[regions], -self.scores(regions), usable))[:BLOCK]
+        keys = (regions, self.attempts[regions], -self.scores(regions), self.deferred[regions], usable)
+        order = np.lexsort(keys)[:BLOCK]
         return [int(j) for j in regions[order]]

@@ -114,3 +114,25 @@ def test_without_a_chosen_order_the_allowance_is_the_plain_one():
     c.add([0])
     c.reward(0)
     assert c.ik_allowance(100) == Cover.free_attempts + 100 * Cover.attempts_per_iteration
+
+
+def test_deferred_regions_go_after_the_others_of_their_stage():
+    """Regions whose hand cannot back out (lazyground.drake.approach) wait behind the others without a sample, but
+    before any region with one (only an order: each is still in the block)."""
+    b = StagedBandit([RegionStats() for _ in range(5)], ("out of reach",), deferred=(0, 1))
+    assert b.block(list(range(5))) == [2, 3, 4, 0, 1]
+    for _ in range(5):  # the others keep missing: still first (the deferral outranks the estimate)
+        for j in (2, 3, 4):
+            b.observe(j, False, False)
+    assert b.block(list(range(5))) == [2, 3, 4, 0, 1]
+    b.observe(2, True, False)  # a region with a usable sample goes last, deferred or not
+    assert b.block(list(range(5))) == [3, 4, 0, 1, 2]
+    assert StagedBandit([RegionStats() for _ in range(3)], ("out of reach",)).block([0, 1, 2]) == [0, 1, 2]
+
+
+def test_cover_hands_the_sources_blocked_approaches_to_its_chooser():
+    source = Rack(_regions(4), near=4, rate=[0.0] * 4)
+    source.blocked_approaches = lambda: frozenset({0, 2})
+    chooser = Cover().region_chooser(source)
+    assert list(chooser.deferred) == [True, False, True, False]
+    assert chooser.block([0, 1, 2, 3]) == [1, 3, 0, 2]
