@@ -24,7 +24,7 @@ from lazyground.geometry import rpy_to_matrix
 STEP = 0.03  # m: spacing of the retreat's steps and of the points on the hand's surfaces; a point counts as in collision
 # within STEP / 2 (no board thinner than a step skipped; a coarse, cheap test: it only orders regions)
 SPACING = STEP
-POSES = 23  # seeded samples per region, besides its centre (a side grasp's yaw: ~1/6 of them face out of a cubby)
+POSES = 23  # seeded samples per region, besides its centre (a side grasp's yaw: ~1/8 of its range faces out of a cubby)
 
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()  # world -> {(regions, skip): flags}
 
@@ -59,41 +59,41 @@ def _blocked(world, region, hands: dict, rng: np.random.Generator) -> bool:
     steps = np.arange(int(math.ceil(length / STEP)) + 1) * STEP
     lower, span, _ = region.unit_map()
     X_WR, X_SE = region.X_WR.matrix(), region.X_SE.matrix()
-    for k in range(POSES + 1):
-        v = lower + span * (0.5 if k == 0 else rng.random(len(span)))
-        X = X_WR.copy()
-        X[:3, :3] = X_WR[:3, :3] @ rpy_to_matrix(v[3:6])
-        X[:3, 3] = X_WR[:3, :3] @ v[:3] + X_WR[:3, 3]
-        X = X @ X_SE  # region.pose_in_world(v), as matrices
-        p, dw = (X[:3, :3] @ points.T).T + X[:3, 3], X[:3, :3] @ d
-        if not _hits(p, dw, steps, solids, reach, keep, tol):
-            return False  # this pose backs out
-    return True
+    vs = np.vstack([lower + span / 2, lower + span * rng.random((POSES, len(span)))])
+    R = np.stack([X_WR[:3, :3] @ rpy_to_matrix(v[3:6]) @ X_SE[:3, :3] for v in vs])  # region.pose_in_world(v)
+    t = (X_WR[:3, :3] @ vs[:, :3].T).T + X_WR[:3, 3] + R @ X_SE[:3, 3]
+    p = np.einsum("kij,mj->kmi", R, points) + t[:, None, :]  # (poses, points, 3)
+    dw = R @ d  # (poses, 3): each pose's retreat direction in the world
+    return not _retreats(p, dw, steps, solids, reach, keep, tol)
 
 
-def _hits(p: np.ndarray, dw: np.ndarray, steps: np.ndarray, solids: tuple, reach: np.ndarray, keep: np.ndarray,
-          tol: float) -> bool:
-    """Whether points ``p`` moved by ``steps`` along ``dw`` come within ``tol`` of a solid (``solids``: stacked
-    centres, axes, half extents, roundings, ``reach`` their bounding half extents; ``keep``: those tested). The
-    steps go in chunks of 1, 2, 4, ... (the grasp pose itself first: most blocked poses stop there)."""
+def _retreats(p: np.ndarray, dw: np.ndarray, steps: np.ndarray, solids: tuple, reach: np.ndarray, keep: np.ndarray,
+              tol: float) -> bool:
+    """Whether for some pose k the points ``p[k]`` moved by every one of ``steps`` along ``dw[k]`` stay ``tol`` away
+    from the solids (``solids``: stacked centres, axes, half extents, roundings, ``reach`` their bounding half
+    extents; ``keep``: those tested). All poses at once, the steps in chunks of 1, 2, 4, ... (the grasp pose itself
+    first: most blocked poses stop there), each chunk only for the poses not yet blocked."""
+    alive = np.arange(len(p))
     start, size = 0, 1
-    while start < len(steps):
-        track = (p[None, :, :] + (steps[start:start + size, None] * dw)[:, None, :]).reshape(-1, 3)
+    while start < len(steps) and len(alive):
+        chunk = steps[start:start + size]
         start, size = start + size, size * 2
-        lo, hi = track.min(axis=0) - tol, track.max(axis=0) + tol
+        track = p[alive, None, :, :] + chunk[None, :, None, None] * dw[alive, None, None, :]  # (alive, steps, points, 3)
+        flat = track.reshape(-1, 3)
+        lo, hi = flat.min(axis=0) - tol, flat.max(axis=0) + tol
         near = keep & np.all(np.abs(np.clip(solids[0], lo, hi) - solids[0]) <= reach, axis=1)
         if not near.any():
             continue
         centres, axes, half, rounding = (a[near] for a in solids)
-        diff = [track[None, :, j] - centres[:, j, None] for j in range(3)]  # (solids, points) per world axis
-        d = [abs(diff[0] * axes[:, 0, i, None] + diff[1] * axes[:, 1, i, None] + diff[2] * axes[:, 2, i, None])
-             - half[:, i, None] for i in range(3)]  # per the solid's axis: |local| - half (component-wise: cheap)
-        out = [np.maximum(c, 0.0) for c in d]
-        inside = np.minimum(np.maximum(np.maximum(d[0], d[1]), d[2]), 0.0)
+        diff = [flat[None, :, j] - centres[:, j, None] for j in range(3)]  # (solids, points) per world axis
+        dd = [abs(diff[0] * axes[:, 0, i, None] + diff[1] * axes[:, 1, i, None] + diff[2] * axes[:, 2, i, None])
+              - half[:, i, None] for i in range(3)]  # per the solid's axis: |local| - half (component-wise: cheap)
+        out = [np.maximum(c, 0.0) for c in dd]
+        inside = np.minimum(np.maximum(np.maximum(dd[0], dd[1]), dd[2]), 0.0)
         dist = np.sqrt(out[0] ** 2 + out[1] ** 2 + out[2] ** 2) + inside - rounding[:, None]
-        if np.any(dist < tol):
-            return True
-    return False
+        hit = (dist < tol).any(axis=0).reshape(len(alive), -1).any(axis=1)
+        alive = alive[~hit]
+    return bool(len(alive))
 
 
 def _hand(world, frame: str) -> tuple[np.ndarray, tuple, float]:
