@@ -18,7 +18,7 @@ import weakref
 import numpy as np
 from pydrake.geometry import Box, Cylinder, Sphere, Capsule
 
-from lazyground.drake.arm_reach import _rigid_bodies, solids_3d
+from lazyground.drake.arm_reach import rigid_bodies, solids_3d
 from lazyground.geometry import rpy_to_matrix
 
 STEP = 0.03  # m: spacing of the retreat's steps and of the points on the hand's surfaces; a point counts as in collision
@@ -106,7 +106,7 @@ def _hand(world, frame: str) -> tuple[np.ndarray, tuple, float]:
     world_body = plant.world_body()
     statics = plant.GetCollisionGeometriesForBody(world_body)
     points, seen, solids, padding = [], set(), [], 0.0
-    for body in _rigid_bodies(plant, F.body(), set(world.planned)):
+    for body in rigid_bodies(plant, F.body(), set(world.planned)):
         X_FB = X_FW @ kin.matrix(body.body_frame(), world.q_full)
         filtered = drake.IsCollisionFilteredBetween(body, world_body)
         padding = max(padding, float(drake.GetPaddingMatrix()[int(body.index()), int(world_body.index())]))
