@@ -258,7 +258,7 @@ class Search:
         _, n, why = proven_unreachable(self.goals.regions, self.goals.stats)
         if why and all(st.unreachable for st in self.goals.stats):  # one line, not a list of untried regions
             return self.result(PlanStatus.NO_VALID_GOAL, f"no reachable goal: all {n} interpretation(s) proven unreachable "
-                               f"by the {why} (the disc inscribed in the robot's footprint has no way there from the start)")
+                               f"by the {why} (a disc or ball inside the robot's body has no way there from the start)")
         return self.result(PlanStatus.NO_VALID_GOAL, "no valid goal configuration in any goal region: " + self.region_summary())
 
     def _offsets(self) -> list[int]:
