@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from lazyground.drake.sphere_kernels import (COLLIDES, block_views, c_view, certify_one, open_pairs_row,
+from lazyground.drake.sphere_kernels import (COLLIDES, block_views, c_view, open_pairs_row, row_inline,
                                              scratch_views, tree_views)
 from lazyground.user_cache import use_kernel_cache
 
@@ -239,8 +239,8 @@ def edge_call(F, I, a, b, resolution, mode, first, stop, steps):
 
 @njit(cache=True)
 def config_call(F, I, q, shift):
-    """:func:`lazyground.drake.sphere_kernels.certify_one` of planned coordinates ``q`` (their plant positions
-    written to F's configuration block, :func:`call_data`), on a checker's call data."""
+    """:func:`lazyground.drake.sphere_kernels.certify_one` (its row test inlined) of planned coordinates ``q``
+    (their plant positions written to F's configuration block, :func:`call_data`), on a checker's call data."""
     work, edata, qab, qc, pairs, state, planned, packet = _call_views(F, I)
     if len(q) != len(planned):
         raise ValueError("a configuration must have one value per planned coordinate")
@@ -248,7 +248,7 @@ def config_call(F, I, q, shift):
         qc[j] = edata[j]
     for i in range(len(planned)):
         qc[planned[i]] = q[i]
-    return certify_one(F, I, work, pairs, qc, shift)
+    return row_inline(qc, F, I, work, pairs, len(pairs) - 1, shift)
 
 
 def edge_data(q_full: np.ndarray, weights: np.ndarray, wrap: np.ndarray) -> np.ndarray:

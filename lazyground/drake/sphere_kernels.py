@@ -662,15 +662,22 @@ def scratch_views(idata, work):
     return Rs, ps, Rb, pb, centre, sph, done, W, A, gap
 
 
-@njit(cache=True)
-def row_code(q, fd, idata, work, pairs, cap, shift):
-    """:func:`open_pairs_row` of plant positions ``q`` with its views made here: the one compiled copy of the row test
-    that the kernels off a planner's single checks call (a batch, a sweep, the steps after one left open). The
-    row test inlined costs ~25 s of a first compile per kernel (#31); a call with these few arguments (the views
-    are borrowed, :func:`c_view`: making them costs no reference count) costs little against a row."""
+@njit(cache=True, inline="always")
+def row_inline(q, fd, idata, work, pairs, cap, shift):
+    """:func:`open_pairs_row` of plant positions ``q`` with its views made here (borrowed, :func:`c_view`: making
+    them costs no reference count). Inlined only where a planner's single checks run (edge_kernel's edge_call and
+    config_call: ~0.1 µs a check less than a call, #31); the other kernels call :func:`row_code`. Each inlined row
+    test costs ~20-30 s of the kernels' first compile (#31)."""
     Rs, ps, Rb, pb, centre, sph, done, W, A, gap = scratch_views(idata, work)
     return open_pairs_row(q, idata, tree_views(fd, idata), block_views(fd, idata), Rs, ps, Rb, pb, centre, sph, done,
                           W, A, gap, pairs, cap, shift)
+
+
+@njit(cache=True)
+def row_code(q, fd, idata, work, pairs, cap, shift):
+    """:func:`row_inline` compiled once: the row test of the kernels off a planner's single checks (a batch, a
+    sweep, the steps after one left open, :func:`certify_one`); a call costs ~0.04 µs a row (#31)."""
+    return row_inline(q, fd, idata, work, pairs, cap, shift)
 
 
 @njit(cache=True)
