@@ -60,6 +60,9 @@ class Cover:
     # collided steps from it (lazyground.planning.blocked: a can behind a window), or there is no sample yet
     ik_blocked_attempts_per_iteration = 1.0
     blocked_after = 10
+    # ... or every live sample's tree has had this many steps without meeting the start tree (aged: its region may get
+    # another sample; lazyground.planning.blocked)
+    age_after = 1500
 
     def __init__(self, settings: StrategySettings = StrategySettings()):
         self._threshold = settings.resample_threshold
