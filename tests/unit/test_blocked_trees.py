@@ -1,6 +1,5 @@
 """Issue #33: goal trees that stay their root are blocked, trees that take many steps without connecting age
-(planning/blocked.py): their region counts the
-sample as a miss, and while no goal tree can grow cover's goal sampling is paced at its blocked rate (Cover.ik_allowance)."""
+(planning/blocked.py): their region counts the sample as a miss, and while no goal tree can grow cover's goal sampling is paced at its blocked rate (Cover.ik_allowance)."""
 
 import numpy as np
 
