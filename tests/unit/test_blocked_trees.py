@@ -97,7 +97,8 @@ OPEN = region("open", 8.0, 9.0)
 CELLS = [region(f"cell{k}", 2.0, 5.0, half=0.05) for k in range(6)]
 
 
-def test_cover_finds_the_walled_cells_trees_blocked_and_still_solves(monkeypatch):
+def _record_trees(monkeypatch) -> list:
+    """The BlockedTrees each search makes, in order."""
     made = []
 
     class Recorded(BlockedTrees):
@@ -106,6 +107,11 @@ def test_cover_finds_the_walled_cells_trees_blocked_and_still_solves(monkeypatch
             made.append(self)
 
     monkeypatch.setattr(search_module, "BlockedTrees", Recorded)
+    return made
+
+
+def test_cover_finds_the_walled_cells_trees_blocked_and_still_solves(monkeypatch):
+    made = _record_trees(monkeypatch)
     solved = 0
     for seed in range(6):
         world = BoxWorld(CELL)
@@ -189,14 +195,7 @@ POCKET = region("pocket", 8.0, 2.0)  # inside the toy's walled pocket: its tree 
 
 
 def test_cover_ages_the_pocket_trees_and_still_solves(monkeypatch):
-    made = []
-
-    class Recorded(BlockedTrees):
-        def __init__(self, *args):
-            super().__init__(*args)
-            made.append(self)
-
-    monkeypatch.setattr(search_module, "BlockedTrees", Recorded)
+    made = _record_trees(monkeypatch)
     monkeypatch.setattr(Cover, "age_after", 20)
     monkeypatch.setattr(StagedBandit, "age_sample", lambda self, j: heard.append(j))
     solved = aged = told = 0
