@@ -273,9 +273,10 @@ class GoalSamplingSettings:
     goal_learning: float = setting(0.75, "share of a goal region's draws that follow where its earlier draws "
                                    "worked (IK reached, collision-free); 0: uniform draws (lazyground/regions/learned.py)",
                                    _API, low=0.0, high=1.0)
-    reach_prior: bool = setting(True, "drop the goal regions a planar robot (a car) provably cannot reach: the disc "
-                                "inscribed in its footprint finds no way there from the start among the obstacles "
-                                "(`lazyground/planning/reach_prior.py`; `false`: sample every region)", _EVERYWHERE)
+    reach_prior: bool = setting(True, "drop the goal regions the robot provably cannot reach: a car's disc inscribed "
+                                "in its footprint, or a ball inscribed in an arm's hand, finds no way there from the "
+                                "start among the obstacles (`lazyground/planning/reach_prior.py`; `false`: sample "
+                                "every region)", _EVERYWHERE)
     ik_solver: IKSolver = setting(IKSolver.BATCH, "IK solver: `batch` (numpy damped least squares, many attempts "
                                   "at once), `snopt` or `ipopt` (a Drake program per restart)", _API)
 

@@ -13,7 +13,7 @@ budget), one that is given up costs its IK seconds; the reachable can's call is 
 
 Usage (from the repository root):
   PYTHONPATH=. python3 tools/rack_targets.py ROBOT N LAYOUTS [--strategies cover,consecutive] [--limit 30]
-      [--budget 10] [--eager] [--eager-limit 120] [--real-nf TOTAL] [--seed 0] [--jsonl OUT.jsonl]
+      [--budget 10] [--eager] [--eager-limit 120] [--real-nf TOTAL] [--seed 0] [--jsonl OUT.jsonl] [--no-reach-prior]
 LAYOUTS: 0-19 or 0,3,5. Prints one JSON line per layout and a summary (medians, ratios, Mann-Whitney p);
   PYTHONPATH=. python3 tools/rack_targets.py summary A.jsonl B.jsonl   summarises rows written with --jsonl.
 """
@@ -87,6 +87,7 @@ def main(argv: list[str]) -> int:
     p.add_argument("--seed", type=int, default=0, help="planner seed (the same for every layout)")
     p.add_argument("--no-nf", action="store_true", help="skip nearest-first")
     p.add_argument("--jsonl", help="also append the rows to this file")
+    p.add_argument("--no-reach-prior", action="store_true", help="sample every region (setting reach_prior: false)")
     p.add_argument("--no-warm-up", action="store_true", help="skip the untimed first plan (compiles kernels and caches "
                    "once per process: 0.5 CPU s, charged to whichever strategy ran first on the first layout)")
     if argv[:1] == ["summary"]:  # summary FILE.jsonl ...: the rows of earlier runs (e.g. layouts split over processes)
@@ -101,7 +102,7 @@ def main(argv: list[str]) -> int:
     if not a.no_warm_up and strategies:
         problem = load_problem(f"rack:{a.robot}:{a.n}:1:{a.layouts[0]}")
         api.plan(problem.scene, problem.request, seed=a.seed, world=problem.world, strategy=strategies[0],
-                 algorithm=Algorithm.BIDIRECTIONAL.value, time_limit=a.limit)
+                 algorithm=Algorithm.BIDIRECTIONAL.value, time_limit=a.limit, reach_prior=not a.no_reach_prior)
     for lay in a.layouts:
         key = f"rack:{a.robot}:{a.n}:1:{lay}"
         kinds = can_kinds(generate(parse_key(key)))
@@ -110,11 +111,13 @@ def main(argv: list[str]) -> int:
         row = dict(key=key, seed=a.seed, clock="cpu")
         for strat in strategies:
             rep = api.plan(problem.scene, problem.request, seed=a.seed, world=problem.world, strategy=strat,
-                           algorithm=Algorithm.BIDIRECTIONAL.value, time_limit=a.limit)
+                           algorithm=Algorithm.BIDIRECTIONAL.value, time_limit=a.limit, reach_prior=not a.no_reach_prior)
             r = rep.result
             row[strat] = dict(solved=r.solved, time=round(rep.grounding_s + r.time_s if r.solved else a.limit, 3),
                               iterations=r.iterations, attempts=sum(st.attempts for st in r.region_stats),
-                              ik_s=round(r.goal_sampling_s, 3))
+                              ik_s=round(r.goal_sampling_s, 3), dropped=sum(bool(st.unreachable) for st in r.region_stats))
+        prior = None if a.no_reach_prior else problem.world.reach_prior()  # built by the first plan, as set-up
+        row["prior_s"] = round(getattr(prior, "build_s", 0.0), 3)
         if not a.no_nf:
             row["nearest-first"] = nearest_first(problem, regions, kinds, a.budget, a.seed)
         settings = planner_settings(problem.scene, strategy=Strategy.CONSECUTIVE, algorithm=Algorithm.BIDIRECTIONAL,

@@ -67,12 +67,15 @@ class DrakeWorld:
         self._reach: list = []  # the reach prior, once built (lazyground.drake.reach_prior)
 
     def reach_prior(self):
-        """The reach prior of a planar robot (a car) from the start, built on first use; None for other robots
-        (:func:`lazyground.drake.reach_prior.planar_reach`)."""
+        """The reach prior from the start, built on first use: a planar robot's (a car: its disc,
+        :func:`lazyground.drake.reach_prior.planar_reach`), else an arm's (balls in its hand, grids built per
+        ball as regions ask: :func:`lazyground.drake.arm_reach.arm_reach`); None for other robots."""
         if not self._reach:
+            from lazyground.drake.arm_reach import arm_reach
             from lazyground.drake.reach_prior import planar_reach
 
-            self._reach.append(planar_reach(self))
+            prior = planar_reach(self)
+            self._reach.append(prior if prior is not None else arm_reach(self))
         return self._reach[0]
 
     # --- kinematics ------------------------------------------------------------------------

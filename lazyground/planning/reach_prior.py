@@ -94,7 +94,8 @@ class ReachGrid:
         return self.labels[tuple(idx.T)] == 0
 
 
-def reach_grid(lower, upper, radius: float, solids: list[Solid], cell: float, bounded: bool = False) -> ReachGrid:
+def reach_grid(lower, upper, radius: float, solids: list[Solid], cell: float, bounded: bool = False,
+               reach: tuple | None = None) -> ReachGrid:
     """The grid of cells of side ``cell`` over [lower, upper] and a ring of cells around it.
 
     Args:
@@ -105,6 +106,8 @@ def reach_grid(lower, upper, radius: float, solids: list[Solid], cell: float, bo
         bounded: the ball centre never leaves [lower, upper] (a planner that holds every configuration
             to its limits): the ring is blocked. Otherwise it is free, one component with everything
             beyond the bounds (the obstacles there are not on the grid).
+        reach: (a, b, radius): the ball centre stays within ``radius`` of the segment a-b (an arm's reach; a = b:
+            a sphere): the cells wholly beyond are blocked (with ``bounded``, [lower, upper] around it).
     """
     # the bounds widened by TOLERANCE (a planner holds configurations to its limits within a float margin), each
     # point of them in an inner cell (floor + 1 cells: the upper bound too), one ring of cells outside
@@ -121,8 +124,26 @@ def reach_grid(lower, upper, radius: float, solids: list[Solid], cell: float, bo
     for axis in range(n):
         ring[(slice(None),) * axis + (0,)] = ring[(slice(None),) * axis + (-1,)] = True
     free = free & ~ring if bounded else free | ring
+    if reach is not None:
+        _outside_reach(free, origin, cell, *reach)
     labels, _ = ndimage.label(free, structure=np.ones((3,) * n, bool))
     return ReachGrid(origin, cell, radius, labels)
+
+
+def _outside_reach(free: np.ndarray, origin: np.ndarray, cell: float, a, b, radius: float) -> None:
+    """Mark the cells every point of which lies farther than ``radius`` from the segment a-b blocked (slab by slab
+    along the first axis: a few full-size arrays of a 10-million-cell grid would take hundreds of MB)."""
+    n = free.ndim
+    a, d = np.asarray(a, float), np.asarray(b, float) - np.asarray(a, float)
+    far = (radius + cell * math.sqrt(n) / 2 + EPS) ** 2
+    dd = float(d @ d)
+    x = [origin[k] + (np.arange(free.shape[k]) + 0.5) * cell - a[k] for k in range(n)]
+    rest = [x[k].reshape([-1 if i == k else 1 for i in range(1, n)]) for k in range(1, n)]
+    for i, x0 in enumerate(x[0]):
+        rel = [x0] + rest
+        t = 0.0 if dd == 0.0 else np.clip(sum(r * d[k] for k, r in enumerate(rel)) / dd, 0.0, 1.0)
+        d2 = sum((r - t * d[k]) ** 2 for k, r in enumerate(rel))
+        free[i] &= ~np.broadcast_to(d2 > far, free.shape[1:])
 
 
 def _block(free: np.ndarray, origin: np.ndarray, cell: float, rho: float, solid: Solid) -> None:
@@ -159,6 +180,37 @@ def _arc_box(offset: np.ndarray, lo: float, span: float) -> tuple[np.ndarray, np
     return pts.min(axis=0), pts.max(axis=0)
 
 
+_PLANE = ((1, 2), (2, 0), (0, 1))  # per axis of a turn (x, y, z): the coordinates it turns, counterclockwise
+
+
+def turned_box(lower, upper, axis: int, lo: float, span: float) -> tuple[np.ndarray, np.ndarray]:
+    """The bounding box of the 3-D box [lower, upper] turned about coordinate ``axis`` by every angle in
+    [lo, lo + span]: each turned box lies in the bounding box of its corners, each corner on an arc."""
+    i, j = _PLANE[axis]
+    out_lo, out_hi = np.array(lower, float), np.array(upper, float)
+    if span == 0.0 and lo == 0.0:
+        return out_lo, out_hi
+    bounds = [(x, y) for x in (lower[i], upper[i]) for y in (lower[j], upper[j])]
+    arcs = [_arc_box(np.array(c, float), lo, span) for c in bounds]
+    out_lo[[i, j]] = np.min([a for a, _ in arcs], axis=0)
+    out_hi[[i, j]] = np.max([b for _, b in arcs], axis=0)
+    return out_lo, out_hi
+
+
+def pose_centre_box(X_WR: np.ndarray, X_ST: np.ndarray, p_T, lower, span) -> tuple[np.ndarray, np.ndarray]:
+    """The bounding box of the points X_WR · X_RS(v) · X_ST · p_T over every v = (x, y, z, roll, pitch, yaw) of the
+    box from ``lower`` spanning ``span`` (a pose region's :meth:`unit_map`; X_RS(v) turns by extrinsic roll, pitch,
+    yaw): the point turned about x, y, then z over each angle's range, plus the box of positions, mapped by X_WR."""
+    q = (np.asarray(X_ST, float) @ np.append(np.asarray(p_T, float), 1.0))[:3]
+    lo, hi = q.copy(), q.copy()
+    for axis in range(3):
+        lo, hi = turned_box(lo, hi, axis, float(lower[3 + axis]), min(float(span[3 + axis]), 2 * math.pi))
+    lo, hi = lo + np.asarray(lower[:3], float), hi + np.asarray(lower[:3], float) + np.asarray(span[:3], float)
+    corners = np.array([[(lo, hi)[b >> k & 1][k] for k in range(3)] for b in range(8)])
+    world = corners @ np.asarray(X_WR, float)[:3, :3].T + np.asarray(X_WR, float)[:3, 3]
+    return world.min(axis=0) - TOLERANCE, world.max(axis=0) + TOLERANCE
+
+
 @dataclass(frozen=True)
 class PlanarReach:
     """The reach prior of a planar robot: its disc (``offset`` from the body frame, in it) on ``grid``.
@@ -183,7 +235,7 @@ class PlanarReach:
     def keeps(self, region) -> bool:
         """Whether the prior lets ``region`` (a box of configurations, e.g. a ConfigRegion) be reached: False only
         when no cell of its disc centres lies in the start's component."""
-        if not self.start or len(region.lower) <= max(self.index):
+        if not self.start or region.kind != "config" or len(region.lower) <= max(self.index):
             return True
         lower, span, _ = region.unit_map()
         upper = lower + span

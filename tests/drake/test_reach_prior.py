@@ -149,6 +149,9 @@ def test_every_blocked_kind_of_the_generated_lots_is_dropped(key):
     assert [regions[j].object for j in open_] == [r.object for r in regions if kinds[r.object] == REACHABLE]
 
 
-def test_an_arm_has_no_prior():
+def test_an_arm_has_the_arm_prior_and_it_judges_only_pose_regions():
+    """An arm's prior is its hand's balls (tests/drake/test_arm_reach_prior.py); a car's judges only config regions."""
+    from lazyground.drake.arm_reach import ArmReach
+
     world = DrakeWorld(load_scene(scene_path("panda_tabletop")), visual=False)
-    assert world.reach_prior() is None
+    assert isinstance(world.reach_prior(), ArmReach)

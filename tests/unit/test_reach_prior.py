@@ -11,7 +11,8 @@ import math
 import numpy as np
 import pytest
 
-from lazyground.planning.reach_prior import PlanarReach, Solid, _arc_box, reach_grid
+from lazyground.geometry import rpy_to_matrix
+from lazyground.planning.reach_prior import PlanarReach, Solid, _arc_box, pose_centre_box, reach_grid
 from lazyground.regions import ConfigRegion
 
 R = 0.9  # a car's disc
@@ -146,3 +147,56 @@ def test_a_wall_from_bound_to_bound_closes_the_far_side_only_for_a_bounded_ball(
     bounded = reach_grid((0.0, 0.0), (30.0, 20.0), R, [], 0.1, bounded=True)
     assert not bounded.blocked([[30.0, 20.0], [0.0, 0.0], [30.0, 0.0]]).any()  # the bounds themselves are free cells
     assert bounded.blocked([[30.2, 20.0], [-0.2, 0.0]]).all()  # beyond them: the blocked ring
+
+
+def _transform(rng) -> np.ndarray:
+    X = np.eye(4)
+    X[:3, :3], X[:3, 3] = rpy_to_matrix(rng.uniform(-math.pi, math.pi, 3)), rng.normal(size=3)
+    return X
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_the_box_of_centres_holds_the_point_at_every_pose_of_the_region(seed):
+    """An arm's goal box (pose_centre_box): X_WR · X_RS(v) · X_ST · p for 2,000 draws v of a 6-D region (angle ranges
+    up to beyond a full turn, some fixed) lie in it; a fixed orientation gives the position box moved, exactly."""
+    rng = np.random.default_rng(seed)
+    X_WR, X_ST, p = _transform(rng), _transform(rng), rng.normal(size=3) * 0.1
+    lower = np.concatenate([rng.normal(size=3) * 0.1, rng.uniform(-4, 4, 3)])
+    span = np.concatenate([rng.uniform(0, 0.1, 3), rng.uniform(0, 7, 3) * (rng.random(3) < 0.6)])
+    lo, hi = pose_centre_box(X_WR, X_ST, p, lower, span)
+    for v in lower + rng.random((2000, 6)) * span:
+        X = np.eye(4)
+        X[:3, :3], X[:3, 3] = rpy_to_matrix(v[3:]), v[:3]
+        c = (X_WR @ X @ X_ST @ np.append(p, 1.0))[:3]
+        assert np.all(c >= lo) and np.all(c <= hi)
+    fixed = np.concatenate([span[:3], np.zeros(3)])
+    lo, hi = pose_centre_box(X_WR, X_ST, p, lower, fixed)
+    X = np.eye(4)
+    X[:3, :3] = rpy_to_matrix(lower[3:])
+    corners = [X_WR @ (X @ X_ST @ np.append(p, 1.0) + np.append(lower[:3] + fixed[:3] * np.array(b), 0.0))
+               for b in np.ndindex(2, 2, 2)]
+    assert np.allclose(lo, np.min(corners, axis=0)[:3], atol=1e-5) and np.allclose(hi, np.max(corners, axis=0)[:3], atol=1e-5)
+
+
+def test_a_ball_within_a_reach_sphere_cannot_leave_it():
+    """``reach``: the cells wholly beyond the reach are blocked, the ones it touches kept."""
+    grid = reach_grid((-1.0, -1.0, -1.0), (1.0, 1.0, 1.0), 0.05, [], 0.025, bounded=True, reach=((0.0,) * 3, (0.0,) * 3, 1.0))
+    start = grid.components((0, 0, 0), (0, 0, 0))
+    assert start and grid.components((0.0, 0.0, 0.99), (0.0, 0.0, 0.99)) == start
+    assert not grid.components((0.75, 0.75, 0.75), (0.95, 0.95, 0.95))  # |(0.75,) * 3| = 1.3: beyond the reach
+    points = np.random.default_rng(0).uniform(-1, 1, (20_000, 3))
+    inside = np.linalg.norm(points, axis=1) <= 1.0
+    assert not np.any(grid.blocked(points) & inside)
+
+
+def test_a_ball_within_reach_of_a_segment_cannot_leave_its_capsule():
+    """``reach`` about a segment (a prismatic joint's travel): points within the radius of it are never blocked,
+    a box wholly beyond is dropped."""
+    a, b = np.array([0.1, -0.2, 0.0]), np.array([0.1, 0.3, 0.4])
+    lower, upper = np.minimum(a, b) - 0.5, np.maximum(a, b) + 0.5
+    grid = reach_grid(lower, upper, 0.05, [], 0.03, bounded=True, reach=(a, b, 0.5))
+    points = np.random.default_rng(1).uniform(lower, upper, (20_000, 3))
+    t = np.clip((points - a) @ (b - a) / ((b - a) @ (b - a)), 0, 1)
+    inside = np.linalg.norm(points - a - t[:, None] * (b - a), axis=1) <= 0.5
+    assert not np.any(grid.blocked(points) & inside) and grid.blocked(points[~inside]).mean() > 0.5
+    assert not grid.components(upper - 0.1, upper)  # the corner: 0.5 * sqrt(3) from the segment's end

@@ -7,16 +7,24 @@
 - :mod:`~lazyground.drake.ik.attempts`: attempts prepared many at a time for the batch solver.
 - :mod:`~lazyground.drake.ik.source`: :class:`IKGoalSource`, round robin over the regions and the approach.
 
-Importing this package registers :class:`IKGoalSource` for workspace and placement regions
+Importing this package registers :class:`IKGoalSource` for workspace and placement regions, without the regions
+the world's reach prior proves unreachable (:mod:`lazyground.drake.arm_reach`)
 (:func:`lazyground.goals.register_goal_source`).
 """
 
 from lazyground.drake.ik.reach import reach_map
 from lazyground.drake.ik.settings import DEFAULT_IK_SETTINGS, IKCounters, IKSettings
 from lazyground.drake.ik.source import IKGoalSource, region_coordinates
-from lazyground.goals import register_goal_source
+from lazyground.goals import reach_prior_drops, register_goal_source
 from lazyground.regions import PlacementRegion, WorkspaceRegion
 
 __all__ = ["DEFAULT_IK_SETTINGS", "IKCounters", "IKGoalSource", "IKSettings", "reach_map", "region_coordinates"]
 
-register_goal_source((WorkspaceRegion.kind, PlacementRegion.kind), IKGoalSource)
+
+
+def _ik_source(regions, world, sampling=None) -> IKGoalSource:
+    """The IK source over ``world``, without the regions its reach prior proves unreachable (``reach_prior``)."""
+    return IKGoalSource(regions, world, sampling=sampling, unreachable=reach_prior_drops(regions, world, sampling))
+
+
+register_goal_source((WorkspaceRegion.kind, PlacementRegion.kind), _ik_source)
