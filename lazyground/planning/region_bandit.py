@@ -40,6 +40,7 @@ class StagedBandit:
         self.passed = self.attempts - [sum(st.failures.get(r, 0) for r in hopeless_reasons) for st in stats]
         self.valid = np.array([st.valid for st in stats], float)
         self.blocked = np.zeros(len(stats))  # valid samples whose goal tree stays its root (:meth:`block_sample`)
+        self.aged = np.zeros(len(stats))  # valid samples whose goal tree grew long without connecting (:meth:`age_sample`)
         self._passed, self._valid = float(self.passed.sum()), float(self.valid.sum())  # pooled
 
     def observe(self, j: int, valid: bool, hopeless: bool) -> None:
@@ -56,6 +57,15 @@ class StagedBandit:
         its region goes back among those without a sample, at the rate of its other attempts."""
         self.blocked[j] += 1 if blocked else -1
 
+    def age_sample(self, j: int) -> None:
+        """A valid sample of region ``j`` aged (its goal tree took many steps without meeting the start tree:
+        :mod:`lazyground.planning.blocked`): the region goes back among those without a usable sample, at its own
+        rate (its valid samples still count: the region does yield them, and its next one is another grasp)."""
+        self.aged[j] += 1
+
+    def _usable(self, regions: np.ndarray) -> np.ndarray:
+        return self.valid[regions] - self.blocked[regions] - self.aged[regions] > 0
+
     def scores(self, regions: np.ndarray) -> np.ndarray:
         n, s, v = self.attempts[regions], self.passed[regions], self.valid[regions] - self.blocked[regions]
         pooled = (self._valid + 1) / (self._passed + 2)
@@ -65,6 +75,5 @@ class StagedBandit:
         """The next regions to try, best first: up to ``BLOCK`` distinct ones among ``open_``, those without a valid
         sample that is not blocked first (ties: fewer attempts, then the lower index, as round robin)."""
         regions = np.asarray(open_, int)
-        usable = self.valid[regions] - self.blocked[regions] > 0
-        order = np.lexsort((regions, self.attempts[regions], -self.scores(regions), usable))[:BLOCK]
+        order = np.lexsort((regions, self.attempts[regions], -self.scores(regions), self._usable(regions)))[:BLOCK]
         return [int(j) for j in regions[order]]
