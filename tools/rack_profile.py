@@ -22,7 +22,7 @@ from lazyground.bench.families import generate, parse_key
 from lazyground.bench.families.rack import can_kinds
 from lazyground.bench.runner import load_problem
 from lazyground.planning.search import Search
-from lazyground.settings import Algorithm
+from lazyground.settings import Algorithm, Strategy
 
 STATE: dict = {}
 
@@ -90,7 +90,7 @@ def run(robot: str, n: int, layout: int, strategy: str, seed: int) -> dict:
 def main(argv):
     p = argparse.ArgumentParser()
     p.add_argument("robot"); p.add_argument("n", type=int); p.add_argument("layouts")
-    p.add_argument("--strategy", default="cover"); p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--strategy", default=Strategy.COVER.value); p.add_argument("--seed", type=int, default=0)
     a = p.parse_args(argv)
     stop_module.CLOCK = time.process_time
     patch()

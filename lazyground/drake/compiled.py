@@ -30,7 +30,8 @@ _car_compiled = False
 def warm_up() -> float:
     """Compile (or load from numba's on-disk cache) the kernels (the certifier's, the batch IK solver's and the
     planner's nearest-neighbour and steering kernels: an arm's tree would load those in its first request) once
-    per process; the seconds it took (0.0 after the first call). The first call on a machine compiles (~20-60 s), later processes load (~1 s)."""
+    per process; the seconds it took (0.0 after the first call). The first call on a machine compiles (~2 minutes of
+    CPU), later processes load (~1 s)."""
     global _compile_s, _compiled_now
     if _compile_s is not None:
         return 0.0

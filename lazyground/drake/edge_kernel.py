@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from lazyground.drake.sphere_kernels import (COLLIDES, block_views, c_view, certify_one, open_pairs_row,
+from lazyground.drake.sphere_kernels import (COLLIDES, block_views, c_view, open_pairs_row, row_inline,
                                              scratch_views, tree_views)
 from lazyground.user_cache import use_kernel_cache
 
@@ -153,30 +153,31 @@ def edge_open(fd, idata, work, pairs, state, qab, planned, edata, packet, a, b, 
     tree, blocks = tree_views(fd, idata), block_views(fd, idata)
     cap = len(pairs) - 1
     p = first
-    if mode == BISECTION and p == 0 and stop != 0:  # bisection's first step is the end (t = n / n = 1 for every
-        # n): most of a planner's edges stop there (88 % on fetch_boxes_3), so the order (~0.3 µs) and, where the
-        # end is proven colliding, the step count (~0.3 µs) are not needed (#31)
-        for j in range(nq):
-            q[j] = qa[j] + 1.0 * (qb[j] - qa[j])
-        c = open_pairs_row(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap, 0.0)
-        if c != 0:
-            pairs[-1] = c
-            state[0] = 0 if c == COLLIDES else _step_count(qa, qb, edata, packet, resolution, steps)
-            return 0
-        p = 1
-    n = _step_count(qa, qb, edata, packet, resolution, steps)
-    state[0] = n
-    end = n + 1 if stop < 0 else min(stop, n + 1)  # len(step_order(n, mode)) is n + 1
-    order = step_order(n, mode)
-    for p in range(p, end):
-        t = order[p] / n
+    # bisection's first step is the end (t = n / n = 1 for every n): most of a planner's edges stop there (88 % on
+    # fetch_boxes_3), so the order (~0.3 µs) and, where the end is proven colliding, the step count (~0.3 µs) are
+    # not needed then (#31). One loop and one row test for both: each inlined row test is ~1/6 of the kernels'
+    # first compile (#31)
+    end_first = mode == BISECTION and p == 0 and stop != 0
+    n, end, order = 0, 0, c_view(state, 0, (0,))  # the count (>= 1), the end and the order: made when needed
+    while True:
+        if n == 0 and not end_first:
+            n = _step_count(qa, qb, edata, packet, resolution, steps)
+            state[0] = n
+            end = n + 1 if stop < 0 else min(stop, n + 1)  # len(step_order(n, mode)) is n + 1
+            order = step_order(n, mode)
+        if not end_first and p >= end:
+            return ALL_FREE
+        t = 1.0 if end_first else order[p] / n
         for j in range(nq):
             q[j] = qa[j] + t * (qb[j] - qa[j])
         c = open_pairs_row(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap, 0.0)
         if c != 0:
             pairs[-1] = c
+            if end_first:
+                state[0] = 0 if c == COLLIDES else _step_count(qa, qb, edata, packet, resolution, steps)
             return p
-    return ALL_FREE
+        end_first = False
+        p += 1
 
 
 # A checker's call data (call_data): the certifier's arrays and an edge's in one float and one int array, so that a
@@ -238,8 +239,8 @@ def edge_call(F, I, a, b, resolution, mode, first, stop, steps):
 
 @njit(cache=True)
 def config_call(F, I, q, shift):
-    """:func:`lazyground.drake.sphere_kernels.certify_one` of planned coordinates ``q`` (their plant positions
-    written to F's configuration block, :func:`call_data`), on a checker's call data."""
+    """:func:`lazyground.drake.sphere_kernels.certify_one` (its row test inlined) of planned coordinates ``q``
+    (their plant positions written to F's configuration block, :func:`call_data`), on a checker's call data."""
     work, edata, qab, qc, pairs, state, planned, packet = _call_views(F, I)
     if len(q) != len(planned):
         raise ValueError("a configuration must have one value per planned coordinate")
@@ -247,7 +248,7 @@ def config_call(F, I, q, shift):
         qc[j] = edata[j]
     for i in range(len(planned)):
         qc[planned[i]] = q[i]
-    return certify_one(F, I, work, pairs, qc, shift)
+    return row_inline(qc, F, I, work, pairs, len(pairs) - 1, shift)
 
 
 def edge_data(q_full: np.ndarray, weights: np.ndarray, wrap: np.ndarray) -> np.ndarray:

@@ -662,16 +662,32 @@ def scratch_views(idata, work):
     return Rs, ps, Rb, pb, centre, sph, done, W, A, gap
 
 
+@njit(cache=True, inline="always")
+def row_inline(q, fd, idata, work, pairs, cap, shift):
+    """:func:`open_pairs_row` of plant positions ``q`` with its views made here (borrowed, :func:`c_view`: making
+    them costs no reference count). Inlined only where a planner's single checks run (edge_kernel's edge_call and
+    config_call: ~0.1 µs a check less than a call, #31); the other kernels call :func:`row_code`. Each inlined row
+    test costs ~20-30 s of the kernels' first compile (#31)."""
+    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = scratch_views(idata, work)
+    return open_pairs_row(q, idata, tree_views(fd, idata), block_views(fd, idata), Rs, ps, Rb, pb, centre, sph, done,
+                          W, A, gap, pairs, cap, shift)
+
+
+@njit(cache=True)
+def row_code(q, fd, idata, work, pairs, cap, shift):
+    """:func:`row_inline` compiled once: the row test of the kernels off a planner's single checks (a batch, a
+    sweep, the steps after one left open, :func:`certify_one`); a call costs ~0.04 µs a row (#31)."""
+    return row_inline(q, fd, idata, work, pairs, cap, shift)
+
+
 @njit(cache=True)
 def certify_rows(Q, fd, idata, work, pairs):
     """Per row of plant positions Q: the count of its open pairs (0: certified, -1: more than pairs.shape[1],
     COLLIDES: proven colliding), the pairs in ``pairs[row]``."""
-    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = scratch_views(idata, work)
-    tree, blocks = tree_views(fd, idata), block_views(fd, idata)
     out = np.empty(Q.shape[0], np.int64)
     cap = pairs.shape[1]
     for r in range(Q.shape[0]):
-        out[r] = open_pairs_row(Q[r], idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs[r], cap, 0.0)
+        out[r] = row_code(Q[r], fd, idata, work, pairs[r], cap, 0.0)
     return out
 
 
@@ -679,24 +695,20 @@ def certify_rows(Q, fd, idata, work, pairs):
 def certify_one(fd, idata, work, pairs, q, shift):
     """:func:`certify_rows` of one configuration; its open pairs in ``pairs[:-1]``; ``shift``: see :func:`open_pairs_row`.
     (The certifier's arrays first: a checker binds them once, functools.partial.)"""
-    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = scratch_views(idata, work)
-    return open_pairs_row(q, idata, tree_views(fd, idata), block_views(fd, idata), Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs,
-                len(pairs) - 1, shift)
+    return row_code(q, fd, idata, work, pairs, len(pairs) - 1, shift)
 
 
 @njit(cache=True)
 def first_open(qa, qb, n, order, begin, fd, idata, work, pairs):
     """The first position p >= ``begin`` of ``order`` whose configuration qa + (order[p] / n) (qb - qa) is not
     certified (its code in ``pairs[-1]``, its open pairs before), or -1 when all are."""
-    Rs, ps, Rb, pb, centre, sph, done, W, A, gap = scratch_views(idata, work)
-    tree, blocks = tree_views(fd, idata), block_views(fd, idata)
     q = np.empty(len(qa))
     cap = len(pairs) - 1
     for p in range(begin, len(order)):
         t = order[p] / n
         for j in range(len(qa)):
             q[j] = qa[j] + t * (qb[j] - qa[j])
-        c = open_pairs_row(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs, cap, 0.0)
+        c = row_code(q, fd, idata, work, pairs, cap, 0.0)
         if c != 0:
             pairs[-1] = c
             return p
@@ -888,5 +900,5 @@ def sweep_rows(Q, fd, idata, work, above, pairs):
             wait = backoff
         else:
             wait -= 1
-        out[r] = open_pairs_row(Q[r], idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W, A, gap, pairs[r], cap, 0.0)
+        out[r] = row_code(Q[r], fd, idata, work, pairs[r], cap, 0.0)
     return out

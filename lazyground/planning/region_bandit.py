@@ -43,6 +43,7 @@ class StagedBandit:
         self.passed = self.attempts - [sum(st.failures.get(r, 0) for r in hopeless_reasons) for st in stats]
         self.valid = np.array([st.valid for st in stats], float)
         self.blocked = np.zeros(len(stats))  # valid samples whose goal tree stays its root (:meth:`block_sample`)
+        self.aged = np.zeros(len(stats))  # valid samples whose goal tree grew long without connecting (:meth:`age_sample`)
         self._passed, self._valid = float(self.passed.sum()), float(self.valid.sum())  # pooled
 
     def observe(self, j: int, valid: bool, hopeless: bool) -> None:
@@ -59,6 +60,15 @@ class StagedBandit:
         its region goes back among those without a sample, at the rate of its other attempts."""
         self.blocked[j] += 1 if blocked else -1
 
+    def age_sample(self, j: int) -> None:
+        """A valid sample of region ``j`` aged (its goal tree took many steps without meeting the start tree:
+        :mod:`lazyground.planning.blocked`): the region goes back among those without a usable sample, at its own
+        rate (its valid samples still count: the region does yield them, and its next one is another grasp)."""
+        self.aged[j] += 1
+
+    def _usable(self, regions: np.ndarray) -> np.ndarray:
+        return self.valid[regions] - self.blocked[regions] - self.aged[regions] > 0
+
     def scores(self, regions: np.ndarray) -> np.ndarray:
         n, s, v = self.attempts[regions], self.passed[regions], self.valid[regions] - self.blocked[regions]
         pooled = (self._valid + 1) / (self._passed + 2)
@@ -69,7 +79,7 @@ class StagedBandit:
         sample that is not blocked first, deferred ones after the others of their stage, and only those others while
         one of them has had fewer than ``DEFER`` attempts (ties: fewer attempts, then the lower index, as round robin)."""
         regions = np.asarray(open_, int)
-        usable = self.valid[regions] - self.blocked[regions] > 0
+        usable = self._usable(regions)
         first = ~usable & ~self.deferred[regions] & (self.attempts[regions] < DEFER)
         if first.any() and self.deferred[regions].any():  # a bounded head start: DEFER attempts each
             regions, usable = regions[first], usable[first]

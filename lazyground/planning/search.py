@@ -104,10 +104,12 @@ class Search:
         """Count the goal trees that stay their root (a planner with a goal forest calls it before its first
         sample) where the strategy chose the regions and has a ``blocked_after``; else nothing changes."""
         after, chooser = getattr(self.selector, "blocked_after", 0), getattr(self.goals, "chooser", None)
-        if after and chooser is not None:  # (the chooser hears of them: a blocked sample counts as a miss)
-            tell = getattr(chooser, "block_sample", None)
+        if after and chooser is not None:  # (the chooser hears of them: a blocked or aged sample counts as a miss)
+            tell, age = getattr(chooser, "block_sample", None), getattr(chooser, "age_sample", None)
             self.blocked = BlockedTrees(after, None if tell is None else
-                                        lambda gi, blocked: tell(self.samples[gi].region, blocked))
+                                        lambda gi, blocked: tell(self.samples[gi].region, blocked),
+                                        getattr(self.selector, "age_after", 0),
+                                        None if age is None else lambda gi: age(self.samples[gi].region))
 
     def time_left(self) -> bool:
         """Whether the stop condition lets the search go on (one clock reading)."""
@@ -258,7 +260,7 @@ class Search:
         _, n, why = proven_unreachable(self.goals.regions, self.goals.stats)
         if why and all(st.unreachable for st in self.goals.stats):  # one line, not a list of untried regions
             return self.result(PlanStatus.NO_VALID_GOAL, f"no reachable goal: all {n} interpretation(s) proven unreachable "
-                               f"by the {why} (the disc inscribed in the robot's footprint has no way there from the start)")
+                               f"by the {why} (a disc or ball inside the robot's body has no way there from the start)")
         return self.result(PlanStatus.NO_VALID_GOAL, "no valid goal configuration in any goal region: " + self.region_summary())
 
     def _offsets(self) -> list[int]:

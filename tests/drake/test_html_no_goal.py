@@ -19,9 +19,11 @@ def test_html_with_no_valid_goal_exits_1(tmp_path, capsys):
     assert NEAR in line
     scene = tmp_path / "far_can.yaml"
     scene.write_text(text.replace(line, line.replace(NEAR, FAR)))
-    html = tmp_path / "x.html"
-    code = main(["plan", str(scene), "pick up Can1", "--algorithm", "bidirectional", "--time-limit", "1000", "--html", str(html)])
-    out, err = capsys.readouterr()
-    assert code == 1, err
-    assert "status: no_valid_goal" in out and "out of reach" in out
-    assert html.is_file() and html.stat().st_size > 1000
+    for flags, why in (([], "proven unreachable by the reach prior"), (["--no-reach-prior"], "out of reach")):
+        html = tmp_path / f"x{len(flags)}.html"
+        code = main(["plan", str(scene), "pick up Can1", "--algorithm", "bidirectional", "--time-limit", "1000",
+                     "--html", str(html), *flags])
+        out, err = capsys.readouterr()
+        assert code == 1, err
+        assert "status: no_valid_goal" in out and why in out, out
+        assert html.is_file() and html.stat().st_size > 1000

@@ -54,7 +54,13 @@ def test_fetch_no_valid_goal_gives_the_reason_per_region():
                                                      ([0.2, 0.2, 0.01], 0, 0, 0.15)])]
     far_table = moved(TABLE, (3.0, 0.0, 0.6525), "far_table")
     far_can = moved(CAN, (3.0, 0.0, 0.73), "Can2")
-    report = api.plan(fetch_scene(cage, [TABLE, CAN, far_table, far_can]), "pick up a can", seed=0, time_limit=1e6)
+    scene = fetch_scene(cage, [TABLE, CAN, far_table, far_can])
+    # by default the reach prior proves both cans unreachable before any IK attempt (#33): one line
+    proven = api.plan(scene, "pick up a can", seed=0, time_limit=1e6).result
+    assert proven.status is PlanStatus.NO_VALID_GOAL, proven.message
+    assert proven.message.startswith("no reachable goal: all 2 interpretation(s) proven unreachable by the reach prior"), proven.message
+    # without it, IK tries every region and the message gives the reason per region
+    report = api.plan(scene, "pick up a can", seed=0, time_limit=1e6, reach_prior=False)
     res = report.result
     assert res.status is PlanStatus.NO_VALID_GOAL, res.message
     assert res.message.startswith("no valid goal configuration in any goal region: ")
