@@ -145,7 +145,7 @@ def _candidate_balls(world, frame: str) -> list:
     X_FW = np.linalg.inv(kin.matrix(F, world.q_full))
     inspector = world.checker.drake.model().scene_graph().model_inspector()
     out = []
-    for body in _rigid_bodies(plant, F.body(), set(world.planned)):
+    for body in rigid_bodies(plant, F.body(), set(world.planned)):
         best = None
         for g in plant.GetCollisionGeometriesForBody(body):
             inscribed = _inscribed(inspector.GetShape(g))
@@ -160,7 +160,7 @@ def _candidate_balls(world, frame: str) -> list:
     return out[:MAX_BALLS]
 
 
-def _rigid_bodies(plant, body, planned: set[int]) -> list:
+def rigid_bodies(plant, body, planned: set[int]) -> list:
     """The bodies joined to ``body`` by joints none of whose positions is planned (welds, held joints)."""
     joints = [plant.get_joint(j) for j in plant.GetJointIndices()]
     seen, todo = {int(body.index()): body}, [body]

@@ -117,7 +117,8 @@ class Cover:
         if not reasons:
             return None
         self._ik = True
-        return StagedBandit(goals.stats, reasons)
+        deferred = getattr(goals, "blocked_approaches", None)  # regions whose hand cannot back out: tried later
+        return StagedBandit(goals.stats, reasons, deferred() if callable(deferred) else ())
 
     def ik_allowance(self, iterations: int, growing: bool = True) -> float:
         """Goal-sampling attempts allowed by now: ``free_attempts`` plus ``attempts_per_iteration`` per search

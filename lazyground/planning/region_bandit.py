@@ -15,6 +15,7 @@ BLOCK = 16  # regions scheduled at once: each open region at most once per block
 
 
 PRIOR = 8  # stage 2's prior weight, in attempts, at the pooled rate (empirical Bayes)
+DEFER = 2 * BLOCK  # attempts a region that is not deferred gets alone (in blocks of its own) before deferred ones come
 
 
 class StagedBandit:
@@ -34,8 +35,10 @@ class StagedBandit:
     (numpy), once per ``BLOCK`` attempts, not per search iteration.
     """
 
-    def __init__(self, stats: list, hopeless_reasons: tuple[str, ...]):
-        """Args: the source's per-region statistics so far (RegionStats), its hopeless failure reasons."""
+    def __init__(self, stats: list, hopeless_reasons: tuple[str, ...], deferred=()):
+        """Args: the source's per-region statistics so far (RegionStats), its hopeless failure reasons, the regions
+        to try after the others of their stage (e.g. whose hand cannot back out: :mod:`lazyground.drake.approach`)."""
+        self.deferred = np.isin(np.arange(len(stats)), list(deferred))
         self.attempts = np.array([st.attempts for st in stats], float)
         self.passed = self.attempts - [sum(st.failures.get(r, 0) for r in hopeless_reasons) for st in stats]
         self.valid = np.array([st.valid for st in stats], float)
@@ -73,7 +76,13 @@ class StagedBandit:
 
     def block(self, open_: list[int]) -> list[int]:
         """The next regions to try, best first: up to ``BLOCK`` distinct ones among ``open_``, those without a valid
-        sample that is not blocked first (ties: fewer attempts, then the lower index, as round robin)."""
+        sample that is not blocked first, deferred ones after the others of their stage, and only those others while
+        one of them has had fewer than ``DEFER`` attempts (ties: fewer attempts, then the lower index, as round robin)."""
         regions = np.asarray(open_, int)
-        order = np.lexsort((regions, self.attempts[regions], -self.scores(regions), self._usable(regions)))[:BLOCK]
+        usable = self._usable(regions)
+        first = ~usable & ~self.deferred[regions] & (self.attempts[regions] < DEFER)
+        if first.any() and self.deferred[regions].any():  # a bounded head start: DEFER attempts each
+            regions, usable = regions[first], usable[first]
+        keys = (regions, self.attempts[regions], -self.scores(regions), self.deferred[regions], usable)
+        order = np.lexsort(keys)[:BLOCK]
         return [int(j) for j in regions[order]]

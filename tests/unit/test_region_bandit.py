@@ -7,7 +7,7 @@ from lazyground.goals import RoundRobinGoalSource
 from lazyground.planning import PlannerSettings, solve
 from lazyground.planning.cover import Cover
 from lazyground.planning.problem import GoalSample, RegionStats
-from lazyground.planning.region_bandit import BLOCK, StagedBandit
+from lazyground.planning.region_bandit import BLOCK, DEFER, StagedBandit
 from lazyground.planning.stop import never
 from lazyground.regions import ConfigRegion
 from tests.unit.toy import NO_CLOCK, SPACE, START, WALLS, BoxWorld
@@ -114,3 +114,29 @@ def test_without_a_chosen_order_the_allowance_is_the_plain_one():
     c.add([0])
     c.reward(0)
     assert c.ik_allowance(100) == Cover.free_attempts + 100 * Cover.attempts_per_iteration
+
+
+def test_deferred_regions_wait_for_the_others_head_start_then_go_after_them():
+    """Regions whose hand cannot back out (lazyground.drake.approach) get no attempt while a region without a usable
+    sample that is not deferred has had fewer than DEFER; then they come after those of their stage (an order only)."""
+    b = StagedBandit([RegionStats() for _ in range(5)], ("out of reach",), deferred=(0, 1))
+    assert b.block(list(range(5))) == [2, 3, 4]
+    for _ in range(DEFER):  # the others miss DEFER times each: the deferred join, after them
+        for j in (2, 3, 4):
+            b.observe(j, False, False)
+    assert b.block(list(range(5))) == [2, 3, 4, 0, 1]
+    b.observe(2, True, False)  # a region with a usable sample goes last, deferred or not
+    assert b.block(list(range(5))) == [3, 4, 0, 1, 2]
+    c = StagedBandit([RegionStats() for _ in range(3)], ("out of reach",), deferred=(0,))
+    c.observe(1, True, False)
+    c.observe(2, True, False)
+    assert c.block([0, 1, 2]) == [0, 1, 2]  # no head start left to give: the deferred region without a sample first
+    assert StagedBandit([RegionStats() for _ in range(3)], ("out of reach",)).block([0, 1, 2]) == [0, 1, 2]
+
+
+def test_cover_hands_the_sources_blocked_approaches_to_its_chooser():
+    source = Rack(_regions(4), near=4, rate=[0.0] * 4)
+    source.blocked_approaches = lambda: frozenset({0, 2})
+    chooser = Cover().region_chooser(source)
+    assert list(chooser.deferred) == [True, False, True, False]
+    assert chooser.block([0, 1, 2, 3]) == [1, 3]

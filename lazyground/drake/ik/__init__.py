@@ -12,6 +12,7 @@ the world's reach prior proves unreachable (:mod:`lazyground.drake.arm_reach`)
 (:func:`lazyground.goals.register_goal_source`).
 """
 
+from lazyground.drake.approach import blocked_approaches
 from lazyground.drake.ik.reach import reach_map
 from lazyground.drake.ik.settings import DEFAULT_IK_SETTINGS, IKCounters, IKSettings
 from lazyground.drake.ik.source import IKGoalSource, region_coordinates
@@ -23,8 +24,13 @@ __all__ = ["DEFAULT_IK_SETTINGS", "IKCounters", "IKGoalSource", "IKSettings", "r
 
 
 def _ik_source(regions, world, sampling=None) -> IKGoalSource:
-    """The IK source over ``world``, without the regions its reach prior proves unreachable (``reach_prior``)."""
-    return IKGoalSource(regions, world, sampling=sampling, unreachable=reach_prior_drops(regions, world, sampling))
+    """The IK source over ``world``, without the regions its reach prior proves unreachable (``reach_prior``); its
+    ``blocked_approaches()`` lists the regions whose hand cannot back out (computed when a strategy asks:
+    :mod:`lazyground.drake.approach`)."""
+    drops = reach_prior_drops(regions, world, sampling)
+    source = IKGoalSource(regions, world, sampling=sampling, unreachable=drops)
+    source.blocked_approaches = lambda: blocked_approaches(world, tuple(regions), drops)
+    return source
 
 
 register_goal_source((WorkspaceRegion.kind, PlacementRegion.kind), _ik_source)

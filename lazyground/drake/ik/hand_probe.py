@@ -87,7 +87,7 @@ def _build(world, frame: str, max_dp: float, max_angle: float) -> HandProbe:
     kin = world.kinematics
     E = kin.frame(frame)
     X_EW = kin.X_WF(E, world.q_full).inverse()
-    rigid = _rigid_bodies(world, E.body())
+    rigid = rigid_bodies(world, E.body())
     body_of = {g: plant.GetBodyFromFrameId(inspector.GetFrameId(g)) for g in inspector.GetAllGeometryIds(Role.kProximity)}
     points, owners, radii = [], [], []  # probe points in E, the geometry each lies in, the ball radius around it
     for g, body in body_of.items():
@@ -126,7 +126,7 @@ def _build(world, frame: str, max_dp: float, max_angle: float) -> HandProbe:
     return HandProbe(points, Obstacles(R, p, half, rounding, cylinder.astype(bool), limit, hand + np.maximum(reach, 0.0)))
 
 
-def _rigid_bodies(world, body) -> set[int]:
+def rigid_bodies(world, body) -> set[int]:
     """Indices of the robot's bodies whose pose relative to ``body`` no planned coordinate changes."""
     plant, planned = world.plant, set(int(i) for i in world.planned)
 
