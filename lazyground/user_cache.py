@@ -18,7 +18,8 @@ def cache_dir(part: str) -> Path:
 # so a kernel that inlines or calls one from another of these files would keep the old code when only that
 # file changes (a git pull, an upgrade): the caches live in a folder named by a hash of all of them instead.
 KERNEL_SOURCES = ("drake/sphere_kernels.py", "drake/edge_kernel.py", "drake/ik/kernels.py", "planning/linear_kernels.py",
-                  "planning/curves.py", "planning/car_kernels.py", "planning/topk.py")
+                  "planning/curves.py", "planning/car_kernels.py", "planning/topk.py",
+                  "drake/approach_kernel.py")
 
 
 @functools.lru_cache(maxsize=1)

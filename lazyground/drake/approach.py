@@ -18,6 +18,7 @@ import weakref
 import numpy as np
 from pydrake.geometry import Box, Cylinder, Sphere, Capsule
 
+from lazyground.drake.approach_kernel import retreats
 from lazyground.drake.arm_reach import rigid_bodies, solids_3d
 from lazyground.geometry import rpy_to_matrix
 
@@ -64,36 +65,9 @@ def _blocked(world, region, hands: dict, rng: np.random.Generator) -> bool:
     t = (X_WR[:3, :3] @ vs[:, :3].T).T + X_WR[:3, 3] + R @ X_SE[:3, 3]
     p = np.einsum("kij,mj->kmi", R, points) + t[:, None, :]  # (poses, points, 3)
     dw = R @ d  # (poses, 3): each pose's retreat direction in the world
-    return not _retreats(p, dw, steps, solids, reach, keep, tol)
-
-
-def _retreats(p: np.ndarray, dw: np.ndarray, steps: np.ndarray, solids: tuple, reach: np.ndarray, keep: np.ndarray,
-              tol: float) -> bool:
-    """Whether for some pose k the points ``p[k]`` moved by every one of ``steps`` along ``dw[k]`` stay ``tol`` away
-    from the solids (``solids``: stacked centres, axes, half extents, roundings, ``reach`` their bounding half
-    extents; ``keep``: those tested). All poses at once, the steps in chunks of 1, 2, 4, ... (the grasp pose itself
-    first: most blocked poses stop there), each chunk only for the poses not yet blocked."""
-    alive = np.arange(len(p))
-    start, size = 0, 1
-    while start < len(steps) and len(alive):
-        chunk = steps[start:start + size]
-        start, size = start + size, size * 2
-        track = p[alive, None, :, :] + chunk[None, :, None, None] * dw[alive, None, None, :]  # (alive, steps, points, 3)
-        flat = track.reshape(-1, 3)
-        lo, hi = flat.min(axis=0) - tol, flat.max(axis=0) + tol
-        near = keep & np.all(np.abs(np.clip(solids[0], lo, hi) - solids[0]) <= reach, axis=1)
-        if not near.any():
-            continue
-        centres, axes, half, rounding = (a[near] for a in solids)
-        diff = [flat[None, :, j] - centres[:, j, None] for j in range(3)]  # (solids, points) per world axis
-        dd = [abs(diff[0] * axes[:, 0, i, None] + diff[1] * axes[:, 1, i, None] + diff[2] * axes[:, 2, i, None])
-              - half[:, i, None] for i in range(3)]  # per the solid's axis: |local| - half (component-wise: cheap)
-        out = [np.maximum(c, 0.0) for c in dd]
-        inside = np.minimum(np.maximum(np.maximum(dd[0], dd[1]), dd[2]), 0.0)
-        dist = np.sqrt(out[0] ** 2 + out[1] ** 2 + out[2] ** 2) + inside - rounding[:, None]
-        hit = (dist < tol).any(axis=0).reshape(len(alive), -1).any(axis=1)
-        alive = alive[~hit]
-    return bool(len(alive))
+    centres, axes, half, rounding = solids
+    return not retreats(np.ascontiguousarray(p), np.ascontiguousarray(dw), np.asarray(steps, float), centres, axes, half,
+                        rounding, reach, np.asarray(keep, np.bool_), float(tol))
 
 
 def _hand(world, frame: str) -> tuple[np.ndarray, tuple, float]:
