@@ -42,10 +42,29 @@ def make_region(cls, obj, interpretation, label, lower, upper, ee: EndEffectorSp
     if ee is not None:
         fields["frame"] = ee.frame
         if not is_neutral(ee):
-            fields["X_SE"] = fields.get("X_SE", Pose()).compose(X_NT(ee))
-            fields["approach"] = vector_in_tool(ee, fields.get("approach", (0.0, 0.0, 0.0)))
+            fields["X_SE"], fields["approach"] = in_tool(ee, fields.get("X_SE", Pose()), fields.get("approach", (0.0, 0.0, 0.0)))
     return cls(id=f"{obj.id}/{label}", interpretation=interpretation, object=obj.id, label=label,
                lower=tuple(float(v) for v in lower), upper=tuple(float(v) for v in upper), **fields)
+
+
+_IN_TOOL: dict[str, tuple[Pose, tuple[float, float, float]]] = {}
+_IN_TOOL_MAX = 4096  # entries; cleared when full (a scene has a few end effectors and templates)
+
+
+def in_tool(ee: EndEffectorSpec, X_SE: Pose, approach) -> tuple[Pose, tuple[float, float, float]]:
+    """``X_SE`` · X_NT and ``approach`` in the tool frame's axes.
+
+    Both depend only on the end effector and the template's numbers, not on the object's pose, so they are
+    computed once (#33: done per region, they were most of grounding a 64-can rack). The key is the repr of
+    the inputs, exact to the bit (0.0 and -0.0 differ there, as they may in the result).
+    """
+    key = repr((ee, X_SE, approach))
+    out = _IN_TOOL.get(key)
+    if out is None:
+        if len(_IN_TOOL) >= _IN_TOOL_MAX:
+            _IN_TOOL.clear()
+        out = _IN_TOOL[key] = (X_SE.compose(X_NT(ee)), vector_in_tool(ee, approach))
+    return out
 
 
 def fits(width: float, ee: EndEffectorSpec, spec: dict) -> bool:

@@ -36,6 +36,7 @@ def solve(
     seed: int | None = None,
     keep_tree: bool = False,
     stop: StopCondition | None = None,
+    setup_s: float = 0.0,
 ) -> PlanResult:
     """Plan from ``start`` to any goal region of ``goals``.
 
@@ -51,12 +52,14 @@ def solve(
         keep_tree: keep the trees and failed-extension origins for visualisation.
         stop: when to give up (default: ``settings.time_limit`` seconds from now and
             ``settings.max_iterations``); goal sampling shares it.
+        setup_s: seconds already spent making ``goals`` on ``stop``'s clock (its grids, screens and priors),
+            counted in the result's ``time_s`` and ``goal_sampling_s``: the user waited for them too.
 
     Returns:
         A PlanResult; its status says whether a path was found. Every returned
         path has been re-checked at ``settings.resolution / validation_factor``.
     """
-    search = Search(space, checker, goals, settings, rng, seed, keep_tree, stop)
+    search = Search(space, checker, goals, settings, rng, seed, keep_tree, stop, setup_s)
     stop = search.stop
     start = np.asarray(start, float)
     if not space.within_bounds(start):

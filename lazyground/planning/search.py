@@ -63,6 +63,7 @@ class Search:
         seed: int | None,
         keep_tree: bool,
         stop: StopCondition | None = None,
+        setup_s: float = 0.0,
     ):
         self.space, self.checker, self.goals, self.settings, self.rng = space, checker, goals, settings, rng
         if stop is None:  # the settings' own limits, from now
@@ -77,7 +78,8 @@ class Search:
         self.probe_free = getattr(checker, "config_unpadded_free", checker.config_free)
         # a Reeds-Shepp car's straight drive (birrt._extend, birrt._shut_in)
         self.straight_step = space.straight_step if getattr(space, "drives_straight", False) else None
-        self.t0 = stop.now()
+        self.t0 = stop.now() - setup_s  # the goal source's making counts (rrt.solve's setup_s)
+        self.setup_s = setup_s
         self._check_t0, self._sample_t0 = checker.check_time, goals.sample_time
         self._sampling_checks = 0.0  # collision checks made by the goal sampler count as goal sampling
         self._checks0, self._sampling_count = _checks(checker), 0
@@ -232,7 +234,7 @@ class Search:
             goal_samples=self.samples,
             resamplings=self.resamplings,
             time_s=self.stop.now() - self.t0,
-            goal_sampling_s=self.goals.sample_time - self._sample_t0,
+            goal_sampling_s=self.goals.sample_time - self._sample_t0 + self.setup_s,
             collision_s=self.checker.check_time - self._check_t0 - self._sampling_checks,
             message=message,
             regions=tuple(self.goals.regions),

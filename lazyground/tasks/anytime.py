@@ -215,7 +215,7 @@ def improvement_notes(best: Anytime) -> tuple[str, ...]:
             f"({len(best.improvements) - 1} improvement(s)){pruned}",)
 
 
-def best_step(plan: Callable[[object, StopCondition], PlanResult], source_for: Callable[[tuple[GoalRegion, ...]], object],
+def best_step(plan: Callable[[object, StopCondition, float], PlanResult], source_for: Callable[[tuple[GoalRegion, ...]], object],
               regions: tuple[GoalRegion, ...], space, checker, start: np.ndarray, planner: PlannerSettings,
               stop: StopCondition, rng: np.random.Generator,
               finish: Callable[[PlanResult], tuple[PlanResult, object]] | None = None) -> Anytime:
@@ -223,7 +223,8 @@ def best_step(plan: Callable[[object, StopCondition], PlanResult], source_for: C
     start, straight segments joined by :func:`joined_path` and searches with goals from the start.
 
     Args:
-        plan: plans the step to a goal source's goals within a stop condition (e.g. ``planning.rrt.solve``).
+        plan: plans the step to a goal source's goals within a stop condition, given the seconds the source took to
+            make (``planning.rrt.solve``'s ``setup_s``: counted as the search's time).
         source_for: the goal source for some of the step's regions (its ``near``: the step's start).
         regions, space, start, planner, stop: as for :func:`best_of`.
         checker: checks the straight segments joining goal samples.
@@ -235,10 +236,11 @@ def best_step(plan: Callable[[object, StopCondition], PlanResult], source_for: C
     done = finish if finish is not None else (lambda result: (result, None))
 
     def attempt(rs, within, near=False):
-        source = source_for(rs)
+        t0 = within.now()
+        source = source_for(rs)  # (its set-up is the search's time: the user waits for it, #33)
         if near:
             source.seed_near()
-        return done(plan(source, within))
+        return done(plan(source, within, within.now() - t0))
 
     def near(rs, n, within):
         source = source_for(rs)

@@ -164,8 +164,8 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
         candidates = [r for r in grasps if r.object not in excluded]
         if stop.remaining() <= 0 or not candidates:
             break
-        pick = best_step(lambda source, within: solve(world.space, world, source, world.start, planner, rng, seed=seed,
-                                                      keep_tree=keep_tree, stop=within),
+        pick = best_step(lambda source, within, setup_s: solve(world.space, world, source, world.start, planner, rng,
+                                                               seed=seed, keep_tree=keep_tree, stop=within, setup_s=setup_s),
                          lambda rs: goal_source_for(rs, world, settings.goal_sampling), tuple(candidates), world.space,
                          world, world.start, planner, stop.share(), rng)
         notes += [f"pick: {n}" for n in improvement_notes(pick)]
@@ -210,8 +210,9 @@ def run(scene: Scene, g: Grounding, settings: RunSettings, rng: np.random.Genera
             made.near = q_lift  # placements prefer the configuration nearest where the place step starts
             return made
 
-        place = best_step(lambda source, within: solve(carrying.space, carrying, source, lift.q_lift, planner, rng,
-                                                       seed=seed, keep_tree=keep_tree, stop=within),
+        place = best_step(lambda source, within, setup_s: solve(carrying.space, carrying, source, lift.q_lift, planner,
+                                                                rng, seed=seed, keep_tree=keep_tree, stop=within,
+                                                                setup_s=setup_s),
                           placements, targets, carrying.space, carrying, lift.q_lift, planner, share, rng)
         notes += [f"place: {n}" for n in improvement_notes(place)]
         place = place.result

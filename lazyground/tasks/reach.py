@@ -45,8 +45,8 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     space = planning_space(scene, world.space, planner.kinematics)  # a car's curves, or world.space
     stop = StopCondition.after(planner.time_limit, max_iterations=planner.max_iterations, clock=clock, spent=spent)
 
-    best = best_step(lambda source, within: solve(space, world, source, world.start, planner, rng, seed=seed,
-                                                  keep_tree=keep_tree, stop=within),
+    best = best_step(lambda source, within, setup_s: solve(space, world, source, world.start, planner, rng, seed=seed,
+                                                           keep_tree=keep_tree, stop=within, setup_s=setup_s),
                      lambda regions: make_goal_source(world, regions, settings.goal_sampling),
                      tuple(grounding.goal_regions), space, world, world.start, planner, stop, rng,
                      finish=lambda result: post_process(space, world, result, settings, rng))  # shortened and timed

@@ -26,10 +26,9 @@ from dataclasses import dataclass
 
 import numpy as np
 from pydrake.geometry import Box, Capsule, Cylinder, HalfSpace, Role, Sphere
-from pydrake.multibody.tree import JointIndex
 
 from lazyground.drake import compiled
-from lazyground.drake.chain import joints_to_world
+from lazyground.drake.arm_reach import rigid_bodies
 from lazyground.drake.ik import kernels
 from lazyground.drake.solids import solid
 
@@ -87,36 +86,35 @@ def _build(world, frame: str, max_dp: float, max_angle: float) -> HandProbe:
     kin = world.kinematics
     E = kin.frame(frame)
     X_EW = kin.X_WF(E, world.q_full).inverse()
-    rigid = rigid_bodies(world, E.body())
+    rigid = {int(b.index()) for b in rigid_bodies(plant, E.body(), set(int(i) for i in world.planned))
+             if b.model_instance() == world.robot}  # a held object's shapes are not the hand's
     body_of = {g: plant.GetBodyFromFrameId(inspector.GetFrameId(g)) for g in inspector.GetAllGeometryIds(Role.kProximity)}
-    points, owners, radii = [], [], []  # probe points in E, the geometry each lies in, the ball radius around it
-    for g, body in body_of.items():
-        if body is not None and int(body.index()) in rigid:
-            X_EG = (X_EW @ kin.X_WF(body.body_frame(), world.q_full) @ inspector.GetPoseInFrame(g)).GetAsMatrix4()
-            for p, rho in _probe_balls(inspector.GetShape(g)):
-                points.append(X_EG[:3, :3] @ p + X_EG[:3, 3])
-                owners.append(g)
-                radii.append(rho)
-    points, radii = np.array(points).reshape(-1, 3), np.array(radii)
+    hands = [g for g, body in body_of.items() if body is not None and int(body.index()) in rigid]
+    points, owners, radii = [], [], []  # probe points in E, the hand geometry (its index in hands) each lies in, the ball radius around it
+    for h, g in enumerate(hands):
+        X_EG = (X_EW @ kin.X_WF(body_of[g].body_frame(), world.q_full) @ inspector.GetPoseInFrame(g)).GetAsMatrix4()
+        for p, rho in _probe_balls(inspector.GetShape(g)):
+            points.append(X_EG[:3, :3] @ p + X_EG[:3, 3])
+            owners.append(h)
+            radii.append(rho)
+    points, owners, radii = np.array(points).reshape(-1, 3), np.array(owners, int), np.array(radii)
     moved = max_dp + max_angle * np.linalg.norm(points, axis=1) + PROBE_SLACK  # how far an answer may move each point
-    pairs = {}  # obstacle geometry -> the hand geometries it is checked against
-    for ga, gb in inspector.GetCollisionCandidates():
-        for g_hand, g_env in ((ga, gb), (gb, ga)):
-            hand, env = body_of.get(g_hand), body_of.get(g_env)
-            if (hand is not None and env is not None and int(hand.index()) in rigid and not checker.IsPartOfRobot(env)
-                    and plant.IsAnchored(env) and not checker.IsCollisionFilteredBetween(hand, env)):
-                pairs.setdefault(g_env, set()).add(g_hand)
     rows = []
     context = plant.CreateDefaultContext()  # obstacles are anchored: any context has their pose
-    for g_env, hands in pairs.items():
+    for g_env, env in body_of.items():  # the pairs the checker checks: not filtered in SceneGraph nor by the checker
+        if env is None or checker.IsPartOfRobot(env) or not plant.IsAnchored(env):
+            continue
+        pairs = [(h, g) for h, g in enumerate(hands) if not inspector.CollisionFiltered(g, g_env)
+                 and not checker.IsCollisionFilteredBetween(body_of[g], env)]
         shape = inspector.GetShape(g_env)
-        if not isinstance(shape, EXACT):
+        if not pairs or not isinstance(shape, EXACT):
             continue  # a mesh or ellipsoid: its solid is the box around it, whose distance is no upper bound
-        env = body_of[g_env]
         X_WS = (plant.EvalBodyPoseInWorld(context, env) @ inspector.GetPoseInFrame(g_env)).GetAsMatrix4()
         centre, half, rounding, cylinder = solid(shape)
-        padding = {g: checker.GetPaddingBetween(body_of[g], env) for g in hands}
-        limit = np.array([padding.get(g, -np.inf) for g in owners]) - moved + radii
+        padding = np.full(len(hands), -np.inf)
+        for h, g in pairs:
+            padding[h] = checker.GetPaddingBetween(body_of[g], env)
+        limit = padding[owners] - moved + radii
         rows.append((X_WS[:3, :3], X_WS[:3, :3] @ centre + X_WS[:3, 3], half, rounding, cylinder, limit))
     if not rows:
         return HandProbe(points, None)
@@ -124,26 +122,6 @@ def _build(world, frame: str, max_dp: float, max_angle: float) -> HandProbe:
     reach = np.max(np.where(np.isfinite(limit), limit, 0.0), axis=1, initial=0.0)  # a point this far out may still reject
     hand = float(np.max(np.linalg.norm(points, axis=1), initial=0.0))
     return HandProbe(points, Obstacles(R, p, half, rounding, cylinder.astype(bool), limit, hand + np.maximum(reach, 0.0)))
-
-
-def rigid_bodies(world, body) -> set[int]:
-    """Indices of the robot's bodies whose pose relative to ``body`` no planned coordinate changes."""
-    plant, planned = world.plant, set(int(i) for i in world.planned)
-
-    def moving(joint) -> bool:
-        return any(joint.position_start() + k in planned for k in range(joint.num_positions()))
-
-    up = {int(j.index()) for j in joints_to_world(plant, body)}
-    out = set()
-    for index in plant.GetBodyIndices(world.robot):
-        other = plant.get_body(index)
-        try:
-            between = up ^ {int(j.index()) for j in joints_to_world(plant, other)}  # the joints on the path between the two
-        except ValueError:
-            continue
-        if not any(moving(plant.get_joint(JointIndex(j))) for j in between):
-            out.add(int(index))
-    return out
 
 
 def _probe_balls(shape) -> list[tuple[np.ndarray, float]]:
