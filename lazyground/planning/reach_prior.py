@@ -76,17 +76,18 @@ class ReachGrid:
     def cells(self, lower, upper) -> tuple[slice, ...]:
         """The index ranges of the cells meeting the closed box [lower, upper] (clipped to the grid:
         a box beyond it meets the free ring)."""
-        top = np.array(self.labels.shape) - 1
-        lo = np.clip(np.floor((np.asarray(lower, float) - self.origin) / self.cell).astype(int), 0, top)
-        hi = np.clip(np.floor((np.asarray(upper, float) - self.origin) / self.cell).astype(int), 0, top)
+        lo, hi = self.index(lower), self.index(upper)
         return tuple(slice(a, b + 1) for a, b in zip(lo, hi))
+
+    def index(self, points) -> np.ndarray:
+        """The indices of the cells holding ``points`` (n values, or m rows of them), clipped to the grid."""
+        top = np.array(self.labels.shape) - 1
+        return np.clip(np.floor((np.asarray(points, float) - self.origin) / self.cell).astype(int), 0, top)
 
     def meets(self, lower, upper, components) -> np.ndarray:
         """Whether some cell meeting each box [lower[i], upper[i]] (m, n) lies in one of ``components`` (the cells
         as :meth:`cells` finds them, for m boxes at once)."""
-        top = np.array(self.labels.shape) - 1
-        lo = np.clip(np.floor((np.asarray(lower, float) - self.origin) / self.cell).astype(int), 0, top)
-        hi = np.clip(np.floor((np.asarray(upper, float) - self.origin) / self.cell).astype(int), 0, top) + 1
+        lo, hi = self.index(lower), self.index(upper) + 1
         wanted = sorted(k for k in components if k)
         out = np.zeros(len(lo), bool)
         for i, (a, b) in enumerate(zip(lo.tolist(), hi.tolist())):
@@ -101,10 +102,7 @@ class ReachGrid:
 
     def blocked(self, points) -> np.ndarray:
         """Whether each point (m, n) lies in a blocked cell (its ball provably hits an obstacle)."""
-        p = np.atleast_2d(np.asarray(points, float))
-        top = np.array(self.labels.shape) - 1
-        idx = np.clip(np.floor((p - self.origin) / self.cell).astype(int), 0, top)
-        return self.labels[tuple(idx.T)] == 0
+        return self.labels[tuple(self.index(np.atleast_2d(np.asarray(points, float))).T)] == 0
 
 
 def reach_grid(lower, upper, radius: float, solids: list[Solid], cell: float, bounded: bool = False,
