@@ -19,7 +19,6 @@ longest travel, fixed offsets their length), so a region beyond it is dropped to
 from __future__ import annotations
 
 import math
-import struct
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,7 +28,7 @@ from pydrake.multibody.tree import BallRpyJoint, PrismaticJoint, RevoluteJoint, 
 from lazyground.drake.chain import joints_to_world
 from lazyground.drake.reach_prior import candidate_obstacles
 from lazyground.drake.solids import FAR
-from lazyground.geometry import Pose
+from lazyground.geometry import MatrixMemo, Pose
 from lazyground.planning.reach_prior import ReachGrid, Solid, placed_boxes, reach_grid, turned_point_box
 from lazyground.planning.stop import default_clock
 from lazyground.robots.end_effector import frame_of
@@ -114,14 +113,7 @@ class ArmReach:
         The boxes of all regions at once, each turned point's box once per shape of region (frame, X_ST, angles)."""
         out = [True] * len(regions)
         todo: dict[str, list] = {}  # frame -> [(index, key, X_WR, X_ST, lower, span)]
-        attached, mats = getattr(self.world, "attached", None), {}
-
-        def matrix(pose: Pose) -> np.ndarray:  # a request's regions share most poses (keyed by their bits: -0.0 too)
-            bits = struct.pack("6d", *pose.xyz, *pose.rpy)
-            if bits not in mats:
-                mats[bits] = pose.matrix()
-            return mats[bits]
-
+        attached, matrix = getattr(self.world, "attached", None), MatrixMemo()
         for j, region in enumerate(regions):
             if not hasattr(region, "X_WR"):
                 continue
