@@ -124,7 +124,8 @@ def _cell(x, lo, inv, n):
 def _near_obstacles(g, cx, cy, cz, ac, ah, reach2, grid, gap, cand):
     """The obstacles whose pair with geometry g (bounding-sphere centre c) passes the first test (the sphere
     against the world box; reach2: (radius + threshold)^2, or -1 for a pair Drake does not check), in ascending
-    order into ``cand``; returns their count. Without a grid: every obstacle at once (no branches: vectorised)."""
+    order into ``cand``; returns their count. Without a grid: every obstacle's gap at once into ``gap`` (no
+    branches: vectorised; the caller skips those above 0), and returns -1."""
     glo, ginv, greach, gdim, gstart, gitem, gcell = grid
     O = len(gap)
     n = 0
@@ -134,10 +135,7 @@ def _near_obstacles(g, cx, cy, cz, ac, ah, reach2, grid, gap, cand):
             dy = max(abs(cy - ac[1, o]) - ah[1, o], 0.0)
             dz = max(abs(cz - ac[2, o]) - ah[2, o], 0.0)
             gap[o] = dx * dx + dy * dy + dz * dz - reach2[g, o]
-        for o in range(O):
-            cand[n] = o
-            n += gap[o] <= 0.0
-        return n
+        return -1
     r = greach[g]
     i0, i1 = _cell(cx - r, glo[0], ginv[0], gdim[0]), _cell(cx + r, glo[0], ginv[0], gdim[0])
     j0, j1 = _cell(cy - r, glo[1], ginv[1], gdim[1]), _cell(cy + r, glo[1], ginv[1], gdim[1])
@@ -377,8 +375,14 @@ def open_pairs_row(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W,
     for last in range(G):
         g = G - 1 - last  # the geometries far down the tree first: they collide most (edge ends: ~10 % sooner, #31)
         cx, cy, cz, rg = centre[g, 0], centre[g, 1], centre[g, 2], grad[g]
-        for c in range(_near_obstacles(g, cx, cy, cz, ac, ah, reach2, grid, gap, cand)):
-            o = int(cand[c])
+        near = _near_obstacles(g, cx, cy, cz, ac, ah, reach2, grid, gap, cand)
+        for c in range(O if near < 0 else near):
+            if near < 0:
+                o = c
+                if gap[o] > 0.0:
+                    continue
+            else:
+                o = int(cand[c])
             thr = env[g, o]
             vx, vy, vz = cx - oo[o, 0], cy - oo[o, 1], cz - oo[o, 2]
             if _offset_distance(vx, vy, vz, oR[o], ohalf[o], oround[o], ocyl[o]) - rg - thr > 0.0:
