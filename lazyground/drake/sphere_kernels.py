@@ -368,8 +368,7 @@ def open_pairs_row(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W,
     (gR, go, ghalf, ground, grad, sc, sr, oR, oo, ohalf, oround, ac, ah, reach2, env, sthr, ic, ir, below, node, start,
      gcyl, ocyl, mover, other, istart, gexact, oexact, grid) = blocks
     _centres(node, go, Rb, pb, centre)
-    cand = gap[O:]
-    gap = gap[:O]
+    gap, cand = gap[0], gap[1]  # (rows of a C array: contiguous, so the gap loop stays vectorised)
     done[:] = 0.0
     count = 0
     for last in range(G):
@@ -756,7 +755,7 @@ def scratch_views(idata, work):
     a += 9
     A = _grid(work, a, 3, 3)
     a += 9
-    gap = c_view(work, a, (2 * idata[_O],))  # per obstacle its first test's gap, then the obstacles passing it
+    gap = _grid(work, a, 2, idata[_O])  # per obstacle its first test's gap; the obstacles passing it
     Rs[0] = 0.0
     Rs[0, 0, 0] = Rs[0, 1, 1] = Rs[0, 2, 2] = 1.0
     ps[0] = 0.0
