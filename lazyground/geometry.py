@@ -8,6 +8,7 @@ convention as Drake's ``RollPitchYaw`` and URDF.
 from __future__ import annotations
 
 import math
+import struct
 from dataclasses import dataclass
 
 import numpy as np
@@ -60,6 +61,20 @@ def quaternion_xyzw_to_matrix(q) -> np.ndarray:
 def wrap_angle(a):
     """Wrap angles to [-pi, pi)."""
     return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
+
+
+class MatrixMemo:
+    """:meth:`Pose.matrix` of poses keyed by their bits (-0.0 kept apart from 0.0), for one pass over many regions
+    that share most poses (a request's grasp regions). The arrays it returns are shared: read them only."""
+
+    def __init__(self):
+        self._matrices: dict[bytes, np.ndarray] = {}
+
+    def __call__(self, pose: "Pose") -> np.ndarray:
+        bits = struct.pack("6d", *pose.xyz, *pose.rpy)
+        if bits not in self._matrices:
+            self._matrices[bits] = pose.matrix()
+        return self._matrices[bits]
 
 
 @dataclass(frozen=True)

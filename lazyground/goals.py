@@ -317,7 +317,7 @@ def reach_prior_drops(regions, world, sampling: GoalSamplingSettings | None = No
     prior = build() if sampling.reach_prior and callable(build) else None
     if prior is None:
         return {}
-    return {j: REACH_PRIOR for j, r in enumerate(regions) if not prior.keeps(r)}
+    return {j: REACH_PRIOR for j, kept in enumerate(prior.keeps_all(tuple(regions))) if not kept}
 
 
 register_goal_source((ConfigRegion.kind,), _config_source)

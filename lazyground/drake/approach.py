@@ -14,13 +14,15 @@ from __future__ import annotations
 
 import math
 import weakref
+from dataclasses import dataclass
 
 import numpy as np
 from pydrake.geometry import Box, Cylinder, Sphere, Capsule
 
 from lazyground.drake.approach_kernel import retreats
 from lazyground.drake.arm_reach import rigid_bodies, solids_3d
-from lazyground.geometry import rpy_to_matrix
+from lazyground.geometry import rpy_to_matrices
+from lazyground.robots.end_effector import frame_of
 
 STEP = 0.03  # m: spacing of the retreat's steps and of the points on the hand's surfaces; a point counts as in collision
 # within STEP / 2 (no board thinner than a step skipped; a coarse, cheap test: it only orders regions)
@@ -28,51 +30,96 @@ SPACING = STEP
 POSES = 23  # seeded samples per region, besides its centre (a side grasp's yaw: ~1/8 of its range faces out of a cubby)
 
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()  # world -> {(regions, skip): flags}
+_HANDS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()  # world -> {frame: Hand}
+
+
+@dataclass(frozen=True)
+class Hand:
+    """A frame's hand in a world: points on the surfaces of the bodies rigid with the frame (in its axes), the world's
+    shapes any of them is checked against (stacked solids, each solid's owner: an index into ``names``, the owning
+    shape's name) and the collision tolerance (STEP / 2 + the largest body-world padding)."""
+
+    points: np.ndarray
+    names: dict[str, int]
+    owners: np.ndarray  # (solids,) int
+    solids: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]  # centres, axes, half extents, roundings
+    reach: np.ndarray  # (solids, 3): their bounding half extents
+    tol: float
 
 
 def blocked_approaches(world, regions: tuple, skip=(), rng: np.random.Generator | None = None) -> frozenset[int]:
     """The indices of ``regions`` whose every tested pose's retreat along the approach is blocked (cached per world,
     regions and ``skip``; ``skip``: indices not tested, e.g. those the reach prior drops). Regions without an approach,
-    or that are not workspace (end-effector) regions, are never flagged."""
+    or that are not workspace (end-effector) regions, are never flagged. The poses are drawn region by region in
+    order; all regions of a frame are tested in one compiled call."""
     cache = _CACHE.setdefault(world, {})
     key = (regions, frozenset(skip))
-    if key not in cache:
+    flags = cache.get(key)  # (hashing 256 regions costs ~1 ms: once to look up, once to store)
+    if flags is None:
         rng = np.random.default_rng(0) if rng is None else rng
-        hands: dict = {}
-        cache[key] = frozenset(j for j, r in enumerate(regions)
-                               if j not in key[1] and _blocked(world, r, hands, rng))
-    return cache[key]
+        tests: dict[str, list] = {}  # frame -> [(index, d, steps, X_WR, X_SE, poses, owner)]
+        for j, region in enumerate(regions):
+            test = None if j in key[1] else _test(world, region, rng)
+            if test is not None:
+                tests.setdefault(region.frame, []).append((j, *test))
+        flags = cache[key] = frozenset(j for frame, rows in tests.items() for j in _blocked(hand(world, frame), rows))
+    return flags
 
 
-def _blocked(world, region, hands: dict, rng: np.random.Generator) -> bool:
+def _test(world, region, rng: np.random.Generator) -> tuple | None:
+    """(direction, steps, X_WR, X_SE, poses, owner) of ``region``'s test, its poses drawn from ``rng``; None when the
+    region is not tested."""
     a = np.asarray(getattr(region, "approach", (0.0, 0.0, 0.0)), float)
     if getattr(region, "kind", "") != "workspace" or not np.any(a) or not world.plant.HasFrameNamed(region.frame):
-        return False
-    if region.frame not in hands:
-        hands[region.frame] = _hand(world, region.frame)
-    points, (names, solids, reach), tol = hands[region.frame]
-    keep = names != region.object  # not the grasped object: the hand closes on it
-    if not len(points) or not keep.any():
-        return False
+        return None
+    h = hand(world, region.frame)
+    owner = h.names.get(region.object, -1)  # not the grasped object: the hand closes on it
+    if not len(h.points) or not np.any(h.owners != owner):
+        return None
     d = a / np.linalg.norm(a)  # in the frame's axes (a workspace region's target is the frame)
-    along = points @ d
+    along = h.points @ d
     length = float(along.max() - along.min())  # the hand's extent along the axis: how far it must back out
-    steps = np.arange(int(math.ceil(length / STEP)) + 1) * STEP
     lower, span, _ = region.unit_map()
-    X_WR, X_SE = region.X_WR.matrix(), region.X_SE.matrix()
-    vs = np.vstack([lower + span / 2, lower + span * rng.random((POSES, len(span)))])
-    R = np.stack([X_WR[:3, :3] @ rpy_to_matrix(v[3:6]) @ X_SE[:3, :3] for v in vs])  # region.pose_in_world(v)
-    t = (X_WR[:3, :3] @ vs[:, :3].T).T + X_WR[:3, 3] + R @ X_SE[:3, 3]
-    p = np.einsum("kij,mj->kmi", R, points) + t[:, None, :]  # (poses, points, 3)
-    dw = R @ d  # (poses, 3): each pose's retreat direction in the world
-    centres, axes, half, rounding = solids
-    return not retreats(np.ascontiguousarray(p), np.ascontiguousarray(dw), np.asarray(steps, float), centres, axes, half,
-                        rounding, reach, np.asarray(keep, np.bool_), float(tol))
+    vs = np.empty((POSES + 1, len(span)))
+    vs[0], vs[1:] = lower + span / 2, lower + span * rng.random((POSES, len(span)))  # the centre and seeded samples
+    return d, int(math.ceil(length / STEP)) + 1, region.X_WR.matrix(), region.X_SE.matrix(), vs, owner
 
 
-def _hand(world, frame: str) -> tuple[np.ndarray, tuple, float]:
-    """(points on the surfaces of the bodies rigid with ``frame``, in its axes; (names, solids, centres, bounding
-    half extents) of the world's shapes any of them is checked against; the collision tolerance: STEP / 2 + the largest body-world padding)."""
+def _blocked(h: Hand, rows: list) -> list[int]:
+    """The indices of the tested regions ``rows`` (one frame's, :func:`_test`) none of whose poses backs out."""
+    d, X_WR, X_SE, vs = (np.stack([r[k] for r in rows]) for k in (1, 3, 4, 5))
+    R = X_WR[:, None, :3, :3] @ rpy_to_matrices(vs[..., 3:6].reshape(-1, 3)).reshape(vs.shape[:2] + (3, 3)) \
+        @ X_SE[:, None, :3, :3]  # (regions, poses, 3, 3): region.pose_in_world(v)
+    t = (X_WR[:, :3, :3] @ vs[..., :3].transpose(0, 2, 1)).transpose(0, 2, 1) + X_WR[:, None, :3, 3] \
+        + (R @ X_SE[:, None, :3, 3, None])[..., 0]
+    p = np.einsum("rkij,mj->rkmi", R, h.points) + t[:, :, None, :]  # (regions, poses, points, 3)
+    dw = (R @ d[:, None, :, None])[..., 0]  # (regions, poses, 3): each pose's retreat direction in the world
+    steps, owners = np.array([r[2] for r in rows], np.int64), np.array([r[6] for r in rows], np.int64)
+    free = retreats(np.ascontiguousarray(p), np.ascontiguousarray(dw), steps, STEP, *h.solids, h.reach, h.owners,
+                    owners, float(h.tol))
+    return [r[0] for r, f in zip(rows, free) if not f]
+
+
+def hand(world, frame: str) -> Hand:
+    """``frame``'s :class:`Hand` in ``world`` (built once per world and frame: the world's set-up builds its end
+    effector's, :func:`warm_hand`)."""
+    hands = _HANDS.setdefault(world, {})
+    if frame not in hands:
+        hands[frame] = _hand(world, frame)
+    return hands[frame]
+
+
+def warm_hand(world) -> None:
+    """Build ``world``'s end effector's :class:`Hand` now (set-up), when its robot has one."""
+    try:
+        frame = frame_of(world.scene.robot)
+    except ValueError:  # a SceneError: the robot.yaml beside the model is invalid
+        return
+    if frame and world.plant.HasFrameNamed(frame):
+        hand(world, frame)
+
+
+def _hand(world, frame: str) -> Hand:
     kin, plant, drake = world.kinematics, world.plant, world.checker.drake
     F = kin.frame(frame)
     X_FW = np.linalg.inv(kin.matrix(F, world.q_full))
@@ -95,12 +142,13 @@ def _hand(world, frame: str) -> tuple[np.ndarray, tuple, float]:
                     seen.add(o)
                     name = inspector.GetName(o).split("::")[-1]
                     solids += [(name, s) for s in solids_3d(inspector.GetShape(o), inspector.GetPoseInFrame(o).GetAsMatrix4()) or []]
-    names = np.array([n for n, _ in solids], dtype=object)
+    names = {n: i for i, n in enumerate(dict.fromkeys(n for n, _ in solids))}
     stacked = (np.array([s.centre for _, s in solids], float).reshape(-1, 3),
                np.array([np.eye(3) if s.axes is None else s.axes for _, s in solids], float).reshape(-1, 3, 3),
                np.array([s.half for _, s in solids], float).reshape(-1, 3), np.array([s.rounding for _, s in solids], float))
-    table = (names, stacked, np.array([s.reach() for _, s in solids], float).reshape(-1, 3))
-    return (np.concatenate(points) if points else np.zeros((0, 3))), table, STEP / 2 + padding
+    return Hand(np.concatenate(points) if points else np.zeros((0, 3)), names,
+                np.array([names[n] for n, _ in solids], np.int64), stacked,
+                np.array([s.reach() for _, s in solids], float).reshape(-1, 3), STEP / 2 + padding)
 
 
 def surface_points(shape, spacing: float) -> np.ndarray | None:

@@ -28,8 +28,8 @@ from pydrake.multibody.tree import BallRpyJoint, PrismaticJoint, RevoluteJoint, 
 from lazyground.drake.chain import joints_to_world
 from lazyground.drake.reach_prior import candidate_obstacles
 from lazyground.drake.solids import FAR
-from lazyground.geometry import Pose
-from lazyground.planning.reach_prior import ReachGrid, Solid, pose_centre_box, reach_grid
+from lazyground.geometry import MatrixMemo, Pose
+from lazyground.planning.reach_prior import ReachGrid, Solid, placed_boxes, reach_grid, turned_point_box
 from lazyground.planning.stop import default_clock
 from lazyground.robots.end_effector import frame_of
 
@@ -60,9 +60,11 @@ class Ball:
         gap = np.linalg.norm(np.clip(points, lower, upper) - points, axis=1)
         return bool(np.all(gap > radius + np.linalg.norm(b - a) / 200))
 
-    def reaches(self, lower, upper) -> bool:
-        """Whether some cell of the box [lower, upper] of ball centres lies in the start's component."""
-        return self.grid is None or not self.start or bool(self.grid.components(lower, upper) & self.start)
+    def reaches(self, lower, upper) -> np.ndarray:
+        """Whether some cell of each box [lower[i], upper[i]] (m, 3) of ball centres lies in the start's component."""
+        if self.grid is None or not self.start:
+            return np.ones(len(lower), bool)
+        return self.grid.meets(lower, upper, self.start)
 
 
 class ArmReach:
@@ -102,18 +104,47 @@ class ArmReach:
         return self._built[body.name()]
 
     def keeps(self, region) -> bool:
-        """Whether ``region`` (a pose region) may be reached: False only when, for one ball, no cell of the box of its
-        centres over the region's poses lies in the start's component. Other regions are kept."""
-        if not hasattr(region, "X_WR"):
-            return True
-        frame, X_ET = region.robot_target(Pose(), getattr(self.world, "attached", None))
-        X_WR, X_ST = region.X_WR.matrix(), region.X_SE.matrix() @ X_ET.matrix()
-        lower, span, _ = region.unit_map()
-        # a request builds its regions anew: the same numbers give the same answer (#31: ~13 ms a Fetch request)
-        key = (frame, X_WR.tobytes(), X_ST.tobytes(), np.asarray(lower, float).tobytes(), np.asarray(span, float).tobytes())
-        if key not in self._kept:
-            self._kept[key] = all(ball.reaches(*pose_centre_box(X_WR, X_ST, p_T, lower, span)) for ball, p_T in self.balls(frame))
-        return self._kept[key]
+        """Whether ``region`` may be reached (:meth:`keeps_all` of it alone)."""
+        return self.keeps_all((region,))[0]
+
+    def keeps_all(self, regions) -> list[bool]:
+        """Whether each of ``regions`` may be reached: False only for a pose region for one ball of which no cell of
+        the box of its centres over the region's poses lies in the start's component. Other regions are kept.
+        The boxes of all regions at once, each turned point's box once per shape of region (frame, X_ST, angles)."""
+        out = [True] * len(regions)
+        todo: dict[str, list] = {}  # frame -> [(index, key, X_WR, X_ST, lower, span)]
+        attached, matrix = getattr(self.world, "attached", None), MatrixMemo()
+        for j, region in enumerate(regions):
+            if not hasattr(region, "X_WR"):
+                continue
+            frame, X_ET = region.robot_target(Pose(), attached)
+            X_WR, X_ST = matrix(region.X_WR), matrix(region.X_SE) @ matrix(X_ET)
+            lower, span, _ = region.unit_map()
+            # a request builds its regions anew: the same numbers give the same answer (#31: ~13 ms a Fetch request)
+            key = (frame, X_WR.tobytes(), X_ST.tobytes(), lower.tobytes(), span.tobytes())
+            if key in self._kept:
+                out[j] = self._kept[key]
+            else:
+                todo.setdefault(frame, []).append((j, key, X_WR, X_ST, lower, span))
+        for frame, rows in todo.items():
+            X_WR, lower, span = (np.stack([r[k] for r in rows]) for k in (2, 4, 5))
+            kept = np.ones(len(rows), bool)
+            shapes = [(r[3].tobytes(), r[4][3:].tobytes(), r[5][3:].tobytes()) for r in rows]  # X_ST and angles
+            for ball, p_T in self.balls(frame):
+                left = np.flatnonzero(kept)  # a region one ball cannot reach is dropped: the next ball only tests the rest
+                if not len(left):
+                    break
+                turned = {}  # shape -> the turned point's box
+                for i in left:
+                    if shapes[i] not in turned:
+                        turned[shapes[i]] = turned_point_box(rows[i][3], p_T, rows[i][4], rows[i][5])
+                boxes = [turned[shapes[i]] for i in left]
+                lo, hi = placed_boxes(np.array([b[0] for b in boxes]).reshape(-1, 3), np.array([b[1] for b in boxes]).reshape(-1, 3),
+                                      lower[left], span[left], X_WR[left])
+                kept[left] = ball.reaches(lo, hi)
+            for (j, key, *_), k in zip(rows, kept.tolist()):
+                out[j] = self._kept[key] = k
+        return out
 
     def centres(self, frame: str, qs) -> np.ndarray:
         """The centres (m, balls, 3) of ``frame``'s balls at planned configurations ``qs`` (m, dim)."""

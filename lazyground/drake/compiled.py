@@ -53,8 +53,9 @@ def warm_up() -> float:
     planner_compiled = linear_kernels.warm_up()[1]
     from lazyground.drake import approach_kernel  # cover's approach-clearance test (lazyground.drake.approach)
 
-    approach_kernel.retreats(np.zeros((1, 1, 3)), np.zeros((1, 3)), np.zeros(1), np.zeros((1, 3)), np.eye(3)[None],
-                             np.zeros((1, 3)), np.zeros(1), np.zeros((1, 3)), np.ones(1, np.bool_), 0.01)
+    approach_kernel.retreats(np.zeros((1, 1, 1, 3)), np.zeros((1, 1, 3)), np.ones(1, np.int64), 0.03, np.zeros((1, 3)),
+                             np.eye(3)[None], np.zeros((1, 3)), np.zeros(1), np.zeros((1, 3)), np.zeros(1, np.int64),
+                             np.full(1, -1, np.int64), 0.01)
     planner_compiled = planner_compiled or bool(sum(approach_kernel.retreats.stats.cache_misses.values()))
     _compile_s = time.perf_counter() - t0
     _compiled_now = ik_compiled or planner_compiled or any(sum(k.stats.cache_misses.values()) for k in (

@@ -76,10 +76,24 @@ class ReachGrid:
     def cells(self, lower, upper) -> tuple[slice, ...]:
         """The index ranges of the cells meeting the closed box [lower, upper] (clipped to the grid:
         a box beyond it meets the free ring)."""
-        top = np.array(self.labels.shape) - 1
-        lo = np.clip(np.floor((np.asarray(lower, float) - self.origin) / self.cell).astype(int), 0, top)
-        hi = np.clip(np.floor((np.asarray(upper, float) - self.origin) / self.cell).astype(int), 0, top)
+        lo, hi = self.index(lower), self.index(upper)
         return tuple(slice(a, b + 1) for a, b in zip(lo, hi))
+
+    def index(self, points) -> np.ndarray:
+        """The indices of the cells holding ``points`` (n values, or m rows of them), clipped to the grid."""
+        top = np.array(self.labels.shape) - 1
+        return np.clip(np.floor((np.asarray(points, float) - self.origin) / self.cell).astype(int), 0, top)
+
+    def meets(self, lower, upper, components) -> np.ndarray:
+        """Whether some cell meeting each box [lower[i], upper[i]] (m, n) lies in one of ``components`` (the cells
+        as :meth:`cells` finds them, for m boxes at once)."""
+        lo, hi = self.index(lower), self.index(upper) + 1
+        wanted = sorted(k for k in components if k)
+        out = np.zeros(len(lo), bool)
+        for i, (a, b) in enumerate(zip(lo.tolist(), hi.tolist())):
+            cells = self.labels[tuple(map(slice, a, b))]
+            out[i] = any((cells == k).any() for k in wanted)
+        return out
 
     def components(self, lower, upper) -> set[int]:
         """The components of the free cells meeting the box [lower, upper]."""
@@ -88,10 +102,7 @@ class ReachGrid:
 
     def blocked(self, points) -> np.ndarray:
         """Whether each point (m, n) lies in a blocked cell (its ball provably hits an obstacle)."""
-        p = np.atleast_2d(np.asarray(points, float))
-        top = np.array(self.labels.shape) - 1
-        idx = np.clip(np.floor((p - self.origin) / self.cell).astype(int), 0, top)
-        return self.labels[tuple(idx.T)] == 0
+        return self.labels[tuple(self.index(np.atleast_2d(np.asarray(points, float))).T)] == 0
 
 
 def reach_grid(lower, upper, radius: float, solids: list[Solid], cell: float, bounded: bool = False,
@@ -201,14 +212,33 @@ def pose_centre_box(X_WR: np.ndarray, X_ST: np.ndarray, p_T, lower, span) -> tup
     """The bounding box of the points X_WR · X_RS(v) · X_ST · p_T over every v = (x, y, z, roll, pitch, yaw) of the
     box from ``lower`` spanning ``span`` (a pose region's :meth:`unit_map`; X_RS(v) turns by extrinsic roll, pitch,
     yaw): the point turned about x, y, then z over each angle's range, plus the box of positions, mapped by X_WR."""
+    lo, hi = turned_point_box(X_ST, p_T, lower, span)
+    lower, span, X_WR = (np.asarray(a, float)[None] for a in (lower, span, X_WR))
+    lo, hi = placed_boxes(lo[None], hi[None], lower, span, X_WR)
+    return lo[0], hi[0]
+
+
+def turned_point_box(X_ST: np.ndarray, p_T, lower, span) -> tuple[np.ndarray, np.ndarray]:
+    """The bounding box of X_ST · p_T turned about x, y, then z over each angle's range of ``lower``, ``span`` (the
+    first step of :func:`pose_centre_box`: it does not depend on the region's frame or positions)."""
     q = (np.asarray(X_ST, float) @ np.append(np.asarray(p_T, float), 1.0))[:3]
     lo, hi = q.copy(), q.copy()
     for axis in range(3):
         lo, hi = turned_box(lo, hi, axis, float(lower[3 + axis]), min(float(span[3 + axis]), 2 * math.pi))
-    lo, hi = lo + np.asarray(lower[:3], float), hi + np.asarray(lower[:3], float) + np.asarray(span[:3], float)
-    corners = np.array([[(lo, hi)[b >> k & 1][k] for k in range(3)] for b in range(8)])
-    world = corners @ np.asarray(X_WR, float)[:3, :3].T + np.asarray(X_WR, float)[:3, 3]
-    return world.min(axis=0) - TOLERANCE, world.max(axis=0) + TOLERANCE
+    return lo, hi
+
+
+_CORNER = np.array([[b >> k & 1 for k in range(3)] for b in range(8)], bool)  # the 8 corners' upper-bound choices
+
+
+def placed_boxes(lo, hi, lower, span, X_WR) -> tuple[np.ndarray, np.ndarray]:
+    """The rest of :func:`pose_centre_box` for m boxes at once: turned boxes ``lo``, ``hi`` (m, 3) plus the boxes of
+    positions of ``lower``, ``span`` (m, 6), their corners mapped by ``X_WR`` (m, 4, 4); (lower, upper) (m, 3) each
+    (the same arithmetic per box as one at a time)."""
+    lo, hi = lo + lower[:, :3], hi + lower[:, :3] + span[:, :3]
+    corners = np.where(_CORNER, hi[:, None, :], lo[:, None, :])  # (m, 8, 3)
+    world = corners @ X_WR[:, :3, :3].transpose(0, 2, 1) + X_WR[:, None, :3, 3]
+    return world.min(axis=1) - TOLERANCE, world.max(axis=1) + TOLERANCE
 
 
 @dataclass(frozen=True)
@@ -241,6 +271,10 @@ class PlanarReach:
         upper = lower + span
         lo, hi = self.centre_box(lower, upper, float(span[self.index[2]]))
         return bool(self.grid.components(lo, hi) & self.start)
+
+    def keeps_all(self, regions) -> list[bool]:
+        """:meth:`keeps` of each of ``regions``."""
+        return [self.keeps(r) for r in regions]
 
     def centres(self, qs) -> np.ndarray:
         """The disc centres (m, 2) of configurations ``qs`` (m, dim)."""

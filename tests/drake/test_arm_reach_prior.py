@@ -155,3 +155,37 @@ def test_a_goal_beyond_the_arms_stretched_length_is_dropped_and_one_within_kept(
     near = WorkspaceRegion("near", "near", "near", (0.4, 0.0, 0.5, 0.0, 0.0, -3.14), (0.5, 0.1, 0.6, 0.0, 0.0, 3.14),
                            frame="panda_hand_tcp", X_WR=Pose())
     assert reach_prior_drops((far, near), world) == {0: REACH_PRIOR}
+
+
+def _one_by_one(prior, region) -> bool:
+    """keeps as it was computed before the batch (#33): per region and ball, the box's corners one by one."""
+    from lazyground.planning.reach_prior import TOLERANCE, turned_box
+
+    frame, X_ET = region.robot_target(Pose(), None)
+    X_WR, X_ST = region.X_WR.matrix(), region.X_SE.matrix() @ X_ET.matrix()
+    lower, span, _ = region.unit_map()
+    for ball, p_T in prior.balls(frame):
+        lo = hi = (X_ST @ np.append(p_T, 1.0))[:3]
+        for axis in range(3):
+            lo, hi = turned_box(lo, hi, axis, float(lower[3 + axis]), min(float(span[3 + axis]), 2 * np.pi))
+        lo, hi = lo + lower[:3], hi + lower[:3] + span[:3]
+        corners = np.array([[(lo, hi)[b >> k & 1][k] for k in range(3)] for b in range(8)])
+        box = corners @ X_WR[:3, :3].T + X_WR[:3, 3]
+        if ball.grid is not None and ball.start and not ball.grid.components(box.min(axis=0) - TOLERANCE,
+                                                                            box.max(axis=0) + TOLERANCE) & ball.start:
+            return False
+    return True
+
+
+@pytest.mark.parametrize("name", ["panda_tabletop", "ur5e_tabletop", "fetch_boxes_3", "rack:panda:16:1:0",
+                                  "rack:fetch:16:1:2", "rack:panda:64:1:3"])
+def test_all_regions_at_once_keep_what_one_region_at_a_time_keeps(name):
+    """keeps_all (every region's boxes in one pass, #33) answers as the boxes computed one region at a time did."""
+    _, world = _world(name)
+    regions = _regions(name) if not parse_key(name) else tuple(grounding.ground("pick up a can", _world(name)[0]).goal_regions)
+    prior = world.reach_prior()
+    prior._kept.clear()
+    kept = prior.keeps_all(regions)
+    assert kept == [_one_by_one(prior, r) for r in regions]
+    assert False in kept and True in kept
+    assert [prior.keeps(r) for r in regions] == kept  # cached by the regions' numbers

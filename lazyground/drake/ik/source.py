@@ -35,7 +35,7 @@ from lazyground.drake.ik.screen import TargetScreen
 from lazyground.drake.ik.settings import IKCounters, IKSettings
 from lazyground.drake.ik.batch import pose_errors
 from lazyground.drake.ik.solvers import BatchSolver, ProgramSolver, pose_error, problem_for_frame
-from lazyground.geometry import Pose, rpy_to_matrices
+from lazyground.geometry import MatrixMemo, Pose, rpy_to_matrices
 from lazyground.goals import RoundRobinGoalSource
 from lazyground.planning.problem import GoalSample
 from lazyground.planning.stop import StopCondition
@@ -81,12 +81,14 @@ def _build_region_table(world, regions: tuple, attached) -> tuple:
     # X_WT = X_WR · X_RS(v) · X_SE · X_ET, where robot_target's X_ET takes the region's
     # target to the robot frame (identity, or the carried object's grasp); the approach,
     # given in the target's axes, is d = X_ET^-1 · T(approach) · X_ET in the robot frame's
-    factors = {}
+    factors, matrix, inverse = {}, MatrixMemo(), {}  # (regions share most poses: each matrix and inverse once)
     for r in regions:
-        X_ET = r.robot_target(Pose(), attached)[1].matrix()
+        X_ET = matrix(r.robot_target(Pose(), attached)[1])
+        if id(X_ET) not in inverse:
+            inverse[id(X_ET)] = np.linalg.inv(X_ET)
         T = np.eye(4)
         T[:3, 3] = r.approach
-        factors[r.id] = (r.X_WR.matrix(), r.X_SE.matrix() @ X_ET, (np.linalg.inv(X_ET) @ T @ X_ET)[:3, 3])
+        factors[r.id] = (matrix(r.X_WR), matrix(r.X_SE) @ X_ET, (inverse[id(X_ET)] @ T @ X_ET)[:3, 3])
     # per region, stacked for drawing many targets at once (target_poses): X_WR, X_ST and the unit map
     index = {r.id: j for j, r in enumerate(regions)}
     stacked = [np.array(a) for a in zip(*(factors[r.id][:2] + r.unit_map() for r in regions))]
