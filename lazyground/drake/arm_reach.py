@@ -282,6 +282,7 @@ def _build_ball(world, body, p_B, radius: float, pairs=None) -> Ball:
         X = world.kinematics.matrix(body.body_frame(), world.q_full)
         c = X[:3, :3] @ np.asarray(p_B) + X[:3, 3]
         start = frozenset(grid.components(c - 1e-9, c + 1e-9))
+        grid.count_table(start)  # (keeps_all's lookups: built now, as set-up)
     return Ball(body.name(), tuple(p_B), r, grid, start, (tuple(a), tuple(b), length), tuple(left_out), default_clock() - t0)
 
 

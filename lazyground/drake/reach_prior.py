@@ -66,6 +66,7 @@ def planar_reach(world) -> PlanarReach | None:
     prior = PlanarReach(grid, frozenset(), index, offset, tuple(left_out))
     c = prior.centres(world.start)[0]
     start = frozenset(grid.components(c - 1e-9, c + 1e-9))
+    grid.count_table(start)  # (keeps_all's lookups: built now, as set-up)
     return PlanarReach(grid, start, index, offset, tuple(left_out), default_clock() - t0)
 
 

@@ -26,6 +26,7 @@ a planar robot's (x, y, heading) configuration boxes onto the grid of its disc c
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, field
 
@@ -72,6 +73,7 @@ class ReachGrid:
     cell: float
     radius: float
     labels: np.ndarray = field(repr=False)
+    _sums: dict = field(default_factory=dict, repr=False, compare=False)  # components -> summed-area table (meets)
 
     def cells(self, lower, upper) -> tuple[slice, ...]:
         """The index ranges of the cells meeting the closed box [lower, upper] (clipped to the grid:
@@ -86,14 +88,26 @@ class ReachGrid:
 
     def meets(self, lower, upper, components) -> np.ndarray:
         """Whether some cell meeting each box [lower[i], upper[i]] (m, n) lies in one of ``components`` (the cells
-        as :meth:`cells` finds them, for m boxes at once)."""
-        lo, hi = self.index(lower), self.index(upper) + 1
-        wanted = sorted(k for k in components if k)
-        out = np.zeros(len(lo), bool)
-        for i, (a, b) in enumerate(zip(lo.tolist(), hi.tolist())):
-            cells = self.labels[tuple(map(slice, a, b))]
-            out[i] = any((cells == k).any() for k in wanted)
-        return out
+        as :meth:`cells` finds them, for m boxes at once): the count of such cells by the summed-area table of the
+        components' cells (integers: exact), 2^n lookups a box."""
+        lo, hi = self.index(np.atleast_2d(lower)), self.index(np.atleast_2d(upper)) + 1
+        table, count = self.count_table(components), 0
+        for corner in itertools.product((0, 1), repeat=lo.shape[1]):  # inclusion-exclusion over the box's corners
+            at = tuple(np.where(c, hi[:, d], lo[:, d]) for d, c in enumerate(corner))
+            count = count + (-1) ** (lo.shape[1] - sum(corner)) * table[at]
+        return count > 0
+
+    def count_table(self, components) -> np.ndarray:
+        """The summed-area table of the cells in ``components`` (:meth:`meets`; built once per set of components,
+        e.g. at set-up with the start's: a 1,044 x 1,123 lot grid takes ~20 ms)."""
+        key = frozenset(int(k) for k in components if k)
+        if key not in self._sums:
+            table = np.zeros(tuple(d + 1 for d in self.labels.shape), np.int64)
+            table[tuple(slice(1, None) for _ in self.labels.shape)] = np.isin(self.labels, list(key))
+            for axis in range(table.ndim):
+                np.cumsum(table, axis=axis, out=table)
+            self._sums[key] = table
+        return self._sums[key]
 
     def components(self, lower, upper) -> set[int]:
         """The components of the free cells meeting the box [lower, upper]."""
@@ -273,8 +287,27 @@ class PlanarReach:
         return bool(self.grid.components(lo, hi) & self.start)
 
     def keeps_all(self, regions) -> list[bool]:
-        """:meth:`keeps` of each of ``regions``."""
-        return [self.keeps(r) for r in regions]
+        """:meth:`keeps` of each of ``regions``, all at once (#33: a 256-spot lot's 512 regions one by one took ~25 ms
+        a request): the same boxes, each arc's box once per heading range, the grid looked up by :meth:`ReachGrid.meets`."""
+        out = [True] * len(regions)
+        ix, iy, ih = self.index
+        todo = [j for j, r in enumerate(regions) if self.start and r.kind == "config" and len(r.lower) > max(self.index)]
+        if not todo:
+            return out
+        arcs, lows, highs = {}, [], []
+        offset = np.asarray(self.offset, float)
+        for j in todo:
+            lower, span, _ = regions[j].unit_map()
+            key = lower[ih:ih + 1].tobytes() + span[ih:ih + 1].tobytes()  # (by their bits: -0.0 too)
+            if key not in arcs:
+                arcs[key] = _arc_box(offset, float(lower[ih]), float(span[ih]))
+            lo, hi = arcs[key]
+            lows.append((lower[ix] + lo[0], lower[iy] + lo[1]))
+            highs.append((lower[ix] + span[ix] + hi[0], lower[iy] + span[iy] + hi[1]))
+        kept = self.grid.meets(np.array(lows) - TOLERANCE, np.array(highs) + TOLERANCE, self.start)
+        for j, k in zip(todo, kept):
+            out[j] = bool(k)
+        return out
 
     def centres(self, qs) -> np.ndarray:
         """The disc centres (m, 2) of configurations ``qs`` (m, dim)."""

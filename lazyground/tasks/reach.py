@@ -40,7 +40,7 @@ def run(scene, grounding, settings, rng, worlds, *, seed: int | None = None, kee
     world = worlds.get()
     planner = settings.planner
     worlds.warm_kernels(planner.kinematics)
-    worlds.warm_reach_prior(world, settings.goal_sampling.reach_prior)
+    worlds.warm_goal_caches(world, settings.goal_sampling.reach_prior)
     setup_s = worlds.setup_s
     space = planning_space(scene, world.space, planner.kinematics)  # a car's curves, or world.space
     stop = StopCondition.after(planner.time_limit, max_iterations=planner.max_iterations, clock=clock, spent=spent)

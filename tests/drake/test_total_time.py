@@ -67,3 +67,23 @@ def test_the_search_time_counts_making_its_goal_source(monkeypatch):
     assert report.result.solved
     assert report.result.time_s >= 3.0 and report.result.goal_sampling_s >= 3.0, report.result
     assert report.total_split_s["search"] == report.result.time_s
+
+
+def test_the_hand_probe_is_built_at_set_up_not_in_the_request(monkeypatch):
+    # #33: the IK screen's hand probe depends on the world only: built with the world's other caches (set-up,
+    # report.setup_s), once; a probe that takes 5 s of the fake clock to build is not the search's time
+    from lazyground.drake.ik import hand_probe
+
+    clock = stop.FakeClock(tick=1e-6)
+    monkeypatch.setattr(stop, "CLOCK", clock)
+    build, builds = hand_probe._build, []
+
+    def slow_build(*args, **kwargs):
+        builds.append(args[1])
+        clock.advance(5.0)
+        return build(*args, **kwargs)
+
+    monkeypatch.setattr(hand_probe, "_build", slow_build)
+    report = api.plan("panda_tabletop", "pick up a cup", seed=0, max_iterations=3000)
+    assert report.result.solved and builds == ["panda_hand_tcp"]
+    assert report.setup_s >= 5.0 and report.result.time_s < 5.0, (report.setup_s, report.result.time_s)

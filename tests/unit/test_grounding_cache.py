@@ -70,3 +70,19 @@ def test_in_tool_keys_are_exact():
     grasps._IN_TOOL.clear()
     for args in calls + calls[::-1]:
         assert repr(grasps.in_tool(*args)) == repr(_straight(*args))
+
+
+@pytest.mark.parametrize("key", ("lot:64:2:0", "rack:panda:16:1:0"))
+def test_a_scene_lexicon_made_once_is_the_lexicon_made_anew(key):
+    # Lexicon.for_scene is made once per set of the objects' types and ids (#33): the same phrases as made anew, and
+    # a scene with one id renamed gets its own
+    from dataclasses import replace
+
+    from grounding.lexicon import load_lexicon
+
+    scene, lex = load_family_scene(key), load_lexicon()
+    first = lex.for_scene(scene)
+    assert lex.for_scene(scene) is first and first.phrases == lex._for_objects(scene).phrases
+    renamed = replace(scene, objects=(replace(scene.objects[0], id="Zebra9"),) + tuple(scene.objects[1:]))
+    other = lex.for_scene(renamed)
+    assert other is not first and other.phrases == lex._for_objects(renamed).phrases and ("zebra9",) in other.phrases

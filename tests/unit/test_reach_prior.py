@@ -200,3 +200,27 @@ def test_a_ball_within_reach_of_a_segment_cannot_leave_its_capsule():
     inside = np.linalg.norm(points - a - t[:, None] * (b - a), axis=1) <= 0.5
     assert not np.any(grid.blocked(points) & inside) and grid.blocked(points[~inside]).mean() > 0.5
     assert not grid.components(upper - 0.1, upper)  # the corner: 0.5 * sqrt(3) from the segment's end
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_boxes_at_once_meet_the_components_one_box_at_a_time_finds(seed):
+    # #33: meets (a summed-area table of the components' cells) against components (the cells' labels) box by box,
+    # in 2-D (a room with a wall, gaps closed and open) and 3-D (balls among boxes), boxes inside, across and beyond
+    # the grid; and a car's keeps_all against keeps
+    rng = np.random.default_rng(seed)
+    grids = [_room_with_gap(g, 0.25) for g in (1.0, 2.0)]
+    grids.append(reach_grid((0.0, 0.0, 0.0), (4.0, 4.0, 4.0), 0.3,
+                            [Solid((2.0, 2.0, 2.0), (0.4, 1.9, 0.4)), Solid((1.0, 3.0, 1.0), (0.0, 0.0, 0.0), 0.5)], 0.2))
+    for grid in grids:
+        n = grid.labels.ndim
+        size = np.array(grid.labels.shape) * grid.cell
+        lower = grid.origin + rng.uniform(-0.1, 1.0, (300, n)) * size
+        upper = lower + rng.uniform(0.0, 0.3, (300, n)) * size
+        labels = sorted({int(k) for k in np.unique(grid.labels) if k})
+        for chosen in ({labels[0]}, set(labels), set()):
+            want = [bool(grid.components(a, b) & chosen) for a, b in zip(lower, upper)]
+            assert grid.meets(lower, upper, chosen).tolist() == want
+    prior = _prior(grids[0], (2.0, 5.0))
+    regions = [_region(x, y, tol) for x, y, tol in zip(rng.uniform(0, 20, 200), rng.uniform(0, 10, 200), rng.uniform(0.0, 2.0, 200))]
+    assert prior.keeps_all(regions) == [prior.keeps(r) for r in regions]
+    assert 0 < sum(prior.keeps_all(regions)) < len(regions)

@@ -11,7 +11,8 @@ import numpy as np
 
 from lazyground.drake.ik.hand_probe import hand_probe
 from lazyground.drake.ik.reach import reach_map
-from lazyground.drake.ik.settings import IKSettings
+from lazyground.drake.ik.settings import DEFAULT_IK_SETTINGS, IKSettings
+from lazyground.robots.end_effector import frame_of
 from lazyground.tolerance import accepted_error
 
 
@@ -43,3 +44,15 @@ class TargetScreen:
             for i in np.asarray(rest)[self._probes[frame].blocked(X_WT[rest])]:
                 reasons[i] = "hand in collision"
         return reasons
+
+
+def warm_screen(world, settings: IKSettings = DEFAULT_IK_SETTINGS) -> None:
+    """Build the hand probe of ``world``'s end-effector frame now (set-up: once per world, cached as
+    :func:`hand_probe` caches it; a request's goal source then finds it built), when its robot has one and
+    ``settings.hand_check`` is on. A run's IK settings take their tolerances from the defaults."""
+    try:
+        frame = frame_of(world.scene.robot)
+    except ValueError:  # a SceneError: the robot.yaml beside the model is invalid
+        return
+    if settings.hand_check and frame and world.plant.HasFrameNamed(frame):
+        hand_probe(world, frame, *accepted_error(settings.position_tolerance, settings.orientation_tolerance))
