@@ -120,39 +120,37 @@ def _cell(x, lo, inv, n):
     return min(max(int(np.floor((x - lo) * inv)), 0), n - 1)
 
 
-@njit(cache=True)
-def _near_all(centre, ac, ah, reach2, grid, near):
-    """Per moving geometry g (bounding-sphere centre ``centre[g]``) the obstacles whose pair passes the first test
-    (the sphere against the world box; reach2: (radius + threshold)^2, or -1 for a pair Drake does not check), in
-    ascending order into ``near[g + 1]``, their count into ``near[-1, g]``: the grid's cells only. One call a row
-    (not inlined: the test over every obstacle, without a grid, stays as it was in the row test)."""
+@njit(cache=True, inline="always")
+def _near(g, cx, cy, cz, ac, ah, reach2, grid, cand):
+    """The obstacles whose pair with geometry g (bounding-sphere centre c) passes the first test (the sphere
+    against the world box; reach2: (radius + threshold)^2, or -1 for a pair Drake does not check), in ascending
+    order into ``cand``; returns their count: the grid's cells only. (Per geometry in the row test's loop: a row
+    proven colliding stops before the geometries after it.)"""
     glo, ginv, greach, gdim, gstart, gitem, gcell = grid
-    for g in range(len(greach)):
-        cx, cy, cz, r = centre[g, 0], centre[g, 1], centre[g, 2], greach[g]
-        cand = near[g + 1]
-        n = 0
-        i0, i1 = _cell(cx - r, glo[0], ginv[0], gdim[0]), _cell(cx + r, glo[0], ginv[0], gdim[0])
-        j0, j1 = _cell(cy - r, glo[1], ginv[1], gdim[1]), _cell(cy + r, glo[1], ginv[1], gdim[1])
-        k0, k1 = _cell(cz - r, glo[2], ginv[2], gdim[2]), _cell(cz + r, glo[2], ginv[2], gdim[2])
-        for i in range(i0, i1 + 1):
-            for j in range(j0, j1 + 1):
-                for k in range(k0, k1 + 1):
-                    cell = (i * gdim[1] + j) * gdim[2] + k
-                    for t in range(gstart[cell], gstart[cell + 1]):
-                        o = gitem[t]
-                        if max(gcell[o, 0], i0) != i or max(gcell[o, 1], j0) != j or max(gcell[o, 2], k0) != k:
-                            continue  # met in another cell too: tested in the lower corner's
-                        dx = max(abs(cx - ac[0, o]) - ah[0, o], 0.0)
-                        dy = max(abs(cy - ac[1, o]) - ah[1, o], 0.0)
-                        dz = max(abs(cz - ac[2, o]) - ah[2, o], 0.0)
-                        if dx * dx + dy * dy + dz * dz - reach2[g, o] <= 0.0:
-                            at = n  # insertion in order: few pass
-                            while at > 0 and cand[at - 1] > o:
-                                cand[at] = cand[at - 1]
-                                at -= 1
-                            cand[at] = o
-                            n += 1
-        near[-1, g] = n
+    r = greach[g]
+    n = 0
+    i0, i1 = _cell(cx - r, glo[0], ginv[0], gdim[0]), _cell(cx + r, glo[0], ginv[0], gdim[0])
+    j0, j1 = _cell(cy - r, glo[1], ginv[1], gdim[1]), _cell(cy + r, glo[1], ginv[1], gdim[1])
+    k0, k1 = _cell(cz - r, glo[2], ginv[2], gdim[2]), _cell(cz + r, glo[2], ginv[2], gdim[2])
+    for i in range(i0, i1 + 1):
+        for j in range(j0, j1 + 1):
+            for k in range(k0, k1 + 1):
+                cell = (i * gdim[1] + j) * gdim[2] + k
+                for t in range(gstart[cell], gstart[cell + 1]):
+                    o = gitem[t]
+                    if max(gcell[o, 0], i0) != i or max(gcell[o, 1], j0) != j or max(gcell[o, 2], k0) != k:
+                        continue  # met in another cell too: tested in the lower corner's
+                    dx = max(abs(cx - ac[0, o]) - ah[0, o], 0.0)
+                    dy = max(abs(cy - ac[1, o]) - ah[1, o], 0.0)
+                    dz = max(abs(cz - ac[2, o]) - ah[2, o], 0.0)
+                    if dx * dx + dy * dy + dz * dz - reach2[g, o] <= 0.0:
+                        at = n  # insertion in order: few pass
+                        while at > 0 and cand[at - 1] > o:
+                            cand[at] = cand[at - 1]
+                            at -= 1
+                        cand[at] = o
+                        n += 1
+    return n
 
 
 @njit(cache=True, inline="always")
@@ -363,8 +361,7 @@ def open_pairs_row(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W,
      gcyl, ocyl, mover, other, istart, gexact, oexact, grid) = blocks
     _centres(node, go, Rb, pb, centre)
     gridded = grid[3][3] != 0
-    if gridded:
-        _near_all(centre, ac, ah, reach2, grid, gap)
+    gap, cand = gap[0], gap[1]  # (rows of a C array: contiguous, so the gap loop stays vectorised)
     done[:] = 0.0
     count = 0
     for last in range(G):
@@ -372,7 +369,7 @@ def open_pairs_row(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W,
         cx, cy, cz, rg = centre[g, 0], centre[g, 1], centre[g, 2], grad[g]
         todo = O
         if gridded:
-            todo = int(gap[-1, g])
+            todo = _near(g, cx, cy, cz, ac, ah, reach2, grid, cand)
         else:
             # the bounding sphere against every obstacle's world box at once (no branches: vectorised); reach2 is
             # (radius + threshold)^2, or -1 for a pair Drake does not check
@@ -380,12 +377,12 @@ def open_pairs_row(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, sph, done, W,
                 dx = max(abs(cx - ac[0, o]) - ah[0, o], 0.0)
                 dy = max(abs(cy - ac[1, o]) - ah[1, o], 0.0)
                 dz = max(abs(cz - ac[2, o]) - ah[2, o], 0.0)
-                gap[0, o] = dx * dx + dy * dy + dz * dz - reach2[g, o]
+                gap[o] = dx * dx + dy * dy + dz * dz - reach2[g, o]
         for c in range(todo):
             o = c
             if gridded:
-                o = int(gap[g + 1, c])
-            elif gap[0, o] > 0.0:
+                o = int(cand[c])
+            elif gap[o] > 0.0:
                 continue
             thr = env[g, o]
             vx, vy, vz = cx - oo[o, 0], cy - oo[o, 1], cz - oo[o, 2]
@@ -733,7 +730,7 @@ def _gjk(RA, cA, hA, rA, cylA, RB, cB, hB, rB, cylB, free_above):
 def work_size(idata: np.ndarray) -> int:
     """Floats of scratch space a call needs (see scratch_views)."""
     m, n, G, S = idata[_M], idata[_N], idata[_G], idata[_S]
-    return int(12 * (m + 1) + 12 * n + 4 * G + 3 * S + 18 + (G + 2) * max(idata[_O], G))
+    return int(12 * (m + 1) + 12 * n + 4 * G + 3 * S + 18 + 2 * idata[_O])
 
 
 @njit(cache=True)
@@ -760,8 +757,7 @@ def scratch_views(idata, work):
     a += 9
     A = _grid(work, a, 3, 3)
     a += 9
-    gap = _grid(work, a, G + 2, max(idata[_O], G))  # per obstacle its first test's gap; with a grid (_near_all)
-    # per geometry g the obstacles passing it in row g + 1, their counts in the last row
+    gap = _grid(work, a, 2, idata[_O])  # per obstacle its first test's gap; with a grid, the obstacles passing it
     Rs[0] = 0.0
     Rs[0, 0, 0] = Rs[0, 1, 1] = Rs[0, 2, 2] = 1.0
     ps[0] = 0.0
