@@ -68,3 +68,29 @@ def test_a_car_request_loads_the_cars_kernels_in_its_set_up():
     scene = load_scene("parking_1")
     api.plan(scene, "park", seed=0, max_iterations=5)
     assert compiled.warm_up_car() == 0.0 and compiled.compile_report() is not None
+
+
+@pytest.mark.parametrize("cell", [0.2, 0.03])
+def test_the_obstacle_grid_gives_the_same_codes_and_open_pairs(cell, monkeypatch):
+    """The obstacles' grid (#33; on by default from GRID_FROM obstacles) changes no answer: every row's code and
+    open pairs, in order, as the test over every obstacle gives them (here forced on a bundled scene's 31, with
+    ordinary and with tiny cells: an obstacle in many cells is still tested once)."""
+    from lazyground.drake import sphere_kernels as kernels
+    from lazyground.drake.certify_check import sample_configs
+
+    world = DrakeWorld(load_scene("yaml_scenes/fetch_boxes_3.yaml"), visual=False)
+    blocks = world.checker.certifier.kernel_blocks()
+    q = sample_configs(world, np.random.default_rng(3), 1500)
+    monkeypatch.setattr(kernels, "GRID_CELL", cell)
+    out = []
+    for grid_from in (10**9, 1):
+        fd, idata = kernels.pack(blocks, grid_from)
+        assert bool(idata[idata[7 + kernels._NF + 13] + 3]) == (grid_from == 1)  # gdim[3]: the grid is used
+        work, pairs = np.zeros(kernels.work_size(idata)), np.full((len(q), 16), -1, np.int64)
+        code = kernels.certify_rows(q, fd, idata, work, pairs)
+        one = np.full(17, -1, np.int64)
+        shifted = [kernels.certify_one(fd, idata, work, one, row, world.padding) for row in q[:300]]
+        out.append((code, np.where(code[:, None] > np.arange(16), pairs, -1), shifted))
+    (c0, p0, s0), (c1, p1, s1) = out
+    assert (c0 > 0).sum() > 100 and (c0 == kernels.COLLIDES).sum() > 100  # both answers are exercised
+    assert np.array_equal(c0, c1) and np.array_equal(p0, p1) and s0 == s1
