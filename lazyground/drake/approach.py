@@ -20,9 +20,8 @@ import numpy as np
 from pydrake.geometry import Box, Cylinder, Sphere, Capsule
 
 from lazyground.drake.approach_kernel import retreats
-from lazyground.drake.arm_reach import rigid_bodies, solids_3d
+from lazyground.drake.arm_reach import end_effector_frame, rigid_bodies, solids_3d
 from lazyground.geometry import rpy_to_matrices
-from lazyground.robots.end_effector import frame_of
 
 STEP = 0.03  # m: spacing of the retreat's steps and of the points on the hand's surfaces; a point counts as in collision
 # within STEP / 2 (no board thinner than a step skipped; a coarse, cheap test: it only orders regions)
@@ -111,11 +110,8 @@ def hand(world, frame: str) -> Hand:
 
 def warm_hand(world) -> None:
     """Build ``world``'s end effector's :class:`Hand` now (set-up), when its robot has one."""
-    try:
-        frame = frame_of(world.scene.robot)
-    except ValueError:  # a SceneError: the robot.yaml beside the model is invalid
-        return
-    if frame and world.plant.HasFrameNamed(frame):
+    frame = end_effector_frame(world)
+    if frame is not None:
         hand(world, frame)
 
 

@@ -157,14 +157,21 @@ class ArmReach:
         return np.array(out).reshape(len(out), len(self.balls(frame)), 3)
 
 
-def arm_reach(world) -> ArmReach | None:
-    """The reach prior of ``world``'s arm, or None when its end effector has no ball (none large enough, or a joint
-    on the way to the world that the reach bound does not handle)."""
+def end_effector_frame(world) -> str | None:
+    """The name of ``world``'s robot's end-effector frame (:func:`lazyground.robots.end_effector.frame_of`), or None
+    when it has none in the plant (a car, or an invalid robot.yaml beside the model)."""
     try:
         frame = frame_of(world.scene.robot)
     except ValueError:  # a SceneError: the robot.yaml beside the model is invalid
         return None
-    if not frame or not world.plant.HasFrameNamed(frame):
+    return frame if frame and world.plant.HasFrameNamed(frame) else None
+
+
+def arm_reach(world) -> ArmReach | None:
+    """The reach prior of ``world``'s arm, or None when its end effector has no ball (none large enough, or a joint
+    on the way to the world that the reach bound does not handle)."""
+    frame = end_effector_frame(world)
+    if frame is None:
         return None
     prior = ArmReach(world)
     return prior if prior.balls(frame) else None  # the end effector's grids built now

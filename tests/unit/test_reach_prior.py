@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from lazyground.geometry import rpy_to_matrix
-from lazyground.planning.reach_prior import PlanarReach, Solid, _arc_box, pose_centre_box, reach_grid
+from lazyground.planning.reach_prior import TOLERANCE, PlanarReach, Solid, _arc_box, pose_centre_box, reach_grid
 from lazyground.regions import ConfigRegion
 
 R = 0.9  # a car's disc
@@ -222,5 +222,11 @@ def test_boxes_at_once_meet_the_components_one_box_at_a_time_finds(seed):
             assert grid.meets(lower, upper, chosen).tolist() == want
     prior = _prior(grids[0], (2.0, 5.0))
     regions = [_region(x, y, tol) for x, y, tol in zip(rng.uniform(0, 20, 200), rng.uniform(0, 10, 200), rng.uniform(0.0, 2.0, 200))]
-    assert prior.keeps_all(regions) == [prior.keeps(r) for r in regions]
+    def one(region):  # a region alone, as keeps was written before keeps_all: its disc centres' box, its components
+        lower, span, _ = region.unit_map()
+        lo, hi = _arc_box(np.asarray(prior.offset, float), float(lower[2]), float(span[2]))
+        box = (lower[:2] + lo - TOLERANCE, lower[:2] + span[:2] + hi + TOLERANCE)
+        return bool(prior.grid.components(*box) & prior.start)
+
+    assert prior.keeps_all(regions) == [one(r) for r in regions] == [prior.keeps(r) for r in regions]
     assert 0 < sum(prior.keeps_all(regions)) < len(regions)

@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from lazyground.drake.arm_reach import end_effector_frame
 from lazyground.drake.ik.hand_probe import hand_probe
 from lazyground.drake.ik.reach import reach_map
 from lazyground.drake.ik.settings import DEFAULT_IK_SETTINGS, IKSettings
-from lazyground.robots.end_effector import frame_of
 from lazyground.tolerance import accepted_error
 
 
@@ -50,9 +50,6 @@ def warm_screen(world, settings: IKSettings = DEFAULT_IK_SETTINGS) -> None:
     """Build the hand probe of ``world``'s end-effector frame now (set-up: once per world, cached as
     :func:`hand_probe` caches it; a request's goal source then finds it built), when its robot has one and
     ``settings.hand_check`` is on. A run's IK settings take their tolerances from the defaults."""
-    try:
-        frame = frame_of(world.scene.robot)
-    except ValueError:  # a SceneError: the robot.yaml beside the model is invalid
-        return
-    if settings.hand_check and frame and world.plant.HasFrameNamed(frame):
+    frame = end_effector_frame(world)
+    if settings.hand_check and frame is not None:
         hand_probe(world, frame, *accepted_error(settings.position_tolerance, settings.orientation_tolerance))
