@@ -8,7 +8,6 @@ convention as Drake's ``RollPitchYaw`` and URDF.
 from __future__ import annotations
 
 import math
-import struct
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,9 +28,26 @@ def rpy_to_matrix(rpy) -> np.ndarray:
 
 def rpy_to_matrices(rpy: np.ndarray) -> np.ndarray:
     """Rotation matrices (N, 3, 3) of rows (N, 3) of extrinsic roll-pitch-yaw angles (:func:`rpy_to_matrix` for many)."""
-    c, s = np.cos(rpy).T, np.sin(rpy).T
+    return _rotations(np.cos(rpy).T, np.sin(rpy).T)
+
+
+def pose_matrices(poses) -> np.ndarray:
+    """:meth:`Pose.matrix` of each of ``poses``, stacked (N, 4, 4), bit for bit: the sines and cosines by
+    :mod:`math` as :func:`rpy_to_matrix` takes them, the products in its order (#33: ~20 µs a pose one by one)."""
+    rpy = [float(a) for p in poses for a in p.rpy]
+    c = np.array([math.cos(a) for a in rpy]).reshape(-1, 3).T
+    s = np.array([math.sin(a) for a in rpy]).reshape(-1, 3).T
+    X = np.zeros((c.shape[1], 4, 4))
+    X[:, :3, :3] = _rotations(c, s)
+    X[:, :3, 3] = np.array([p.xyz for p in poses], float).reshape(-1, 3)
+    X[:, 3, 3] = 1.0
+    return X
+
+
+def _rotations(c: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """The rotation matrices (N, 3, 3) of cosines ``c`` and sines ``s`` (3, N) of (roll, pitch, yaw)."""
     (cr, cp, cy), (sr, sp, sy) = c, s
-    R = np.empty((len(rpy), 3, 3))
+    R = np.empty((c.shape[1], 3, 3))
     R[:, 0, 0], R[:, 0, 1], R[:, 0, 2] = cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr
     R[:, 1, 0], R[:, 1, 1], R[:, 1, 2] = sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr
     R[:, 2, 0], R[:, 2, 1], R[:, 2, 2] = -sp, cp * sr, cp * cr
@@ -61,20 +77,6 @@ def quaternion_xyzw_to_matrix(q) -> np.ndarray:
 def wrap_angle(a):
     """Wrap angles to [-pi, pi)."""
     return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
-
-
-class MatrixMemo:
-    """:meth:`Pose.matrix` of poses keyed by their bits (-0.0 kept apart from 0.0), for one pass over many regions
-    that share most poses (a request's grasp regions). The arrays it returns are shared: read them only."""
-
-    def __init__(self):
-        self._matrices: dict[bytes, np.ndarray] = {}
-
-    def __call__(self, pose: "Pose") -> np.ndarray:
-        bits = struct.pack("6d", *pose.xyz, *pose.rpy)
-        if bits not in self._matrices:
-            self._matrices[bits] = pose.matrix()
-        return self._matrices[bits]
 
 
 @dataclass(frozen=True)
