@@ -15,15 +15,18 @@ import numpy as np
 
 def rpy_to_matrix(rpy) -> np.ndarray:
     """Rotation matrix of extrinsic roll-pitch-yaw angles."""
+    return np.array(_rotation_rows(rpy))
+
+
+def _rotation_rows(rpy) -> list[list[float]]:
+    """:func:`rpy_to_matrix`'s rows as Python floats (a pose's matrix is built from them in one array)."""
     r, p, y = (float(a) for a in rpy)
     cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-    return np.array(
-        [
-            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-            [-sp, cp * sr, cp * cr],
-        ]
-    )
+    return [
+        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+        [-sp, cp * sr, cp * cr],
+    ]
 
 
 def rpy_to_matrices(rpy: np.ndarray) -> np.ndarray:
@@ -56,10 +59,15 @@ def _rotations(c: np.ndarray, s: np.ndarray) -> np.ndarray:
 
 def matrix_to_rpy(R: np.ndarray) -> np.ndarray:
     """Roll-pitch-yaw of a rotation matrix (pitch in [-pi/2, pi/2])."""
-    pitch = math.atan2(-R[2, 0], math.hypot(R[0, 0], R[1, 0]))
+    return np.array(_rpy_of_rows(np.asarray(R).tolist()))
+
+
+def _rpy_of_rows(R: list[list[float]]) -> tuple[float, float, float]:
+    """:func:`matrix_to_rpy` of a matrix's rows as Python floats (the first three rows and columns are read)."""
+    pitch = math.atan2(-R[2][0], math.hypot(R[0][0], R[1][0]))
     if abs(math.cos(pitch)) < 1e-9:  # gimbal lock: fold yaw into roll
-        return np.array([math.atan2(-R[1, 2], R[1, 1]), pitch, 0.0])
-    return np.array([math.atan2(R[2, 1], R[2, 2]), pitch, math.atan2(R[1, 0], R[0, 0])])
+        return math.atan2(-R[1][2], R[1][1]), pitch, 0.0
+    return math.atan2(R[2][1], R[2][2]), pitch, math.atan2(R[1][0], R[0][0])
 
 
 def quaternion_xyzw_to_matrix(q) -> np.ndarray:
@@ -88,13 +96,12 @@ class Pose:
 
     @staticmethod
     def from_matrix(X: np.ndarray) -> "Pose":
-        return Pose(tuple(float(v) for v in X[:3, 3]), tuple(float(v) for v in matrix_to_rpy(X[:3, :3])))
+        rows = np.asarray(X).tolist()  # (Python floats: ~3x cheaper than numpy's scalars here, the same numbers)
+        return Pose((float(rows[0][3]), float(rows[1][3]), float(rows[2][3])), _rpy_of_rows(rows))
 
     def matrix(self) -> np.ndarray:
-        X = np.eye(4)
-        X[:3, :3] = rpy_to_matrix(self.rpy)
-        X[:3, 3] = self.xyz
-        return X
+        (r0, r1, r2), (x, y, z) = _rotation_rows(self.rpy), (float(v) for v in self.xyz)
+        return np.array([r0 + [x], r1 + [y], r2 + [z], [0.0, 0.0, 0.0, 1.0]])
 
     def rotation(self) -> np.ndarray:
         return rpy_to_matrix(self.rpy)

@@ -7,7 +7,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from lazyground.geometry import Pose, pose_matrices, rpy_to_matrix
+from lazyground.geometry import Pose, matrix_to_rpy, pose_matrices, rpy_to_matrix
 from lazyground.regions import ConfigRegion, PlacementRegion, WorkspaceRegion
 from lazyground.regions.base import unit_maps
 from lazyground.regions.learned import ANGLES, BIN_ANGLE, BIN_LENGTH, MAX_BINS, RegionLearner
@@ -105,3 +105,38 @@ def test_learner_bins_are_the_per_region_bins():
         _, span, _ = _unit_map_one_by_one(r)
         n = [min(MAX_BINS, math.ceil(s / (BIN_ANGLE if i in ANGLES else BIN_LENGTH) - 1e-9)) for i, s in enumerate(span)]
         assert learner._bins[j] == {i: k for i, k in enumerate(n) if k > 1}
+
+
+def _old_matrix(pose):
+    """Pose.matrix as it was: np.eye, then the rotation and the translation assigned."""
+    X = np.eye(4)
+    X[:3, :3] = rpy_to_matrix(pose.rpy)
+    X[:3, 3] = pose.xyz
+    return X
+
+
+def _old_rpy(R):
+    """matrix_to_rpy as it was: numpy scalars into math."""
+    pitch = math.atan2(-R[2, 0], math.hypot(R[0, 0], R[1, 0]))
+    if abs(math.cos(pitch)) < 1e-9:
+        return np.array([math.atan2(-R[1, 2], R[1, 1]), pitch, 0.0])
+    return np.array([math.atan2(R[2, 1], R[2, 2]), pitch, math.atan2(R[1, 0], R[0, 0])])
+
+
+def test_pose_matrix_and_from_matrix_are_the_old_numbers_bit_for_bit():
+    rng = np.random.default_rng(5)
+    poses = _poses(rng, 300) + [Pose((0, 1, 2), (0.3, math.pi / 2, 0.2)), Pose((0.5, -0.0, 0), (-0.0, -math.pi / 2, -0.0))]
+    for p in poses:
+        assert _same_bits(p.matrix(), _old_matrix(p))
+    products = [_old_matrix(a) @ _old_matrix(b) for a, b in zip(poses, poses[1:])]
+    for a, b, X in zip(poses, poses[1:], products):
+        old = Pose(tuple(float(v) for v in X[:3, 3]), tuple(float(v) for v in _old_rpy(X[:3, :3])))
+        for got in (Pose.from_matrix(X), a.compose(b)):
+            assert _same_bits(got.xyz, old.xyz) and _same_bits(got.rpy, old.rpy)
+            assert all(type(v) is float for v in got.xyz + got.rpy)
+        assert _same_bits(matrix_to_rpy(X[:3, :3]), _old_rpy(X[:3, :3]))
+    for p in poses[-2:]:  # gimbal lock
+        X = _old_matrix(p)
+        assert _same_bits(matrix_to_rpy(X[:3, :3]), _old_rpy(X[:3, :3])) and Pose.from_matrix(X).rpy[2] == 0.0
+    X32 = _old_matrix(poses[5]).astype(np.float32)
+    assert _same_bits(matrix_to_rpy(X32[:3, :3]), _old_rpy(X32[:3, :3]))
