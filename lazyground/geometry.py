@@ -7,6 +7,7 @@ convention as Drake's ``RollPitchYaw`` and URDF.
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 
@@ -38,11 +39,11 @@ def pose_matrices(poses) -> np.ndarray:
     """:meth:`Pose.matrix` of each of ``poses``, stacked (N, 4, 4), bit for bit: the sines and cosines by
     :mod:`math` as :func:`rpy_to_matrix` takes them, the products in its order (#33: ~20 µs a pose one by one)."""
     rpy = [float(a) for p in poses for a in p.rpy]
-    c = np.array([math.cos(a) for a in rpy]).reshape(-1, 3).T
-    s = np.array([math.sin(a) for a in rpy]).reshape(-1, 3).T
+    c = np.fromiter(map(math.cos, rpy), float, len(rpy)).reshape(-1, 3).T
+    s = np.fromiter(map(math.sin, rpy), float, len(rpy)).reshape(-1, 3).T
     X = np.zeros((c.shape[1], 4, 4))
     X[:, :3, :3] = _rotations(c, s)
-    X[:, :3, 3] = np.array([p.xyz for p in poses], float).reshape(-1, 3)
+    X[:, :3, 3] = np.fromiter(itertools.chain.from_iterable(p.xyz for p in poses), float, 3 * len(X)).reshape(-1, 3)
     X[:, 3, 3] = 1.0
     return X
 

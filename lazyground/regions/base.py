@@ -8,6 +8,7 @@ Goal sources are looked up by kind in :mod:`lazyground.goals`.
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass, field
 from typing import ClassVar
 
@@ -56,8 +57,11 @@ def unit_maps(regions) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """:meth:`GoalRegion.unit_map` of each of ``regions`` (of one dimension), stacked (N, dim) each, in one pass."""
     if not len(regions):
         return np.zeros((0, 0)), np.zeros((0, 0)), np.zeros((0, 0), bool)
-    lo = np.array([r.lower for r in regions], float)
-    span = np.array([r.upper for r in regions], float) - lo
+    n, dim = len(regions), len(regions[0].lower)
+    if any(len(r.lower) != dim or len(r.upper) != dim for r in regions):
+        raise ValueError("unit_maps: regions of different dimensions")
+    lo = np.fromiter(itertools.chain.from_iterable(r.lower for r in regions), float, n * dim).reshape(n, dim)
+    span = np.fromiter(itertools.chain.from_iterable(r.upper for r in regions), float, n * dim).reshape(n, dim) - lo
     wrapped = np.zeros(lo.shape, bool)
     for j, r in enumerate(regions):
         if r.wrap:

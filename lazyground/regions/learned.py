@@ -42,8 +42,8 @@ class RegionLearner:
         if not 0.0 <= learning <= 1.0:
             raise ValueError(f"learning must be in [0, 1], got {learning}")
         self.learning = float(learning)
-        lower, span, wrapped = (np.asarray(b, float) for b in bounds)
-        self._bounds = list(zip(lower, span, wrapped))  # per region: (lower, span, wrapped) rows
+        self._lower, self._span, self._wrapped = (np.asarray(b, float) for b in bounds)
+        span = self._span
         # per region: {axis: number of bins}, the axes wide enough for two bins (all regions in one pass, #33)
         width = np.where(np.isin(np.arange(span.shape[1]), angles), BIN_ANGLE, BIN_LENGTH)
         n = np.minimum(MAX_BINS, np.ceil(span / width - 1e-9)).astype(int)
@@ -89,7 +89,7 @@ class RegionLearner:
     def record(self, j: int, v: np.ndarray, score: float) -> None:
         """Score ``score`` (0..1) for the draw ``v`` of region ``j`` on every free axis's bin (angles unwrapped onto
         the range); on Python floats, one axis at a time (the same IEEE operations as numpy's, ~10x cheaper here)."""
-        lo, span, wrapped = self._bounds[j]
+        lo, span, wrapped = self._lower[j], self._span[j], self._wrapped[j]
         score_j, count_j = self.tallies(j)
         for axis, n in self._bins[j].items():  # a binned axis has span > 0
             d = float(v[axis]) - float(lo[axis])
