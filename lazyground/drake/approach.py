@@ -21,7 +21,8 @@ from pydrake.geometry import Box, Cylinder, Sphere, Capsule
 
 from lazyground.drake.approach_kernel import retreats
 from lazyground.drake.arm_reach import end_effector_frame, rigid_bodies, solids_3d
-from lazyground.geometry import rpy_to_matrices
+from lazyground.geometry import pose_matrices, rpy_to_matrices
+from lazyground.regions.base import unit_maps
 
 STEP = 0.03  # m: spacing of the retreat's steps and of the points on the hand's surfaces; a point counts as in collision
 # within STEP / 2 (no board thinner than a step skipped; a coarse, cheap test: it only orders regions)
@@ -48,55 +49,86 @@ class Hand:
 
 def blocked_approaches(world, regions: tuple, skip=(), rng: np.random.Generator | None = None) -> frozenset[int]:
     """The indices of ``regions`` whose every tested pose's retreat along the approach is blocked (cached per world,
-    regions and ``skip``; ``skip``: indices not tested, e.g. those the reach prior drops). Regions without an approach,
-    or that are not workspace (end-effector) regions, are never flagged. The poses are drawn region by region in
-    order; all regions of a frame are tested in one compiled call."""
+    by the tested regions' numbers and ``skip``; ``skip``: indices not tested, e.g. those the reach prior drops).
+    Regions without an approach, or that are not workspace (end-effector) regions, are never flagged. The poses are
+    drawn region by region in order (one ``rng.random`` for all: the same numbers); all regions of a frame are tested
+    in one compiled call."""
+    skip = frozenset(skip)
+    tested = _tested(world, regions, skip)  # [(index, frame, owner)]
+    if not tested:
+        return frozenset()
+    rows = [regions[j] for j, _, _ in tested]
+    X_WR, X_SE = pose_matrices([r.X_WR for r in rows]), pose_matrices([r.X_SE for r in rows])
+    lower, span, _ = unit_maps(rows)
+    approach = np.array([r.approach for r in rows], float)
+    # what the flags depend on (hashing 256 regions' dataclasses cost ~1 ms a look-up, #33)
+    key = (skip, tuple(tested), b"".join(x.tobytes() for x in (X_WR, X_SE, lower, span, approach)))
     cache = _CACHE.setdefault(world, {})
-    key = (regions, frozenset(skip))
-    flags = cache.get(key)  # (hashing 256 regions costs ~1 ms: once to look up, once to store)
+    flags = cache.get(key)
     if flags is None:
         rng = np.random.default_rng(0) if rng is None else rng
-        tests: dict[str, list] = {}  # frame -> [(index, d, steps, X_WR, X_SE, poses, owner)]
-        for j, region in enumerate(regions):
-            test = None if j in key[1] else _test(world, region, rng)
-            if test is not None:
-                tests.setdefault(region.frame, []).append((j, *test))
-        flags = cache[key] = frozenset(j for frame, rows in tests.items() for j in _blocked(hand(world, frame), rows))
+        vs = np.empty((len(rows), POSES + 1, span.shape[1]))  # per region: the centre and seeded samples
+        vs[:, 0] = lower + span / 2
+        vs[:, 1:] = lower[:, None] + span[:, None] * rng.random((len(rows) * POSES, span.shape[1])).reshape(len(rows), POSES, -1)
+        d, steps = _retreat(world, tested, approach)
+        frames = np.array([f for _, f, _ in tested], dtype=object)
+        index, owners = np.array([j for j, _, _ in tested]), np.array([o for _, _, o in tested], np.int64)
+        flags = set()
+        for frame in dict.fromkeys(f for _, f, _ in tested):
+            k = np.flatnonzero(frames == frame)
+            flags.update(index[k][_blocked(hand(world, frame), d[k], steps[k], X_WR[k], X_SE[k], vs[k], owners[k])].tolist())
+        flags = cache[key] = frozenset(flags)
     return flags
 
 
-def _test(world, region, rng: np.random.Generator) -> tuple | None:
-    """(direction, steps, X_WR, X_SE, poses, owner) of ``region``'s test, its poses drawn from ``rng``; None when the
-    region is not tested."""
-    a = np.asarray(getattr(region, "approach", (0.0, 0.0, 0.0)), float)
-    if getattr(region, "kind", "") != "workspace" or not np.any(a) or not world.plant.HasFrameNamed(region.frame):
-        return None
-    h = hand(world, region.frame)
-    owner = h.names.get(region.object, -1)  # not the grasped object: the hand closes on it
-    if not len(h.points) or not np.any(h.owners != owner):
-        return None
-    d = a / np.linalg.norm(a)  # in the frame's axes (a workspace region's target is the frame)
-    along = h.points @ d
-    length = float(along.max() - along.min())  # the hand's extent along the axis: how far it must back out
-    lower, span, _ = region.unit_map()
-    vs = np.empty((POSES + 1, len(span)))
-    vs[0], vs[1:] = lower + span / 2, lower + span * rng.random((POSES, len(span)))  # the centre and seeded samples
-    return d, int(math.ceil(length / STEP)) + 1, region.X_WR.matrix(), region.X_SE.matrix(), vs, owner
+def _tested(world, regions, skip: frozenset) -> list[tuple[int, str, int]]:
+    """(index, frame, owner) of the regions tested, in order: workspace regions with an approach, not in ``skip``,
+    whose frame is in the plant and has a hand with points and a solid not the grasped object's (owner: that object's
+    index in the hand's names, or -1)."""
+    out, frame_ok, owner_ok = [], {}, {}
+    for j, region in enumerate(regions):
+        if j in skip or getattr(region, "kind", "") != "workspace" or not any(getattr(region, "approach", ())):
+            continue
+        frame = region.frame
+        if frame not in frame_ok:
+            frame_ok[frame] = world.plant.HasFrameNamed(frame) and len(hand(world, frame).points) > 0
+        if not frame_ok[frame]:
+            continue
+        h = hand(world, frame)
+        owner = h.names.get(region.object, -1)  # not the grasped object: the hand closes on it
+        if (frame, owner) not in owner_ok:
+            owner_ok[frame, owner] = bool(np.any(h.owners != owner))
+        if owner_ok[frame, owner]:
+            out.append((j, frame, owner))
+    return out
 
 
-def _blocked(h: Hand, rows: list) -> list[int]:
-    """The indices of the tested regions ``rows`` (one frame's, :func:`_test`) none of whose poses backs out."""
-    d, X_WR, X_SE, vs = (np.stack([r[k] for r in rows]) for k in (1, 3, 4, 5))
+def _retreat(world, tested, approach: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per tested region: the approach's direction (in the frame's axes: a workspace region's target is the frame) and
+    the retreat's steps (the hand's extent along it, how far it must back out, over STEP), once per frame and approach."""
+    d, steps, done = np.empty((len(tested), 3)), np.empty(len(tested), np.int64), {}
+    for i, ((_, frame, _), a) in enumerate(zip(tested, approach)):
+        key = (frame, a.tobytes())
+        if key not in done:
+            u = a / np.linalg.norm(a)
+            along = hand(world, frame).points @ u
+            done[key] = u, int(math.ceil(float(along.max() - along.min()) / STEP)) + 1
+        d[i], steps[i] = done[key]
+    return d, steps
+
+
+def _blocked(h: Hand, d, steps, X_WR, X_SE, vs, owners) -> np.ndarray:
+    """Whether each tested region (one frame's: directions ``d``, steps, X_WR, X_SE, poses ``vs``, owners) has no
+    pose that backs out."""
     R = X_WR[:, None, :3, :3] @ rpy_to_matrices(vs[..., 3:6].reshape(-1, 3)).reshape(vs.shape[:2] + (3, 3)) \
         @ X_SE[:, None, :3, :3]  # (regions, poses, 3, 3): region.pose_in_world(v)
     t = (X_WR[:, :3, :3] @ vs[..., :3].transpose(0, 2, 1)).transpose(0, 2, 1) + X_WR[:, None, :3, 3] \
         + (R @ X_SE[:, None, :3, 3, None])[..., 0]
     p = np.einsum("rkij,mj->rkmi", R, h.points) + t[:, :, None, :]  # (regions, poses, points, 3)
     dw = (R @ d[:, None, :, None])[..., 0]  # (regions, poses, 3): each pose's retreat direction in the world
-    steps, owners = np.array([r[2] for r in rows], np.int64), np.array([r[6] for r in rows], np.int64)
     free = retreats(np.ascontiguousarray(p), np.ascontiguousarray(dw), steps, STEP, *h.solids, h.reach, h.owners,
                     owners, float(h.tol))
-    return [r[0] for r, f in zip(rows, free) if not f]
+    return ~np.asarray(free, bool)
 
 
 def hand(world, frame: str) -> Hand:
