@@ -5,6 +5,7 @@ Run from the checkout's root (cwd comes first on sys.path; works on checkouts fr
 
     nice python3 tools/check_split.py                  # seeds 0-4, ~1-2 minutes quiet
     nice python3 tools/check_split.py --seeds 10 --reps 5
+    nice python3 tools/check_split.py --scenes rack:fetch:64:1:0 --seeds 3   # a generated rack (#33)
 
 It plans each scene's first request at seeds 0..N-1 (world prebuilt, one warm-up request) and records every
 check the search makes (goal sampling's are the IK's, not counted here, as in the report's collision_s), with
@@ -37,10 +38,18 @@ def record(name: str, seeds: int):
     from lazyground.planning import search as se
     from lazyground.scene import load_scene
 
-    scene = load_scene(name)
-    world = DrakeWorld(scene, visual=False)
-    request = scene.expect[0].request
-    api.plan(scene, request, seed=1000, world=world)
+    if name.startswith("rack:"):  # a generated rack (#33): its world and request as the bench loads them
+        from lazyground.bench.runner import load_problem
+
+        problem = load_problem(name)
+        scene, world, request = problem.scene, problem.world, problem.request
+        options = dict(strategy="cover", algorithm="bidirectional", time_limit=30)  # as tools/rack_split.py plans
+    else:
+        scene = load_scene(name)
+        world = DrakeWorld(scene, visual=False)
+        request = scene.expect[0].request
+        options = {}
+    api.plan(scene, request, seed=1000, world=world, **options)
     c = world.checker
     state = dict(search=False, sampling=0, depth=0, log=None)
     calls, undo = [], []
@@ -101,7 +110,7 @@ def record(name: str, seeds: int):
     se.Search.__init__, se.Search.draw, se.Search.result = s_init, s_draw, s_result
     try:
         for seed in range(seeds):
-            api.plan(scene, request, seed=seed, world=world)
+            api.plan(scene, request, seed=seed, world=world, **options)
     finally:
         se.Search.__init__, se.Search.draw, se.Search.result = search_init, draw, result
         for owner, attr, old in undo:  # the replay runs the checker's own code

@@ -73,14 +73,19 @@ def test_a_car_request_loads_the_cars_kernels_in_its_set_up():
 @pytest.mark.parametrize("cell", [0.2, 0.03])
 def test_the_obstacle_grid_gives_the_same_codes_and_open_pairs(cell, monkeypatch):
     """The obstacles' grid (#33; on by default from GRID_FROM obstacles) changes no answer: every row's code and
-    open pairs, in order, as the test over every obstacle gives them (here forced on a bundled scene's 31, with
-    ordinary and with tiny cells: an obstacle in many cells is still tested once)."""
+    open pairs, in order, as the test over every obstacle gives them, and every row's of densely stepped segments
+    (the sweep, whose anchors' clearances visit the grid's obstacles only), here forced on a bundled scene's 31,
+    with ordinary and with tiny cells: an obstacle in many cells is still tested once."""
     from lazyground.drake import sphere_kernels as kernels
     from lazyground.drake.certify_check import sample_configs
+    from lazyground.drake.compiled import _above
 
     world = DrakeWorld(load_scene("yaml_scenes/fetch_boxes_3.yaml"), visual=False)
     blocks = world.checker.certifier.kernel_blocks()
-    q = sample_configs(world, np.random.default_rng(3), 1500)
+    rng = np.random.default_rng(3)
+    q = sample_configs(world, rng, 1500)
+    ends = [world.space.sample(rng) for _ in range(16)]
+    dense = world.full(np.vstack([world.space.discretize(a, b, 0.005) for a, b in zip(ends[0::2], ends[1::2])]))
     monkeypatch.setattr(kernels, "GRID_CELL", cell)
     out = []
     for grid_from in (10**9, 1):
@@ -90,7 +95,44 @@ def test_the_obstacle_grid_gives_the_same_codes_and_open_pairs(cell, monkeypatch
         code = kernels.certify_rows(q, fd, idata, work, pairs)
         one = np.full(17, -1, np.int64)
         shifted = [kernels.certify_one(fd, idata, work, one, row, world.padding) for row in q[:300]]
-        out.append((code, np.where(code[:, None] > np.arange(16), pairs, -1), shifted))
-    (c0, p0, s0), (c1, p1, s1) = out
+        swept = np.full((len(dense), 16), -1, np.int64)
+        sweep = kernels.sweep_rows(dense, fd, idata, work, _above(blocks), swept)
+        out.append((code, np.where(code[:, None] > np.arange(16), pairs, -1), shifted, sweep,
+                    np.where(sweep[:, None] > np.arange(16), swept, -1)))
+    (c0, p0, s0, w0, v0), (c1, p1, s1, w1, v1) = out
     assert (c0 > 0).sum() > 100 and (c0 == kernels.COLLIDES).sum() > 100  # both answers are exercised
+    assert (w0 == 0).sum() > 100 and (w0 != 0).sum() > 100
     assert np.array_equal(c0, c1) and np.array_equal(p0, p1) and s0 == s1
+    assert np.array_equal(w0, w1) and np.array_equal(v0, v1)
+
+
+@pytest.mark.parametrize("cell", [0.2, 0.03])
+def test_the_grid_lists_every_obstacle_a_sweep_anchor_needs(cell, monkeypatch):
+    """The grid's query with room (#33: a sweep anchor's clearance) lists, once each and in ascending order, every
+    checked obstacle whose world box comes within the room of the geometry's farthest reach, and none farther
+    (the clearance loop skips every obstacle farther than the room plus that pair's reach)."""
+    from lazyground.drake import sphere_kernels as kernels
+
+    world = DrakeWorld(load_scene("yaml_scenes/fetch_boxes_3.yaml"), visual=False)
+    blocks = world.checker.certifier.kernel_blocks()
+    monkeypatch.setattr(kernels, "GRID_CELL", cell)
+    G, O = blocks["counts"]["G"], blocks["counts"]["O"]
+    grid = kernels.obstacle_grid(blocks, 1)
+    views = tuple(np.ascontiguousarray(grid[k]) for k in ("glo", "ginv", "greach", "gdim", "gstart", "gitem"))
+    views += (np.ascontiguousarray(grid["gcell"]).reshape(O, 3),)
+    ac, ah = (np.ascontiguousarray(blocks[k], float).reshape(3, O) for k in ("ac", "ah"))
+    reach2 = np.ascontiguousarray(blocks["reach2"], float).reshape(G, O)
+    rng = np.random.default_rng(2)
+    lo, hi = (ac - ah).min(axis=1) - 0.5, (ac + ah).max(axis=1) + 0.5
+    cand, seen = np.zeros(O), 0
+    for c in rng.uniform(lo, hi, (400, 3)):
+        d = np.sqrt((np.maximum(np.abs(c[:, None] - ac) - ah, 0.0) ** 2).sum(axis=0))
+        for g in range(G):
+            r = grid["greach"][g] + kernels.ROOM
+            n = kernels._near(g, c[0], c[1], c[2], ac, ah, reach2, views, cand, kernels.ROOM)
+            got = cand[:n].astype(int)
+            assert np.all(np.diff(got) > 0)
+            checked = reach2[g] >= 0.0
+            assert set(np.flatnonzero(checked & (d <= r - 1e-9))) <= set(got) <= set(np.flatnonzero(checked & (d <= r + 1e-9)))
+            seen += n
+    assert seen > 1000  # near obstacles are met

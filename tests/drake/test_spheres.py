@@ -185,7 +185,7 @@ def _kernel_levers(q, fd, idata, work, above, lever, pair_lever):
     Rs, ps, Rb, pb, centre, sph, done, W, A, gap = sphere_kernels.scratch_views(idata, work)
     tree, blocks = sphere_kernels.tree_views(fd, idata), sphere_kernels.block_views(fd, idata)
     clear_g, clear_k = np.empty(lever.shape[0]), np.empty(pair_lever.shape[0])
-    sphere_kernels._clearance(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, W, above, lever, clear_g, clear_k)
+    sphere_kernels._clearance(q, idata, tree, blocks, Rs, ps, Rb, pb, centre, W, gap[1], above, lever, clear_g, clear_k)
     sphere_kernels._pair_levers(blocks, above, lever, pair_lever)
 
 
