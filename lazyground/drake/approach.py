@@ -21,7 +21,7 @@ from pydrake.geometry import Box, Cylinder, Sphere, Capsule
 
 from lazyground.drake.approach_kernel import retreats
 from lazyground.drake.arm_reach import end_effector_frame, rigid_bodies, solids_3d
-from lazyground.geometry import rpy_to_matrices
+from lazyground.geometry import MatrixMemo, rpy_to_matrices
 
 STEP = 0.03  # m: spacing of the retreat's steps and of the points on the hand's surfaces; a point counts as in collision
 # within STEP / 2 (no board thinner than a step skipped; a coarse, cheap test: it only orders regions)
@@ -56,47 +56,56 @@ def blocked_approaches(world, regions: tuple, skip=(), rng: np.random.Generator 
     flags = cache.get(key)  # (hashing 256 regions costs ~1 ms: once to look up, once to store)
     if flags is None:
         rng = np.random.default_rng(0) if rng is None else rng
-        tests: dict[str, list] = {}  # frame -> [(index, d, steps, X_WR, X_SE, poses, owner)]
-        for j, region in enumerate(regions):
-            test = None if j in key[1] else _test(world, region, rng)
-            if test is not None:
-                tests.setdefault(region.frame, []).append((j, *test))
-        flags = cache[key] = frozenset(j for frame, rows in tests.items() for j in _blocked(hand(world, frame), rows))
+        tested = [(j, r, owner) for j, r in enumerate(regions) if j not in key[1] and (owner := _owner(world, r)) is not None]
+        draws = rng.random((len(tested), POSES, 6))  # (as POSES x 6 draws region by region: one stream, in order)
+        frames: dict[str, list[int]] = {}  # frame -> its rows of ``tested``
+        for row, (_, region, _) in enumerate(tested):
+            frames.setdefault(region.frame, []).append(row)
+        flags = cache[key] = frozenset(j for frame, rows in frames.items()
+                                       for j in _blocked(hand(world, frame), [tested[i] for i in rows], draws[rows]))
     return flags
 
 
-def _test(world, region, rng: np.random.Generator) -> tuple | None:
-    """(direction, steps, X_WR, X_SE, poses, owner) of ``region``'s test, its poses drawn from ``rng``; None when the
-    region is not tested."""
-    a = np.asarray(getattr(region, "approach", (0.0, 0.0, 0.0)), float)
-    if getattr(region, "kind", "") != "workspace" or not np.any(a) or not world.plant.HasFrameNamed(region.frame):
+def _owner(world, region) -> int | None:
+    """The index of the solid owner the hand closes on in ``region``'s grasps (-1: none of the world's), or None when
+    the region is not tested: not a workspace region with an approach, or no hand points or solids to test."""
+    a = getattr(region, "approach", (0.0, 0.0, 0.0))
+    if getattr(region, "kind", "") != "workspace" or not any(a) or not world.plant.HasFrameNamed(region.frame):
         return None
     h = hand(world, region.frame)
     owner = h.names.get(region.object, -1)  # not the grasped object: the hand closes on it
     if not len(h.points) or not np.any(h.owners != owner):
         return None
-    d = a / np.linalg.norm(a)  # in the frame's axes (a workspace region's target is the frame)
-    along = h.points @ d
-    length = float(along.max() - along.min())  # the hand's extent along the axis: how far it must back out
-    lower, span, _ = region.unit_map()
-    vs = np.empty((POSES + 1, len(span)))
-    vs[0], vs[1:] = lower + span / 2, lower + span * rng.random((POSES, len(span)))  # the centre and seeded samples
-    return d, int(math.ceil(length / STEP)) + 1, region.X_WR.matrix(), region.X_SE.matrix(), vs, owner
+    return owner
 
 
-def _blocked(h: Hand, rows: list) -> list[int]:
-    """The indices of the tested regions ``rows`` (one frame's, :func:`_test`) none of whose poses backs out."""
-    d, X_WR, X_SE, vs = (np.stack([r[k] for r in rows]) for k in (1, 3, 4, 5))
+def _blocked(h: Hand, tested: list, draws: np.ndarray) -> list[int]:
+    """The indices of the tested regions (one frame's: (index, region, owner)) none of whose poses backs out: the
+    region's centre and its ``draws`` (regions, POSES, 6) of unit numbers."""
+    retreat: dict[tuple, tuple] = {}  # approach -> (direction in the frame's axes, steps): the hand's length along it
+    for _, region, _ in tested:
+        a = tuple(region.approach)
+        if a not in retreat:
+            d = np.asarray(a, float) / np.linalg.norm(np.asarray(a, float))
+            along = h.points @ d
+            retreat[a] = d, int(math.ceil(float(along.max() - along.min()) / STEP)) + 1  # how far it must back out
+    matrix = MatrixMemo()
+    d = np.stack([retreat[tuple(r.approach)][0] for _, r, _ in tested])
+    X_WR, X_SE = (np.stack([matrix(getattr(r, name)) for _, r, _ in tested]) for name in ("X_WR", "X_SE"))
+    lower, span = (np.stack(a) for a in zip(*(r.unit_map()[:2] for _, r, _ in tested)))
+    vs = np.empty((len(tested), POSES + 1, 6))
+    vs[:, 0], vs[:, 1:] = lower + span / 2, lower[:, None] + span[:, None] * draws  # the centre and seeded samples
     R = X_WR[:, None, :3, :3] @ rpy_to_matrices(vs[..., 3:6].reshape(-1, 3)).reshape(vs.shape[:2] + (3, 3)) \
         @ X_SE[:, None, :3, :3]  # (regions, poses, 3, 3): region.pose_in_world(v)
     t = (X_WR[:, :3, :3] @ vs[..., :3].transpose(0, 2, 1)).transpose(0, 2, 1) + X_WR[:, None, :3, 3] \
         + (R @ X_SE[:, None, :3, 3, None])[..., 0]
     p = np.einsum("rkij,mj->rkmi", R, h.points) + t[:, :, None, :]  # (regions, poses, points, 3)
     dw = (R @ d[:, None, :, None])[..., 0]  # (regions, poses, 3): each pose's retreat direction in the world
-    steps, owners = np.array([r[2] for r in rows], np.int64), np.array([r[6] for r in rows], np.int64)
+    steps = np.array([retreat[tuple(r.approach)][1] for _, r, _ in tested], np.int64)
+    owners = np.array([owner for _, _, owner in tested], np.int64)
     free = retreats(np.ascontiguousarray(p), np.ascontiguousarray(dw), steps, STEP, *h.solids, h.reach, h.owners,
                     owners, float(h.tol))
-    return [r[0] for r, f in zip(rows, free) if not f]
+    return [j for (j, _, _), f in zip(tested, free) if not f]
 
 
 def hand(world, frame: str) -> Hand:
