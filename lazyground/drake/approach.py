@@ -99,12 +99,11 @@ def _blocked(h: Hand, tested: list, draws: np.ndarray) -> list[int]:
         @ X_SE[:, None, :3, :3]  # (regions, poses, 3, 3): region.pose_in_world(v)
     t = (X_WR[:, :3, :3] @ vs[..., :3].transpose(0, 2, 1)).transpose(0, 2, 1) + X_WR[:, None, :3, 3] \
         + (R @ X_SE[:, None, :3, 3, None])[..., 0]
-    p = np.einsum("rkij,mj->rkmi", R, h.points) + t[:, :, None, :]  # (regions, poses, points, 3)
     dw = (R @ d[:, None, :, None])[..., 0]  # (regions, poses, 3): each pose's retreat direction in the world
     steps = np.array([retreat[tuple(r.approach)][1] for _, r, _ in tested], np.int64)
     owners = np.array([owner for _, _, owner in tested], np.int64)
-    free = retreats(np.ascontiguousarray(p), np.ascontiguousarray(dw), steps, STEP, *h.solids, h.reach, h.owners,
-                    owners, float(h.tol))
+    free = retreats(np.ascontiguousarray(R), np.ascontiguousarray(t), np.ascontiguousarray(h.points, float),
+                    np.ascontiguousarray(dw), steps, STEP, *h.solids, h.reach, h.owners, owners, float(h.tol))
     return [j for (j, _, _), f in zip(tested, free) if not f]
 
 
