@@ -32,7 +32,8 @@ class StagedBandit:
     ring fail out of reach, 24-27 % of those on the inner ring's (layout 0, 60 per region).
 
     Counts are kept as attempts are recorded (:meth:`observe`, O(1)); a block costs one sort of the open regions
-    (numpy), once per ``BLOCK`` attempts, not per search iteration.
+    (numpy), made when the source's schedule runs out, and made again only after the counts (``version``) or the
+    open regions changed (:meth:`lazyground.goals.RoundRobinGoalSource._next_block`): never per search iteration.
     """
 
     def __init__(self, stats: list, hopeless_reasons: tuple[str, ...], deferred=()):
