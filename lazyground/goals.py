@@ -79,7 +79,7 @@ class RoundRobinGoalSource:
         # the strategy's choice of regions (the search sets it: lazyground.planning.region_bandit); None: round robin
         self.chooser = None
         self._schedule: list[int] = []  # with a chooser: the region of each attempt counter, blocks appended as needed
-        self._block: tuple = (None, [])  # ((the chooser's version, open regions) it was made at, the chooser's last block)
+        self._block: tuple = (None, [])  # ((chooser, its version, open regions) it was made at, the chooser's last block)
 
     def seed_near(self) -> bool:
         """Solve goals from the step's start from now on (the branch nearest it); False: this source cannot."""
@@ -226,11 +226,11 @@ class RoundRobinGoalSource:
         return out
 
     def _next_block(self) -> list[int]:
-        """The chooser's next block of regions, asked again only when its counts (``version``) or the open regions
-        changed since the last: a plan that passes over many entries appends one block many times (#33: ~300 sorts
-        of the open regions a request on a 64-can Fetch rack, ~10 distinct)."""
-        key = (getattr(self.chooser, "version", None), len(self._open))  # (the open list only shrinks)
-        if key[0] is None or key != self._block[0]:
+        """The chooser's next block of regions, asked again only when the chooser, its counts (``version``) or the
+        open regions changed since the last: a plan that passes over many entries appends one block many times
+        (#33: ~300 sorts of the open regions a request on a 64-can Fetch rack, 1 distinct)."""
+        key = (self.chooser, getattr(self.chooser, "version", None), len(self._open))  # (the open list only shrinks)
+        if key[1] is None or key != self._block[0]:
             self._block = (key, self.chooser.block(self._open))
         return self._block[1]
 

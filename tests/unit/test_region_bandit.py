@@ -170,6 +170,10 @@ def test_a_plan_asks_the_chooser_again_only_once_its_counts_or_the_open_regions_
     source.plan(0, 3 * BLOCK)
     source.draw(1, np.random.default_rng(0), never())  # counts change: asked again past the schedule's end
     assert len(asked) >= 2
+    source, _ = _one_region_ahead()
+    assert source._next_block() == [0]
+    source.chooser = StagedBandit(source.stats, source.hopeless_reasons)  # another chooser, at version 0 too: asked
+    assert source._next_block() == list(range(BLOCK))
 
 
 def test_a_draw_past_a_spent_stretch_of_the_schedule_goes_on_to_the_next_block():
