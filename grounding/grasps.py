@@ -44,7 +44,7 @@ def make_region(cls, obj, interpretation, label, lower, upper, ee: EndEffectorSp
         if not is_neutral(ee):
             fields["X_SE"], fields["approach"] = in_tool(ee, fields.get("X_SE", Pose()), fields.get("approach", (0.0, 0.0, 0.0)))
     return cls(id=f"{obj.id}/{label}", interpretation=interpretation, object=obj.id, label=label,
-               lower=tuple(float(v) for v in lower), upper=tuple(float(v) for v in upper), **fields)
+               lower=tuple(map(float, lower)), upper=tuple(map(float, upper)), **fields)
 
 
 _IN_TOOL: dict[str, tuple[Pose, tuple[float, float, float]]] = {}

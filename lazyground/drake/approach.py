@@ -21,7 +21,8 @@ from pydrake.geometry import Box, Cylinder, Sphere, Capsule
 
 from lazyground.drake.approach_kernel import retreats
 from lazyground.drake.arm_reach import end_effector_frame, rigid_bodies, solids_3d
-from lazyground.geometry import MatrixMemo, rpy_to_matrices
+from lazyground.geometry import pose_matrices, rpy_to_matrices
+from lazyground.regions.base import unit_maps
 
 STEP = 0.03  # m: spacing of the retreat's steps and of the points on the hand's surfaces; a point counts as in collision
 # within STEP / 2 (no board thinner than a step skipped; a coarse, cheap test: it only orders regions)
@@ -48,63 +49,85 @@ class Hand:
 
 def blocked_approaches(world, regions: tuple, skip=(), rng: np.random.Generator | None = None) -> frozenset[int]:
     """The indices of ``regions`` whose every tested pose's retreat along the approach is blocked (cached per world,
-    regions and ``skip``; ``skip``: indices not tested, e.g. those the reach prior drops). Regions without an approach,
-    or that are not workspace (end-effector) regions, are never flagged. The poses are drawn region by region in
-    order; all regions of a frame are tested in one compiled call."""
+    by the tested regions' numbers and ``skip``; ``skip``: indices not tested, e.g. those the reach prior drops).
+    Regions without an approach, or that are not workspace (end-effector) regions, are never flagged. The poses are
+    drawn region by region in order (one ``rng.random`` for all: the same numbers); all regions of a frame are tested
+    in one compiled call."""
+    skip = frozenset(skip)
+    tested = _tested(world, regions, skip)  # [(index, frame, owner)]
+    if not tested:
+        return frozenset()
+    rows = [regions[j] for j, _, _ in tested]
+    X_WR, X_SE = pose_matrices([r.X_WR for r in rows]), pose_matrices([r.X_SE for r in rows])
+    lower, span, _ = unit_maps(rows)
+    approach = np.array([r.approach for r in rows], float)
+    # what the flags depend on (hashing 256 regions' dataclasses cost ~1 ms a look-up, #33)
+    key = (skip, tuple(tested), b"".join(x.tobytes() for x in (X_WR, X_SE, lower, span, approach)))
     cache = _CACHE.setdefault(world, {})
-    key = (regions, frozenset(skip))
-    flags = cache.get(key)  # (hashing 256 regions costs ~1 ms: once to look up, once to store)
+    flags = cache.get(key)
     if flags is None:
         rng = np.random.default_rng(0) if rng is None else rng
-        tested = [(j, r, owner) for j, r in enumerate(regions) if j not in key[1] and (owner := _owner(world, r)) is not None]
-        draws = rng.random((len(tested), POSES, 6))  # (as POSES x 6 draws region by region: one stream, in order)
-        frames: dict[str, list[int]] = {}  # frame -> its rows of ``tested``
-        for row, (_, region, _) in enumerate(tested):
-            frames.setdefault(region.frame, []).append(row)
-        flags = cache[key] = frozenset(j for frame, rows in frames.items()
-                                       for j in _blocked(hand(world, frame), [tested[i] for i in rows], draws[rows]))
+        vs = np.empty((len(rows), POSES + 1, span.shape[1]))  # per region: the centre and seeded samples
+        vs[:, 0] = lower + span / 2
+        vs[:, 1:] = lower[:, None] + span[:, None] * rng.random((len(rows) * POSES, span.shape[1])).reshape(len(rows), POSES, -1)
+        d, steps = _retreat(world, tested, approach)
+        frames = np.array([f for _, f, _ in tested], dtype=object)
+        index, owners = np.array([j for j, _, _ in tested]), np.array([o for _, _, o in tested], np.int64)
+        flags = set()
+        for frame in dict.fromkeys(f for _, f, _ in tested):
+            k = np.flatnonzero(frames == frame)
+            flags.update(index[k][_blocked(hand(world, frame), d[k], steps[k], X_WR[k], X_SE[k], vs[k], owners[k])].tolist())
+        flags = cache[key] = frozenset(flags)
     return flags
 
 
-def _owner(world, region) -> int | None:
-    """The index of the solid owner the hand closes on in ``region``'s grasps (-1: none of the world's), or None when
-    the region is not tested: not a workspace region with an approach, or no hand points or solids to test."""
-    a = getattr(region, "approach", (0.0, 0.0, 0.0))
-    if getattr(region, "kind", "") != "workspace" or not any(a) or not world.plant.HasFrameNamed(region.frame):
-        return None
-    h = hand(world, region.frame)
-    owner = h.names.get(region.object, -1)  # not the grasped object: the hand closes on it
-    if not len(h.points) or not np.any(h.owners != owner):
-        return None
-    return owner
+def _tested(world, regions, skip: frozenset) -> list[tuple[int, str, int]]:
+    """(index, frame, owner) of the regions tested, in order: workspace regions with an approach, not in ``skip``,
+    whose frame is in the plant and has a hand with points and a solid not the grasped object's (owner: that object's
+    index in the hand's names, or -1)."""
+    out, frame_ok, owner_ok = [], {}, {}
+    for j, region in enumerate(regions):
+        if j in skip or getattr(region, "kind", "") != "workspace" or not any(getattr(region, "approach", ())):
+            continue
+        frame = region.frame
+        if frame not in frame_ok:
+            frame_ok[frame] = world.plant.HasFrameNamed(frame) and len(hand(world, frame).points) > 0
+        if not frame_ok[frame]:
+            continue
+        h = hand(world, frame)
+        owner = h.names.get(region.object, -1)  # not the grasped object: the hand closes on it
+        if (frame, owner) not in owner_ok:
+            owner_ok[frame, owner] = bool(np.any(h.owners != owner))
+        if owner_ok[frame, owner]:
+            out.append((j, frame, owner))
+    return out
 
 
-def _blocked(h: Hand, tested: list, draws: np.ndarray) -> list[int]:
-    """The indices of the tested regions (one frame's: (index, region, owner)) none of whose poses backs out: the
-    region's centre and its ``draws`` (regions, POSES, 6) of unit numbers."""
-    retreat: dict[tuple, tuple] = {}  # approach -> (direction in the frame's axes, steps): the hand's length along it
-    for _, region, _ in tested:
-        a = tuple(region.approach)
-        if a not in retreat:
-            d = np.asarray(a, float) / np.linalg.norm(np.asarray(a, float))
-            along = h.points @ d
-            retreat[a] = d, int(math.ceil(float(along.max() - along.min()) / STEP)) + 1  # how far it must back out
-    matrix = MatrixMemo()
-    d = np.stack([retreat[tuple(r.approach)][0] for _, r, _ in tested])
-    X_WR, X_SE = (np.stack([matrix(getattr(r, name)) for _, r, _ in tested]) for name in ("X_WR", "X_SE"))
-    lower, span = (np.stack(a) for a in zip(*(r.unit_map()[:2] for _, r, _ in tested)))
-    vs = np.empty((len(tested), POSES + 1, 6))
-    vs[:, 0], vs[:, 1:] = lower + span / 2, lower[:, None] + span[:, None] * draws  # the centre and seeded samples
+def _retreat(world, tested, approach: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per tested region: the approach's direction (in the frame's axes: a workspace region's target is the frame) and
+    the retreat's steps (the hand's extent along it, how far it must back out, over STEP), once per frame and approach."""
+    d, steps, done = np.empty((len(tested), 3)), np.empty(len(tested), np.int64), {}
+    for i, ((_, frame, _), a) in enumerate(zip(tested, approach)):
+        key = (frame, a.tobytes())
+        if key not in done:
+            u = a / np.linalg.norm(a)
+            along = hand(world, frame).points @ u
+            done[key] = u, int(math.ceil(float(along.max() - along.min()) / STEP)) + 1
+        d[i], steps[i] = done[key]
+    return d, steps
+
+
+def _blocked(h: Hand, d, steps, X_WR, X_SE, vs, owners) -> np.ndarray:
+    """Whether each tested region (one frame's: directions ``d``, steps, X_WR, X_SE, poses ``vs``, owners) has no
+    pose that backs out."""
     R = X_WR[:, None, :3, :3] @ rpy_to_matrices(vs[..., 3:6].reshape(-1, 3)).reshape(vs.shape[:2] + (3, 3)) \
         @ X_SE[:, None, :3, :3]  # (regions, poses, 3, 3): region.pose_in_world(v)
     t = (X_WR[:, :3, :3] @ vs[..., :3].transpose(0, 2, 1)).transpose(0, 2, 1) + X_WR[:, None, :3, 3] \
         + (R @ X_SE[:, None, :3, 3, None])[..., 0]
     dw = (R @ d[:, None, :, None])[..., 0]  # (regions, poses, 3): each pose's retreat direction in the world
-    steps = np.array([retreat[tuple(r.approach)][1] for _, r, _ in tested], np.int64)
-    owners = np.array([owner for _, _, owner in tested], np.int64)
     free = retreats(np.ascontiguousarray(R), np.ascontiguousarray(t), np.ascontiguousarray(h.points, float),
                     np.ascontiguousarray(dw), steps, STEP, *h.solids, h.reach, h.owners, owners, float(h.tol))
-    return [j for (j, _, _), f in zip(tested, free) if not f]
+    return ~np.asarray(free, bool)
 
 
 def hand(world, frame: str) -> Hand:

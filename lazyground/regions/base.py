@@ -8,6 +8,7 @@ Goal sources are looked up by kind in :mod:`lazyground.goals`.
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass, field
 from typing import ClassVar
 
@@ -50,6 +51,23 @@ def from_unit(lower: np.ndarray, span: np.ndarray, wrapped: np.ndarray, u: np.nd
     ``rng.random(dim)``, so rows of one ``rng.random((n, dim))`` are n samples."""
     v = lower + np.asarray(u, float) * span
     return np.where(wrapped, wrap_angle(v), v)
+
+
+def unit_maps(regions) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:meth:`GoalRegion.unit_map` of each of ``regions`` (of one dimension), stacked (N, dim) each, in one pass."""
+    if not len(regions):
+        return np.zeros((0, 0)), np.zeros((0, 0)), np.zeros((0, 0), bool)
+    n, dim = len(regions), len(regions[0].lower)
+    if any(len(r.lower) != dim or len(r.upper) != dim for r in regions):
+        raise ValueError("unit_maps: regions of different dimensions")
+    lo = np.fromiter(itertools.chain.from_iterable(r.lower for r in regions), float, n * dim).reshape(n, dim)
+    span = np.fromiter(itertools.chain.from_iterable(r.upper for r in regions), float, n * dim).reshape(n, dim) - lo
+    wrapped = np.zeros(lo.shape, bool)
+    for j, r in enumerate(regions):
+        if r.wrap:
+            wrapped[j, list(r.wrap)] = True
+    span[wrapped & (span < 0)] += 2 * np.pi  # a wrapped interval such as [3.0, -3.0]
+    return lo, span, wrapped
 
 
 @dataclass(frozen=True)
@@ -97,14 +115,8 @@ class GoalRegion:
 
     def unit_map(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(lower, span, wrapped): the bounds as :func:`from_unit` takes them."""
-        lo, hi = np.asarray(self.lower, float), np.asarray(self.upper, float)
-        span = hi - lo
-        for i in self.wrap:
-            if span[i] < 0:  # a wrapped interval such as [3.0, -3.0]
-                span[i] += 2 * np.pi
-        wrapped = np.zeros(len(lo), bool)
-        wrapped[list(self.wrap)] = True
-        return lo, span, wrapped
+        lo, span, wrapped = unit_maps((self,))
+        return lo[0], span[0], wrapped[0]
 
     def contains(self, v: np.ndarray, tol: float = 1e-6) -> bool:
         """Whether a vector of the kind's coordinates lies in the bounds (within ``tol``; on wrapped axes, on the

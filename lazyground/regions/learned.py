@@ -32,7 +32,8 @@ class RegionLearner:
     """Per region and free axis, the binned scores of past draws and the warp of new ones.
 
     Args:
-        bounds: per region, ``(lower, span, wrapped)`` as :meth:`GoalRegion.unit_map` gives them.
+        bounds: ``(lower, span, wrapped)``, (N, dim) each, a row per region, as
+            :func:`~lazyground.regions.base.unit_maps` gives them.
         learning: the share of each axis's density that follows the scores, in [0, 1].
         angles: the axes measured in radians (binned by BIN_ANGLE, the others by BIN_LENGTH).
     """
@@ -41,17 +42,26 @@ class RegionLearner:
         if not 0.0 <= learning <= 1.0:
             raise ValueError(f"learning must be in [0, 1], got {learning}")
         self.learning = float(learning)
-        self._bounds = [tuple(np.asarray(b, float) for b in bound) for bound in bounds]
-        self._bins = []  # per region: {axis: number of bins}, the axes wide enough for two bins
-        for lo, span, _ in self._bounds:
-            n = [min(MAX_BINS, math.ceil(s / (BIN_ANGLE if i in angles else BIN_LENGTH) - 1e-9)) for i, s in enumerate(span)]
-            self._bins.append({i: k for i, k in enumerate(n) if k > 1})
-        self.score = [{i: np.zeros(n) for i, n in bins.items()} for bins in self._bins]
-        self.count = [{i: np.zeros(n) for i, n in bins.items()} for bins in self._bins]
+        self._lower, self._span, self._wrapped = (np.asarray(b, float) for b in bounds)
+        span = self._span
+        # per region: {axis: number of bins}, the axes wide enough for two bins (all regions in one pass, #33)
+        width = np.where(np.isin(np.arange(span.shape[1]), angles), BIN_ANGLE, BIN_LENGTH)
+        n = np.minimum(MAX_BINS, np.ceil(span / width - 1e-9)).astype(int)
+        self._bins: list[dict[int, int]] = [{} for _ in range(len(span))]
+        for j, i in zip(*(a.tolist() for a in np.nonzero(n > 1))):
+            self._bins[j][i] = int(n[j, i])
+        self._tallies: dict[int, tuple[dict, dict]] = {}  # region -> ({axis: scores}, {axis: counts}), made when first scored
+
+    def tallies(self, j: int) -> tuple[dict[int, np.ndarray], dict[int, np.ndarray]]:
+        """Region ``j``'s ({axis: summed score per bin}, {axis: draws per bin}) (zeros until it is scored)."""
+        if j not in self._tallies:
+            self._tallies[j] = ({i: np.zeros(n) for i, n in self._bins[j].items()}, {i: np.zeros(n) for i, n in self._bins[j].items()})
+        return self._tallies[j]
 
     def weights(self, j: int, axis: int) -> np.ndarray:
         """The density of region ``j``'s ``axis`` over its bins (sums to 1)."""
-        w = (self.score[j][axis] + 1.0) / (self.count[j][axis] + 2.0)
+        score, count = self.tallies(j)
+        w = (score[axis] + 1.0) / (count[axis] + 2.0)
         n = len(w)
         return (1.0 - self.learning) / n + self.learning * w / w.sum()
 
@@ -62,9 +72,12 @@ class RegionLearner:
             return u
         regions = np.asarray(regions, int)
         for j in np.unique(regions):
+            if j not in self._tallies:  # no outcomes yet: the uniform draw
+                continue
             rows = regions == j
+            count = self._tallies[j][1]
             for axis in self._bins[j]:
-                if not self.count[j][axis].any():
+                if not count[axis].any():
                     continue
                 w = self.weights(j, axis)
                 cdf = np.concatenate([[0.0], np.cumsum(w)])
@@ -76,8 +89,8 @@ class RegionLearner:
     def record(self, j: int, v: np.ndarray, score: float) -> None:
         """Score ``score`` (0..1) for the draw ``v`` of region ``j`` on every free axis's bin (angles unwrapped onto
         the range); on Python floats, one axis at a time (the same IEEE operations as numpy's, ~10x cheaper here)."""
-        lo, span, wrapped = self._bounds[j]
-        score_j, count_j = self.score[j], self.count[j]
+        lo, span, wrapped = self._lower[j], self._span[j], self._wrapped[j]
+        score_j, count_j = self.tallies(j)
         for axis, n in self._bins[j].items():  # a binned axis has span > 0
             d = float(v[axis]) - float(lo[axis])
             if wrapped[axis]:

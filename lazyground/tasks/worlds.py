@@ -61,16 +61,19 @@ class Worlds:
     def warm_goal_caches(self, world, reach_prior: bool) -> None:
         """Build ``world``'s per-world goal-sampling caches now, timed as set-up like the world build (issue #33: they
         depend on the world only, not on the request): the hand probe of the IK target screen
-        (:func:`lazyground.drake.ik.screen.warm_screen`, ~0.03 s on a 64-can rack) and, with ``reach_prior`` on, the
+        (:func:`lazyground.drake.ik.screen.warm_screen`, ~0.03 s on a 64-can rack), the IK chain problems of the end
+        effector (:func:`lazyground.drake.ik.solvers.warm_problems`, ~0.005 s) and, with ``reach_prior`` on, the
         reach prior (an arm's grids: ~0.5 s there) and an arm's hand for the approach-clearance test
         (:func:`lazyground.drake.approach.warm_hand`, ~0.02 s)."""
         if not hasattr(world, "reach_prior"):  # (a DrakeWorld: test doubles have none of these)
             return
         from lazyground.drake.approach import warm_hand
         from lazyground.drake.ik.screen import warm_screen
+        from lazyground.drake.ik.solvers import warm_problems
 
         t0 = default_clock()
         warm_screen(world)
+        warm_problems(world)
         if reach_prior:
             world.reach_prior()
             warm_hand(world)

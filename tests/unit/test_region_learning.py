@@ -14,7 +14,7 @@ from lazyground.goals import RoundRobinGoalSource
 from lazyground.planning.problem import GoalSample
 from lazyground.planning.stop import never
 from lazyground.regions import ConfigRegion
-from lazyground.regions.base import from_unit
+from lazyground.regions.base import from_unit, unit_maps
 from lazyground.regions.learned import REACHED_SCORE, RegionLearner, outcome_score
 
 VALID = (0.5, 0.5 + math.radians(12))
@@ -28,7 +28,7 @@ class Toy(RoundRobinGoalSource):
 
     def __init__(self, regions, learning, **kwargs):
         super().__init__(regions, **kwargs)
-        self.learner = RegionLearner([r.unit_map() for r in self.regions], learning, angles=(0,))
+        self.learner = RegionLearner(unit_maps(self.regions), learning, angles=(0,))
 
     def attempt(self, j, rng, stop):
         v = from_unit(*self.regions[j].unit_map(), self.learner.warp([j], rng.random((1, 1)))[0])
@@ -55,18 +55,18 @@ def _run(learning: float, seed: int, attempts: int = 200) -> tuple[int, int | No
 
 
 def test_without_outcomes_a_draw_is_the_uniform_draw():
-    learner = RegionLearner([_region().unit_map()], 0.75, angles=(0,))
+    learner = RegionLearner(unit_maps([_region()]), 0.75, angles=(0,))
     u = np.random.default_rng(0).random((50, 1))
     np.testing.assert_array_equal(learner.warp(np.zeros(50, int), u), u)
     learner.record(0, np.array([0.6]), 1.0)
     assert not np.array_equal(learner.warp(np.zeros(50, int), u), u)
-    off = RegionLearner([_region().unit_map()], 0.0, angles=(0,))
+    off = RegionLearner(unit_maps([_region()]), 0.0, angles=(0,))
     off.record(0, np.array([0.6]), 1.0)
     np.testing.assert_array_equal(off.warp(np.zeros(50, int), u), u)
 
 
 def test_draws_stay_in_the_region_and_cover_all_of_it():
-    learner = RegionLearner([_region().unit_map()], 1.0, angles=(0,))
+    learner = RegionLearner(unit_maps([_region()]), 1.0, angles=(0,))
     for _ in range(100):
         learner.record(0, np.array([0.6]), 1.0)
     u = learner.warp(np.zeros(20000, int), np.random.default_rng(1).random((20000, 1)))

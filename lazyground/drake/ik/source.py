@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import math
 import time
-import weakref
 from dataclasses import replace
 from typing import Callable
 
@@ -35,7 +34,7 @@ from lazyground.drake.ik.screen import TargetScreen
 from lazyground.drake.ik.settings import IKCounters, IKSettings
 from lazyground.drake.ik.batch import pose_errors
 from lazyground.drake.ik.solvers import BatchSolver, ProgramSolver, pose_error, problem_for_frame
-from lazyground.geometry import MatrixMemo, Pose, rpy_to_matrices
+from lazyground.geometry import Pose, rpy_to_matrices
 from lazyground.goals import RoundRobinGoalSource
 from lazyground.planning.problem import GoalSample
 from lazyground.planning.stop import StopCondition
@@ -43,6 +42,7 @@ from lazyground.planning.turns import nearest_turns
 from lazyground.regions import PoseRegion
 from lazyground.regions.base import from_unit
 from lazyground.regions.learned import RegionLearner, outcome_score
+from lazyground.regions.table import pose_table
 from lazyground.settings import GoalSamplingSettings
 from lazyground.typed_yaml import SceneError
 
@@ -52,47 +52,23 @@ NEAR_METRES_PER_RAD = 0.5  # ... "nearest": rotation angle plus distance / this 
 LOOK_AHEAD_MIN = 16  # fewest attempts the batch solver solves at once (below, one iteration's overhead dominates)
 
 
-_TABLES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()  # world -> {regions: _region_table's}
-
-
 def _region_table(world, regions: tuple, attached) -> tuple:
-    """(frames, factors, index, stacked) of ``regions`` in ``world``: read only, so built once per world and
-    regions (30 regions of fetch_boxes_3: a few ms against a goal source per plan; #31).
+    """(frames, index, the shared :class:`~lazyground.regions.table.PoseTable`) of ``regions`` in ``world``.
 
     Raises:
         ValueError: a region is not a pose region, or a placement region without a carried object.
         SceneError: the robot has no frame a region constrains.
     """
-    tables = _TABLES.setdefault(world, {})
-    if regions not in tables:
-        tables[regions] = _build_region_table(world, regions, attached)
-    return tables[regions]
-
-
-def _build_region_table(world, regions: tuple, attached) -> tuple:
-    frames = []
     for r in regions:
         if not isinstance(r, PoseRegion):
             raise ValueError(f"region {r.id} is a {r.kind} region, not a pose region; use its registered goal source")
-        frame = r.robot_target(r.X_WR, attached)[0]  # raises for a placement without a carried object
+    table = pose_table(regions, attached)  # raises for a placement without a carried object
+    for frame, j in {f: j for j, f in reversed(list(enumerate(table.frames)))}.items():  # each frame, its first region
         if not world.plant.HasFrameNamed(frame):  # a scene/request mismatch, not a bug
-            raise SceneError(f"{world.scene.source}: robot: no frame {frame!r} to reach goal region {r.id} with (set robot.end_effector)")
-        frames.append(frame)
-    # X_WT = X_WR · X_RS(v) · X_SE · X_ET, where robot_target's X_ET takes the region's
-    # target to the robot frame (identity, or the carried object's grasp); the approach,
-    # given in the target's axes, is d = X_ET^-1 · T(approach) · X_ET in the robot frame's
-    factors, matrix, inverse = {}, MatrixMemo(), {}  # (regions share most poses: each matrix and inverse once)
-    for r in regions:
-        X_ET = matrix(r.robot_target(Pose(), attached)[1])
-        if id(X_ET) not in inverse:
-            inverse[id(X_ET)] = np.linalg.inv(X_ET)
-        T = np.eye(4)
-        T[:3, 3] = r.approach
-        factors[r.id] = (matrix(r.X_WR), matrix(r.X_SE) @ X_ET, (inverse[id(X_ET)] @ T @ X_ET)[:3, 3])
-    # per region, stacked for drawing many targets at once (target_poses): X_WR, X_ST and the unit map
-    index = {r.id: j for j, r in enumerate(regions)}
-    stacked = [np.array(a) for a in zip(*(factors[r.id][:2] + r.unit_map() for r in regions))]
-    return tuple(frames), factors, index, stacked
+            raise SceneError(f"{world.scene.source}: robot: no frame {frame!r} to reach goal region {regions[j].id} with (set robot.end_effector)")
+    # X_WT = X_WR · X_RS(v) · X_SE · X_ET, where robot_target's X_ET takes the region's target to the robot frame
+    # (identity, or the carried object's grasp); the approach, given in the target's axes, is X_ET^-1 · T(approach) · X_ET
+    return table.frames, {r.id: j for j, r in enumerate(regions)}, table
 
 
 class IKGoalSource(RoundRobinGoalSource):
@@ -127,8 +103,8 @@ class IKGoalSource(RoundRobinGoalSource):
             settings = ik_settings.DEFAULT_IK_SETTINGS if sampling is None else replace(
                 ik_settings.DEFAULT_IK_SETTINGS, restarts=sampling.ik_restarts, solver=str(sampling.ik_solver))
         attached = getattr(world, "attached", None)
-        # per region: the robot frame its targets are for, its factors, and the stacked arrays (_region_table)
-        self.frames, self._factors, self._index, self._stacked = _region_table(world, tuple(self.regions), attached)
+        # per region: the robot frame its targets are for, its row in the table of their numbers (_region_table)
+        self.frames, self._index, self._table = _region_table(world, self.regions, attached)
         self.world = world
         self.settings = settings
         self.counters = IKCounters()
@@ -154,7 +130,8 @@ class IKGoalSource(RoundRobinGoalSource):
             self.batch = BatchAttempts(self, BatchSolver(problems, settings), BatchSolver(pre, settings, PRE_POSE_ITERATIONS))
         self.wanted = 1  # samples the current draw still wants (sizes the batch solver's look-ahead)
         # draws follow, within each region, the sub-ranges whose earlier draws worked (issue 34)
-        self.learner = RegionLearner([r.unit_map() for r in self.regions], (sampling or GoalSamplingSettings()).goal_learning)
+        self.learner = RegionLearner((self._table.lower, self._table.span, self._table.wrapped),
+                                     (sampling or GoalSamplingSettings()).goal_learning)
         self.program = ProgramSolver(world, settings)
 
     # --- hooks -------------------------------------------------------------------------------
@@ -177,7 +154,7 @@ class IKGoalSource(RoundRobinGoalSource):
 
     def target_poses(self, regions: np.ndarray, V: np.ndarray) -> np.ndarray:
         """:meth:`_target_matrix` of draws ``V`` (N, 6) of regions ``regions`` (N,) (indices) at once, (N, 4, 4)."""
-        X_WR, X_ST = self._stacked[0][regions], self._stacked[1][regions]
+        X_WR, X_ST = self._table.X_WR[regions], self._table.X_ST[regions]
         X_RS = np.zeros((len(V), 4, 4))
         X_RS[:, :3, :3] = rpy_to_matrices(V[:, 3:6])
         X_RS[:, :3, 3] = V[:, :3]
@@ -190,7 +167,7 @@ class IKGoalSource(RoundRobinGoalSource):
         j = np.asarray(regions, int)
         if self.settings.near_targets and self.near is not None and len(j):
             return self._near_targets(j, rng)
-        lo, span, wrapped = (a[j] for a in self._stacked[2:])
+        lo, span, wrapped = (a[j] for a in (self._table.lower, self._table.span, self._table.wrapped))
         V = from_unit(lo, span, wrapped, self.learner.warp(j, rng.random(lo.shape)))
         return V, self.target_poses(j, V)
 
@@ -204,7 +181,7 @@ class IKGoalSource(RoundRobinGoalSource):
         0.85 by joint motion with 16 / 32 / 64 targets; panda_tabletop 3.62, 1.87, 1.71, 1.59 / 1.57 / 1.56
         (64 targets cost ~40 ms per 90 attempts, 32 ~20 ms)."""
         rows = np.repeat(j, NEAR_CANDIDATES)
-        lo, span, wrapped = (a[rows] for a in self._stacked[2:])
+        lo, span, wrapped = (a[rows] for a in (self._table.lower, self._table.span, self._table.wrapped))
         V = from_unit(lo, span, wrapped, rng.random(lo.shape))
         X = self.target_poses(rows, V)
         near_full = self.near_full()
@@ -222,7 +199,7 @@ class IKGoalSource(RoundRobinGoalSource):
     def approach_shift(self, region: PoseRegion, scale: float) -> np.ndarray:
         """The pre-pose of a target X_WT is X_WT times this: ``scale`` x the approach, in the robot frame's axes."""
         shift = np.eye(4)
-        shift[:3, 3] = scale * self._factors[region.id][2]
+        shift[:3, 3] = scale * self._table.approach[self._index[region.id]]
         return shift
 
     def approach_from(self, region: PoseRegion, v: np.ndarray, q_full: np.ndarray, scale: float = 1.0) -> np.ndarray | None:
