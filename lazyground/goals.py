@@ -79,6 +79,7 @@ class RoundRobinGoalSource:
         # the strategy's choice of regions (the search sets it: lazyground.planning.region_bandit); None: round robin
         self.chooser = None
         self._schedule: list[int] = []  # with a chooser: the region of each attempt counter, blocks appended as needed
+        self._block: tuple = (None, [])  # ((chooser, its version, open regions) it was made at, the chooser's last block)
 
     def seed_near(self) -> bool:
         """Solve goals from the step's start from now on (the branch nearest it); False: this source cannot."""
@@ -200,13 +201,19 @@ class RoundRobinGoalSource:
     def _chosen(self, position: int, k: int) -> list[tuple[int, int]]:
         """:meth:`plan` in the chooser's order: counter ``position`` is the schedule's entry ``position``; the schedule
         grows by the chooser's blocks as the counters pass its end (so a plan made again from a counter is the same,
-        as the batch solver's look-ahead needs). Exhausted regions and those out of attempts are passed over."""
+        as the batch solver's look-ahead needs). Exhausted regions and those out of attempts are passed over; a plan
+        that has passed only entries scheduled before it (their regions spent since) goes on to the chooser's next
+        block: it stopped there empty before, and the draw asked it again until its deadline (#33)."""
         out: list[tuple[int, int]] = []
         left: dict[int, int] = {}
         idle = 0  # entries passed over in a row
-        while len(out) < k and self._open and idle <= len(self.regions):
+        asked = False  # whether this plan appended a block
+        while len(out) < k and self._open and (idle <= len(self.regions) or not (out or asked)):
             while position >= len(self._schedule):
-                self._schedule += self.chooser.block(self._open)
+                if not asked and idle > len(self.regions):
+                    idle = 0  # only entries scheduled before passed: the next block's open regions each take one
+                asked = True
+                self._schedule += self._next_block()
             j = self._schedule[position]
             position += 1
             if j not in left and self.region_exhausted(j):
@@ -217,6 +224,15 @@ class RoundRobinGoalSource:
             else:
                 idle += 1
         return out
+
+    def _next_block(self) -> list[int]:
+        """The chooser's next block of regions, asked again only when the chooser, its counts (``version``) or the
+        open regions changed since the last: a plan that passes over many entries appends one block many times
+        (#33: ~300 sorts of the open regions a request on a 64-can Fetch rack, 1 distinct)."""
+        key = (self.chooser, getattr(self.chooser, "version", None), len(self._open))  # (the open list only shrinks)
+        if key[1] is None or key != self._block[0]:
+            self._block = (key, self.chooser.block(self._open))
+        return self._block[1]
 
     def batch_size(self, wanted: int) -> int:
         """How many attempts to plan at once when ``wanted`` samples are missing (1: one at a time)."""

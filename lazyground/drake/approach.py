@@ -124,10 +124,9 @@ def _blocked(h: Hand, d, steps, X_WR, X_SE, vs, owners) -> np.ndarray:
         @ X_SE[:, None, :3, :3]  # (regions, poses, 3, 3): region.pose_in_world(v)
     t = (X_WR[:, :3, :3] @ vs[..., :3].transpose(0, 2, 1)).transpose(0, 2, 1) + X_WR[:, None, :3, 3] \
         + (R @ X_SE[:, None, :3, 3, None])[..., 0]
-    p = np.einsum("rkij,mj->rkmi", R, h.points) + t[:, :, None, :]  # (regions, poses, points, 3)
     dw = (R @ d[:, None, :, None])[..., 0]  # (regions, poses, 3): each pose's retreat direction in the world
-    free = retreats(np.ascontiguousarray(p), np.ascontiguousarray(dw), steps, STEP, *h.solids, h.reach, h.owners,
-                    owners, float(h.tol))
+    free = retreats(np.ascontiguousarray(R), np.ascontiguousarray(t), np.ascontiguousarray(h.points, float),
+                    np.ascontiguousarray(dw), steps, STEP, *h.solids, h.reach, h.owners, owners, float(h.tol))
     return ~np.asarray(free, bool)
 
 

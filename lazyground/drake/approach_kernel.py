@@ -36,38 +36,48 @@ def _near(lo, hi, centres, reach, owners, owner, tol, among, count, out):
     return found
 
 
+@njit(cache=True, inline="always")
+def _placed(R, t, points, r, k, i, c):
+    """Coordinate c of hand point i at pose (r, k): R[r, k] @ points[i] + t[r, k], summed as numpy's einsum sums it."""
+    return R[r, k, c, 0] * points[i, 0] + R[r, k, c, 2] * points[i, 2] + R[r, k, c, 1] * points[i, 1] + t[r, k, c]
+
+
 @njit(cache=True)
-def retreats(p, dw, steps, step, centres, axes, half, rounding, reach, owners, owner, tol):
-    """Whether, for each region r, for some pose k the points ``p[r, k]`` (regions, poses, points, 3) moved by
-    ``s * step`` along ``dw[r, k]`` for every s < ``steps[r]`` stay ``tol`` away from every solid (stacked centres,
-    axes, half extents, roundings; ``reach`` their bounding half extents) whose owner is not ``owner[r]``."""
-    out = np.zeros(p.shape[0], np.bool_)
-    lo, hi = np.empty((p.shape[1], 3)), np.empty((p.shape[1], 3))  # per pose: the box of its retreat
+def retreats(R, t, points, dw, steps, step, centres, axes, half, rounding, reach, owners, owner, tol):
+    """Whether, for each region r, for some pose k the hand's ``points`` (in its frame) at the pose (rotation
+    ``R[r, k]``, translation ``t[r, k]``; regions, poses) moved by ``s * step`` along ``dw[r, k]`` for every
+    s < ``steps[r]`` stay ``tol`` away from every solid (stacked centres, axes, half extents, roundings; ``reach``
+    their bounding half extents) whose owner is not ``owner[r]``. The points are placed as they are tested (no
+    (regions, poses, points, 3) array: ~2 ms of numpy on a 64-can rack)."""
+    out = np.zeros(R.shape[0], np.bool_)
+    lo, hi = np.empty((R.shape[1], 3)), np.empty((R.shape[1], 3))  # per pose: the box of its retreat
     every, box = np.arange(centres.shape[0]), np.empty((2, 3))
     region, near = np.empty(centres.shape[0], np.int64), np.empty(centres.shape[0], np.int64)
-    for r in range(p.shape[0]):
+    for r in range(R.shape[0]):
         last = (steps[r] - 1) * step
-        for k in range(p.shape[1]):
+        for k in range(R.shape[1]):
             for c in range(3):  # the pose's points at the first and the last step
                 low, high, move = math.inf, -math.inf, last * dw[r, k, c]
-                for i in range(p.shape[2]):
-                    a = p[r, k, i, c]
+                for i in range(points.shape[0]):
+                    a = _placed(R, t, points, r, k, i, c)
                     low, high = min(low, a, a + move), max(high, a, a + move)
                 lo[k, c], hi[k, c] = low, high
         for c in range(3):  # the region's box: every pose's
             box[0, c], box[1, c] = lo[:, c].min(), hi[:, c].max()
         in_region = _near(box[0], box[1], centres, reach, owners, owner[r], tol, every, len(every), region)
-        for k in range(p.shape[1]):
+        for k in range(R.shape[1]):
             count = _near(lo[k], hi[k], centres, reach, owners, owner[r], tol, region, in_region, near)
             free = True
             for s in range(steps[r]):
                 if not free:
                     break
                 sx, sy, sz = s * step * dw[r, k, 0], s * step * dw[r, k, 1], s * step * dw[r, k, 2]
-                for i in range(p.shape[2]):
+                for i in range(points.shape[0]):
                     if not free:
                         break
-                    x, y, z = p[r, k, i, 0] + sx, p[r, k, i, 1] + sy, p[r, k, i, 2] + sz
+                    x = _placed(R, t, points, r, k, i, 0) + sx
+                    y = _placed(R, t, points, r, k, i, 1) + sy
+                    z = _placed(R, t, points, r, k, i, 2) + sz
                     for n in range(count):
                         m = near[n]
                         d0, d1, d2 = x - centres[m, 0], y - centres[m, 1], z - centres[m, 2]

@@ -53,7 +53,8 @@ def warm_up() -> float:
     planner_compiled = linear_kernels.warm_up()[1]
     from lazyground.drake import approach_kernel  # cover's approach-clearance test (lazyground.drake.approach)
 
-    approach_kernel.retreats(np.zeros((1, 1, 1, 3)), np.zeros((1, 1, 3)), np.ones(1, np.int64), 0.03, np.zeros((1, 3)),
+    approach_kernel.retreats(np.eye(3)[None, None], np.zeros((1, 1, 3)), np.zeros((1, 3)), np.zeros((1, 1, 3)),
+                             np.ones(1, np.int64), 0.03, np.zeros((1, 3)),
                              np.eye(3)[None], np.zeros((1, 3)), np.zeros(1), np.zeros((1, 3)), np.zeros(1, np.int64),
                              np.full(1, -1, np.int64), 0.01)
     planner_compiled = planner_compiled or bool(sum(approach_kernel.retreats.stats.cache_misses.values()))

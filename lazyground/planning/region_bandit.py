@@ -32,7 +32,8 @@ class StagedBandit:
     ring fail out of reach, 24-27 % of those on the inner ring's (layout 0, 60 per region).
 
     Counts are kept as attempts are recorded (:meth:`observe`, O(1)); a block costs one sort of the open regions
-    (numpy), once per ``BLOCK`` attempts, not per search iteration.
+    (numpy), made when the source's schedule runs out, and made again only after the counts (``version``) or the
+    open regions changed (:meth:`lazyground.goals.RoundRobinGoalSource._next_block`): never per search iteration.
     """
 
     def __init__(self, stats: list, hopeless_reasons: tuple[str, ...], deferred=()):
@@ -45,9 +46,11 @@ class StagedBandit:
         self.blocked = np.zeros(len(stats))  # valid samples whose goal tree stays its root (:meth:`block_sample`)
         self.aged = np.zeros(len(stats))  # valid samples whose goal tree grew long without connecting (:meth:`age_sample`)
         self._passed, self._valid = float(self.passed.sum()), float(self.valid.sum())  # pooled
+        self.version = 0  # counts the changes to the counts: a block asked again at the same version is the same
 
     def observe(self, j: int, valid: bool, hopeless: bool) -> None:
         """One attempt on region ``j``: whether it gave a valid sample, whether it failed for a hopeless reason."""
+        self.version += 1
         self.attempts[j] += 1
         self.passed[j] += not hopeless
         self.valid[j] += valid
@@ -58,12 +61,14 @@ class StagedBandit:
         """A valid sample of region ``j`` turned out blocked (its goal tree cannot leave its root:
         :mod:`lazyground.planning.blocked`), or grew after all (``blocked`` False). A blocked sample counts as a miss:
         its region goes back among those without a sample, at the rate of its other attempts."""
+        self.version += 1
         self.blocked[j] += 1 if blocked else -1
 
     def age_sample(self, j: int) -> None:
         """A valid sample of region ``j`` aged (its goal tree took many steps without meeting the start tree:
         :mod:`lazyground.planning.blocked`): the region goes back among those without a usable sample, at its own
         rate (its valid samples still count: the region does yield them, and its next one is another grasp)."""
+        self.version += 1
         self.aged[j] += 1
 
     def _usable(self, regions: np.ndarray) -> np.ndarray:

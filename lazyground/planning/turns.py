@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 TURN = 2.0 * np.pi
+HALF_TURN = np.pi - 1e-9  # closer than this, no other equivalent is as near (float error ~1e-15 kept well apart)
 
 
 def nearest_turns(q: np.ndarray, start: np.ndarray, lower: np.ndarray, upper: np.ndarray, turns: np.ndarray,
@@ -31,6 +32,8 @@ def nearest_turns(q: np.ndarray, start: np.ndarray, lower: np.ndarray, upper: np
     shift = np.zeros(len(q))
     for i in np.flatnonzero(turns).tolist():
         qi, si = q[i], start[i]
+        if abs(qi - si) < HALF_TURN:  # q[i] itself the nearest by far: no shift (the loop below's first candidate)
+            continue
         k = float(round((si - qi) / TURN))
         candidates = sorted({0.0, k - 2.0, k - 1.0, k, k + 1.0, k + 2.0}, key=lambda c: abs(qi + c * TURN - si))
         for c in candidates:  # nearest first; the limits may rule out the nearest

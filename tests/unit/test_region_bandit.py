@@ -8,7 +8,7 @@ from lazyground.planning import PlannerSettings, solve
 from lazyground.planning.cover import Cover
 from lazyground.planning.problem import GoalSample, RegionStats
 from lazyground.planning.region_bandit import BLOCK, DEFER, StagedBandit
-from lazyground.planning.stop import never
+from lazyground.planning.stop import StopCondition, never
 from lazyground.regions import ConfigRegion
 from tests.unit.toy import NO_CLOCK, SPACE, START, WALLS, BoxWorld
 
@@ -140,3 +140,49 @@ def test_cover_hands_the_sources_blocked_approaches_to_its_chooser():
     chooser = Cover().region_chooser(source)
     assert list(chooser.deferred) == [True, False, True, False]
     assert chooser.block([0, 1, 2, 3]) == [1, 3]
+
+
+
+def _one_region_ahead(memo=True):
+    """40 regions, none yielding; the chooser defers all but region 0, which may take 4 attempts."""
+    source = Rack(_regions(40), near=5, rate=[0.0] * 5, give_up_after=4)
+    chooser = StagedBandit(source.stats, source.hopeless_reasons, deferred=range(1, 40))
+    asked = []
+    block = chooser.block
+    chooser.block = lambda open_: asked.append(len(open_)) or block(open_)
+    if not memo:  # every block asked afresh, as before
+        chooser.version = None
+    source.chooser = chooser
+    return source, asked
+
+
+def test_a_plan_asks_the_chooser_again_only_once_its_counts_or_the_open_regions_changed():
+    """A plan that passes over entries whose region is out of attempts appends the same block again and again (#33:
+    ~300 sorts of the open regions a request on a 64-can Fetch rack, one distinct): the block is asked once per
+    change, and the schedule is the one asking every time gives."""
+    plans, asks = {}, {}
+    for memo in (True, False):
+        source, asks[memo] = _one_region_ahead(memo)
+        plans[memo] = source.plan(0, 3 * BLOCK), list(source._schedule)
+    assert plans[True] == plans[False] and [j for j, _ in plans[True][0]] == [0] * 4  # region 0 alone, 4 attempts
+    assert len(asks[True]) == 1 and len(asks[False]) > 40
+    source, asked = _one_region_ahead()
+    source.plan(0, 3 * BLOCK)
+    source.draw(1, np.random.default_rng(0), never())  # counts change: asked again past the schedule's end
+    assert len(asked) >= 2
+    source, _ = _one_region_ahead()
+    assert source._next_block() == [0]
+    source.chooser = StagedBandit(source.stats, source.hopeless_reasons)  # another chooser, at version 0 too: asked
+    assert source._next_block() == list(range(BLOCK))
+
+
+def test_a_draw_past_a_spent_stretch_of_the_schedule_goes_on_to_the_next_block():
+    """Region 0's 4 attempts, then the 41 entries a plan passed over after them (region 0 out of attempts): once
+    region 0 is given up, a plan from there passed only those and stopped empty, and the draw asked again until
+    its stop. Now it goes on to the chooser's next block (the deferred regions)."""
+    source, _ = _one_region_ahead()
+    source.plan(0, 3 * BLOCK)
+    calls = []
+    stop = StopCondition(interrupt=lambda: calls.append(1) or len(calls) > 1000)
+    source.draw(1, np.random.default_rng(0), stop)
+    assert len(calls) <= 1000 and source.total_attempts > 4 and set(source.order[4:]) <= set(range(1, 40))
