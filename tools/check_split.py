@@ -40,10 +40,11 @@ def record(name: str, seeds: int):
 
     if name.startswith("rack:"):  # a generated rack (#33): its world and request as the bench loads them
         from lazyground.bench.runner import load_problem
+        from lazyground.settings import Algorithm, Strategy
 
         problem = load_problem(name)
         scene, world, request = problem.scene, problem.world, problem.request
-        options = dict(strategy="cover", algorithm="bidirectional", time_limit=30)  # as tools/rack_split.py plans
+        options = dict(strategy=Strategy.COVER.value, algorithm=Algorithm.BIDIRECTIONAL.value, time_limit=30)  # as tools/rack_split.py plans
     else:
         scene = load_scene(name)
         world = DrakeWorld(scene, visual=False)
