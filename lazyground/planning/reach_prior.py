@@ -33,6 +33,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import ndimage
 
+from lazyground.regions.base import unit_maps
+
 EPS = 1e-6  # metres: a cell is blocked only if its ball reaches this far into an obstacle (float slack)
 TOLERANCE = 1e-6  # goal boxes and bounds are widened by this (ConfigRegion.contains' tolerance, limits held to 1e-9)
 
@@ -282,19 +284,23 @@ class PlanarReach:
         todo = [j for j, r in enumerate(regions) if self.start and r.kind == "config" and len(r.lower) > max(self.index)]
         if not todo:
             return out
-        arcs, lows, highs = {}, [], []
-        offset = np.asarray(self.offset, float)
+        by_dim: dict[int, list[int]] = {}  # (unit_maps stacks regions of one dimension)
         for j in todo:
-            lower, span, _ = regions[j].unit_map()
-            key = lower[ih:ih + 1].tobytes() + span[ih:ih + 1].tobytes()  # (by their bits: -0.0 too)
-            if key not in arcs:
-                arcs[key] = _arc_box(offset, float(lower[ih]), float(span[ih]))
-            lo, hi = arcs[key]
-            lows.append((lower[ix] + lo[0], lower[iy] + lo[1]))
-            highs.append((lower[ix] + span[ix] + hi[0], lower[iy] + span[iy] + hi[1]))
-        kept = self.grid.meets(np.array(lows) - TOLERANCE, np.array(highs) + TOLERANCE, self.start)
-        for j, k in zip(todo, kept):
-            out[j] = bool(k)
+            by_dim.setdefault(len(regions[j].lower), []).append(j)
+        arcs: dict[bytes, tuple] = {}
+        offset = np.asarray(self.offset, float)
+        for rows in by_dim.values():
+            lows, highs = [], []
+            for lower, span in zip(*unit_maps([regions[j] for j in rows])[:2]):
+                key = lower[ih:ih + 1].tobytes() + span[ih:ih + 1].tobytes()  # (by their bits: -0.0 too)
+                if key not in arcs:
+                    arcs[key] = _arc_box(offset, float(lower[ih]), float(span[ih]))
+                lo, hi = arcs[key]
+                lows.append((lower[ix] + lo[0], lower[iy] + lo[1]))
+                highs.append((lower[ix] + span[ix] + hi[0], lower[iy] + span[iy] + hi[1]))
+            kept = self.grid.meets(np.array(lows) - TOLERANCE, np.array(highs) + TOLERANCE, self.start)
+            for j, k in zip(rows, kept):
+                out[j] = bool(k)
         return out
 
     def centres(self, qs) -> np.ndarray:
